@@ -1,0 +1,38 @@
+//! Cubic boundary curves for triangular surface interpolants.
+//!
+//! The curve layer of the workbench: cubic Bézier curves in the plane and in space
+//! ([`CubicBez`]), the planar boundary-curve problem of a mesh edge ([`BoundaryProblem`], scaled
+//! to the unit chord as [`UnitProblem`]), and the constructions that choose the end-derivative
+//! lengths `(α0, α1)`, each behind the [`CurveMethod`] trait and registered by name in
+//! [`REGISTRY`]:
+//!
+//! * [`chord`] — the Shirman–Séquin default, `α = (1, 1)`: one third of the chord;
+//! * [`dbhs`] — de Boor–Höllig–Sabin, matching end curvatures, with every positive solution
+//!   enumerated and one chosen by a named [`DbhsPick`] policy;
+//! * `optimized` — Mann's trade-off between tangent length and end curvature (arrives with the
+//!   cost and solver crates).
+//!
+//! Conventions are those of the workspace's DESIGN notes: signed curvature is positive where a
+//! plane curve turns left (about the plane normal `w`), normal curvature `κn(d) = dᵀ S d` is
+//! positive where the surface bends towards its normal, `α = 1` is one third of the chord.
+
+pub mod analytic;
+pub mod chord;
+pub mod cubicbez;
+pub mod dbhs;
+pub mod method;
+pub mod poly;
+pub mod problem;
+pub mod quadrature;
+
+pub use chord::Chord;
+pub use cubicbez::{cross2, CubicBez, CubicBez2, CubicBez3, CurvatureSample, QuarticBez};
+pub use dbhs::{Dbhs, DbhsPick, DbhsSolution, DbhsSolutions};
+pub use method::{
+    method_by_name, Candidates, CurveChoice, CurveMethod, MethodEntry, MethodOptions,
+    UnknownMethod, REGISTRY,
+};
+pub use problem::{
+    BoundaryProblem, Degeneracy, EdgeError, End, PlaneFrame, UnitProblem, UnitProblemError,
+    VertexData, DEGENERATE_SINE,
+};
