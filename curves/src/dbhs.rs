@@ -26,9 +26,11 @@
 //!   `k1 α1² = −6 d1`. With `k = 0` and `d = 0` (a straight end) that length is free; it is
 //!   set to `1` (the chord choice) and flagged in [`DbhsSolution::free`].
 //!
-//! Curvatures below [`FLAT_CURVATURE`] are treated as zero, and `|c|` below [`PARALLEL_SINE`]
-//! as parallel: otherwise rounding noise in the data would create solutions with lengths of
-//! order 10⁶ that no real data asks for.
+//! Curvatures below [`FLAT_CURVATURE`] are treated as zero, and the sines `c, d0, d1` below
+//! [`PARALLEL_SINE`] as zero: otherwise rounding noise in the data creates solutions that no
+//! real data asks for. Example: an edge along the top circle of a torus has both tangents along
+//! the chord (`c = d0 = d1 = 0` up to 10⁻¹⁷) but non-zero curvature; no cubic does that
+//! (`k0 α0² = 0`), yet the noise alone yields "solutions" with `α0 ≈ 10⁻⁸`.
 //!
 //! There may be no solution (about one edge in twelve on a 16×8 torus), one, or several
 //! (most torus edges have three). The seeds' "lumps" come from choosing a solution with a short
@@ -126,13 +128,13 @@ struct Coefficients {
 
 impl Coefficients {
     fn new(p: &UnitProblem) -> Self {
-        let flat = |k: f64| if k.abs() <= FLAT_CURVATURE { 0.0 } else { k };
+        let snap = |x: f64, tol: f64| if x.abs() <= tol { 0.0 } else { x };
         Coefficients {
-            k0: flat(p.k0),
-            k1: flat(p.k1),
-            c: cross2(&p.t0, &p.t1),
-            d0: -p.t0.y,
-            d1: -p.t1.y,
+            k0: snap(p.k0, FLAT_CURVATURE),
+            k1: snap(p.k1, FLAT_CURVATURE),
+            c: snap(cross2(&p.t0, &p.t1), PARALLEL_SINE),
+            d0: snap(-p.t0.y, PARALLEL_SINE),
+            d1: snap(-p.t1.y, PARALLEL_SINE),
         }
     }
 
@@ -185,7 +187,7 @@ impl Coefficients {
 /// Positive length `α` with `k α² = r`, or free (`k = 0 = r`), or none.
 fn decoupled(k: f64, r: f64) -> Option<(f64, bool)> {
     if k == 0.0 {
-        return (r.abs() <= 6.0 * PARALLEL_SINE).then_some((1.0, true));
+        return (r == 0.0).then_some((1.0, true));
     }
     let q = r / k;
     (q > 0.0).then(|| (q.sqrt(), false))
@@ -196,7 +198,7 @@ pub fn solve(problem: &UnitProblem) -> DbhsSolutions {
     let co = Coefficients::new(problem);
     let mut out = DbhsSolutions::default();
     let Coefficients { k0, k1, c, d0, d1 } = co;
-    if c.abs() <= PARALLEL_SINE {
+    if c == 0.0 {
         if let (Some((a0, f0)), Some((a1, f1))) =
             (decoupled(k0, 6.0 * d0), decoupled(k1, -6.0 * d1))
         {

@@ -301,3 +301,24 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn torus_16x8_solution_counts() {
+    // The ring of the seeds, sampled 16 × 8 (R = 1, r = 0.4). The 32 edges along the top and
+    // bottom circles of the tube have both tangents along the chord and non-zero curvature:
+    // no cubic matches them (one edge in twelve). Most other edges have three solutions.
+    use curves::analytic::{torus_grid_edges, torus_point};
+    let mut counts = [0usize; 5];
+    for ((ua, va), (ub, vb)) in torus_grid_edges(16, 8) {
+        let (a, b) = (torus_point(ua, va, 1.0, 0.4), torus_point(ub, vb, 1.0, 0.4));
+        let p = curves::BoundaryProblem::new((0, 1), &a, &b).expect("torus edges are regular");
+        let sols = dbhs::solve(&p.unit);
+        for s in sols.iter() {
+            assert_matches_targets(&p.unit, s.alpha);
+        }
+        counts[sols.len()] += 1;
+    }
+    assert_eq!(counts[0], 32, "{counts:?}");
+    assert!(counts[3] > 384 / 2, "{counts:?}");
+    assert_eq!(counts.iter().sum::<usize>(), 384);
+}

@@ -1,0 +1,30 @@
+//! What can stop an experiment before it produces anything.
+
+use std::path::PathBuf;
+
+/// An experiment could not run or could not write its results.
+#[derive(Debug, thiserror::Error)]
+pub enum ExperimentError {
+    /// A file or standard input could not be read.
+    #[error("cannot read {path}: {source}")]
+    Read {
+        /// The file (or `<stdin>`).
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A result could not be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A figure could not be drawn or written.
+    #[error(transparent)]
+    Render(#[from] render::RenderError),
+    /// A command-line setting names something that does not exist.
+    #[error("{0}")]
+    Usage(String),
+}

@@ -1,0 +1,42 @@
+//! The experiment runner of the workbench.
+//!
+//! `cargo run --release -p experiments -- <experiment> [options]`; `--help` lists the
+//! experiments and each one's `--help` its options and defaults. Experiments write their results
+//! atomically (temporary file, then rename) so an interrupted run never leaves half a file.
+
+mod curve;
+mod error;
+mod output;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Experiments on triangular surface interpolants and their boundary curves.
+#[derive(Parser, Debug)]
+#[command(name = "experiments", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    experiment: Experiment,
+}
+
+#[derive(Subcommand, Debug)]
+enum Experiment {
+    /// Boundary curves for planar unit-chord problems given as JSON Lines: every construction's
+    /// (α0, α1), control points and end curvatures, and Figure-2-style plots.
+    Curve(curve::CurveArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.experiment {
+        Experiment::Curve(args) => curve::run(&args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

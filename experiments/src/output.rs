@@ -1,0 +1,36 @@
+//! Writing results: atomically, to a file or to standard output.
+
+use std::io::Write;
+use std::path::Path;
+
+use crate::error::ExperimentError;
+
+/// Writes `bytes` to `path` atomically (temporary file in the same directory, then rename),
+/// creating the parent directory if needed; `None` writes to standard output.
+pub fn write_result(path: Option<&Path>, bytes: &[u8]) -> Result<(), ExperimentError> {
+    match path {
+        Some(p) => {
+            if let Some(parent) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+                ensure_dir(parent)?;
+            }
+            render::write_atomic(p, bytes).map_err(ExperimentError::from)
+        }
+        None => {
+            let mut out = std::io::stdout().lock();
+            out.write_all(bytes)
+                .and_then(|_| out.flush())
+                .map_err(|source| ExperimentError::Write {
+                    path: "<stdout>".into(),
+                    source,
+                })
+        }
+    }
+}
+
+/// Creates a results directory (and its parents).
+pub fn ensure_dir(dir: &Path) -> Result<(), ExperimentError> {
+    std::fs::create_dir_all(dir).map_err(|source| ExperimentError::Write {
+        path: dir.to_path_buf(),
+        source,
+    })
+}

@@ -1,0 +1,82 @@
+//! The `curve` experiment as a user runs it: standard input to standard output, bad lines named,
+//! exit status.
+
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
+
+use std::io::Write;
+use std::process::{Command, Stdio};
+
+fn run(args: &[&str], stdin: &str) -> (i32, String, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_experiments"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(stdin.as_bytes())
+        .expect("writes");
+    let out = child.wait_with_output().expect("finishes");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).expect("utf-8"),
+        String::from_utf8(out.stderr).expect("utf-8"),
+    )
+}
+
+#[test]
+fn answers_every_line_in_order_and_names_bad_ones() {
+    let input = concat!(
+        r#"{"t0":[0.995,0.0998],"t1":[0.995,-0.0998],"k0":-0.2,"k1":-0.2,"tag":"a"}"#,
+        "\n",
+        r#"{"t0":[1,0],"t1":[1,0],"k0":0}"#,
+        "\n\n",
+        "not json\n",
+        r#"{"t0":[0.6,0.8],"t1":[0.6,-0.8],"k0":-1.0,"k1":-1.0}"#,
+        "\n"
+    );
+    let (code, out, err) = run(&["curve"], input);
+    assert_eq!(code, 1, "bad lines make the exit status non-zero");
+    let lines: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("JSON line"))
+        .collect();
+    assert_eq!(lines.len(), 4);
+    assert_eq!(lines[0]["line"], 1);
+    assert_eq!(lines[0]["input"]["tag"], "a");
+    assert_eq!(
+        lines[0]["methods"]["chord"]["alpha"],
+        serde_json::json!([1.0, 1.0])
+    );
+    assert!(lines[0]["methods"]["dbhs"]["solutions"].is_array());
+    assert_eq!(lines[1]["line"], 2);
+    assert_eq!(lines[1]["error"], "missing field `k1`");
+    assert!(lines[1].get("methods").is_none());
+    assert_eq!(lines[2]["line"], 4);
+    assert!(lines[2]["error"]
+        .as_str()
+        .expect("message")
+        .starts_with("bad JSON"));
+    assert_eq!(lines[3]["line"], 5);
+    assert!(lines[3]["methods"]["dbhs"]["alpha"].is_array());
+    assert!(err.contains("2 problems answered, 2 with errors"), "{err}");
+    assert!(err.contains("line 2: missing field `k1`"), "{err}");
+}
+
+#[test]
+fn unknown_method_and_missing_file_are_usage_errors() {
+    let (code, out, err) = run(&["curve", "--methods", "chord,splines"], "");
+    assert_eq!(code, 2);
+    assert!(out.is_empty());
+    assert!(
+        err.contains("unknown boundary-curve method `splines`"),
+        "{err}"
+    );
+    let (code, _, err) = run(&["curve", "--input", "/nonexistent/problems.jsonl"], "");
+    assert_eq!(code, 2);
+    assert!(err.contains("/nonexistent/problems.jsonl"), "{err}");
+}

@@ -1,0 +1,25 @@
+//! Headless plotting and rendering: curve and curvature plots now, shaded meshes later.
+//!
+//! Everything here draws without a display or system fonts: text uses the DejaVu Sans font
+//! bundled with the workspace (`assets/fonts`), registered with plotters from bytes
+//! ([`font`]), and every output file is written atomically ([`io::write_atomic`]) so a
+//! failed or interrupted run never leaves a half-written figure in place of a good one.
+//!
+//! * [`curveplot`] — figures in the style of Mann (1994), *Using local optimization in surface
+//!   fitting*, Figure 2: one column per boundary-curve construction method, each showing the
+//!   cubic with its control polygon above its signed curvature against normalized arc length,
+//!   together with the straight line joining the target end curvatures. Written as PNG and SVG.
+//! * [`io`] — atomic file output shared by all renderers.
+//! * [`font`] — the bundled font and its one-time registration.
+
+pub mod curveplot;
+pub mod error;
+pub mod font;
+pub mod io;
+
+pub use curveplot::{
+    curvature_y_range, equal_aspect_ranges, figure_size, write_curve_figure, CurveFigure,
+    CurvePanel, YRange,
+};
+pub use error::RenderError;
+pub use io::write_atomic;
