@@ -9,8 +9,8 @@
 //! * [`chord`] — the Shirman–Séquin default, `α = (1, 1)`: one third of the chord;
 //! * [`dbhs`] — de Boor–Höllig–Sabin, matching end curvatures, with every positive solution
 //!   enumerated and one chosen by a named [`DbhsPick`] policy;
-//! * `optimized` — Mann's trade-off between tangent length and end curvature (arrives with the
-//!   cost and solver crates).
+//! * [`optimized`] — Mann's trade-off between tangent length and end curvature, minimized by any
+//!   adapter of the `solver` crate (objective in the `cost` crate).
 //!
 //! Conventions are those of the workspace's DESIGN notes: signed curvature is positive where a
 //! plane curve turns left (about the plane normal `w`), normal curvature `κn(d) = dᵀ S d` is
@@ -21,6 +21,7 @@ pub mod chord;
 pub mod cubicbez;
 pub mod dbhs;
 pub mod method;
+pub mod optimized;
 pub mod poly;
 pub mod problem;
 pub mod quadrature;
@@ -32,6 +33,7 @@ pub use method::{
     method_by_name, Candidates, CurveChoice, CurveMethod, MethodEntry, MethodOptions,
     UnknownMethod, REGISTRY,
 };
+pub use optimized::Optimized;
 pub use problem::{
     BoundaryProblem, Degeneracy, EdgeError, End, PlaneFrame, UnitProblem, UnitProblemError,
     VertexData, DEGENERATE_SINE,

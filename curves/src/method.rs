@@ -4,7 +4,9 @@
 //! curve follows from [`crate::BoundaryProblem::curve`]. Adding a construction means one file
 //! implementing [`CurveMethod`] and one line in [`REGISTRY`].
 
-use crate::{chord::Chord, dbhs::Dbhs, dbhs::DbhsPick, problem::UnitProblem};
+use crate::{chord::Chord, dbhs::Dbhs, dbhs::DbhsPick, optimized::Optimized, problem::UnitProblem};
+use cost::Weights;
+use solver::{SolveOptions, SolveReport, SolverKind};
 
 /// Alternative solutions a construction found, at most four (the dBHS quartic has at most four
 /// real roots). Fixed size: constructions run once per mesh edge and should not allocate.
@@ -52,8 +54,8 @@ pub struct CurveChoice {
     pub candidates: Candidates,
     /// Index into `candidates` of the chosen one, if one was chosen.
     pub chosen: Option<usize>,
-    /// A machine-readable account of how the choice was made (a solver report), if any.
-    pub report: Option<serde_json::Value>,
+    /// The solver's report, for constructions that solve an optimization problem.
+    pub report: Option<SolveReport>,
 }
 
 impl CurveChoice {
@@ -86,10 +88,33 @@ pub trait CurveMethod: Send + Sync {
 }
 
 /// Settings the registered constructions read; each ignores what it does not use.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MethodOptions {
     /// Which dBHS solution to take when there are several.
     pub dbhs_pick: DbhsPick,
+    /// The solver of the `optimized` construction (default: exact penalty, the seeds' choice).
+    pub solver: SolverKind,
+    /// Weights of the `optimized` objective (default 1, 1).
+    pub weights: Weights,
+    /// Lower bound on α for `optimized`.
+    pub alpha_min: f64,
+    /// Solver settings for `optimized`.
+    pub solve_options: SolveOptions,
+}
+
+impl Default for MethodOptions {
+    fn default() -> Self {
+        MethodOptions {
+            dbhs_pick: DbhsPick::default(),
+            solver: SolverKind::ExactPenalty,
+            weights: Weights::default(),
+            alpha_min: crate::optimized::DEFAULT_ALPHA_MIN,
+            solve_options: SolveOptions {
+                record_history: false,
+                ..SolveOptions::default()
+            },
+        }
+    }
 }
 
 /// A name that is not in the registry.
@@ -123,6 +148,18 @@ pub const REGISTRY: &[MethodEntry] = &[
         name: "dbhs",
         summary: "de Boor–Höllig–Sabin: matches end tangents and curvatures; chord if impossible",
         build: |o| Box::new(Dbhs { pick: o.dbhs_pick }),
+    },
+    MethodEntry {
+        name: "optimized",
+        summary: "Mann: minimizes tangent-length and end-curvature errors with a chosen solver",
+        build: |o| {
+            Box::new(Optimized {
+                solver: o.solver,
+                weights: o.weights,
+                alpha_min: o.alpha_min,
+                solve_options: o.solve_options,
+            })
+        },
     },
 ];
 
@@ -159,6 +196,6 @@ mod tests {
         let err = method_by_name("bogus", &MethodOptions::default())
             .err()
             .expect("unknown");
-        assert!(err.to_string().contains("chord, dbhs"));
+        assert!(err.to_string().contains("chord, dbhs, optimized"));
     }
 }

@@ -12,6 +12,12 @@ use proptest::prelude::*;
 const CURVATURE_TOL: f64 = 1e-12;
 /// World/unit round trips are exact up to rounding of coordinates of order one.
 const ROUND_TRIP: f64 = 1e-12;
+/// Closed-form constructions (chord, dBHS) repeat to near rounding on a rescaled or reversed
+/// problem.
+const SAME_CURVE: f64 = 1e-9;
+/// Optimized curves are only as repeatable as the solver's stopping test: a projected gradient
+/// of 1e-10 leaves α uncertain by up to ~1e-8 on flat objectives.
+const SAME_CURVE_SOLVED: f64 = 1e-7;
 
 fn sphere_vertex(p: Vector3<f64>) -> VertexData {
     curves::analytic::sphere_point(&p, 1.0)
@@ -161,7 +167,8 @@ proptest! {
                 let (ca, cb) = (m.construct(&u), m.construct(&v));
                 let (a, b) = (base.curve(ca.alpha), scaled.curve(cb.alpha));
                 for (p, q) in a.points.iter().zip(b.points.iter()) {
-                    prop_assert!((p.coords * s - q.coords).norm() < 1e-9 * s);
+                    let tol = if ca.report.is_some() { SAME_CURVE_SOLVED } else { SAME_CURVE };
+                    prop_assert!((p.coords * s - q.coords).norm() < tol * s, "{}: {:?} vs {:?}", entry.name, ca.alpha, cb.alpha);
                 }
             }
         }
@@ -213,8 +220,9 @@ proptest! {
             let m = method_by_name(entry.name, &MethodOptions::default()).expect("known");
             let (x, y) = (m.construct(&ab.unit), m.construct(&ba.unit));
             let (c, d) = (ab.curve(x.alpha), ba.curve(y.alpha).reversed());
+            let tol = if x.report.is_some() { SAME_CURVE_SOLVED } else { SAME_CURVE };
             for (p, q) in c.points.iter().zip(d.points.iter()) {
-                prop_assert!((p - q).norm() < 1e-8, "{}: {:?} vs {:?}", entry.name, c, d);
+                prop_assert!((p - q).norm() < tol, "{}: {:?} vs {:?}", entry.name, c, d);
             }
         }
     }

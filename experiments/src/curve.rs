@@ -8,7 +8,8 @@
 //! {"line": n, "input": {…}, "methods": {"chord": {"alpha": [a0, a1], "points": [[x, y], …],
 //!   "kappa": [k0, k1], "curvature_variation": v},
 //!   "dbhs": {"solutions": [{"alpha", "points", "kappa", "curvature_variation"}, …],
-//!            "chosen": i | null, "fallback": bool, "alpha": …, "points": …, "kappa": …, …}}}
+//!            "chosen": i | null, "fallback": bool, "alpha": …, "points": …, "kappa": …, …},
+//!   "optimized": {"alpha", "points", "kappa", "curvature_variation", "report": {solver report}}}}
 //! ```
 //!
 //! `kappa` holds the end curvatures the curve achieves (compare with the input's `k0, k1`);
@@ -25,6 +26,7 @@ use curves::{method_by_name, CurveChoice, CurveMethod, DbhsPick, MethodOptions, 
 use nalgebra::Vector2;
 use render::{CurveFigure, CurvePanel};
 use serde_json::{json, Map, Value};
+use solver::{SolveOptions, SolverKind};
 
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, write_result};
@@ -38,9 +40,12 @@ pub struct CurveArgs {
     /// Where to write the JSON Lines answers (standard output when absent).
     #[arg(long)]
     output: Option<PathBuf>,
-    /// Comma-separated constructions to run (known: chord, dbhs).
-    #[arg(long, value_delimiter = ',', default_value = "chord,dbhs")]
+    /// Comma-separated constructions to run (known: chord, dbhs, optimized).
+    #[arg(long, value_delimiter = ',', default_value = "chord,dbhs,optimized")]
     methods: Vec<String>,
+    /// Solver of the optimized construction: exact-penalty, lbfgs or lm.
+    #[arg(long, default_value_t = SolverKind::ExactPenalty)]
+    solver: SolverKind,
     /// Which dBHS solution to take: closest (to α = (1, 1)), longest-short (largest shorter
     /// tangent), or a solution index in order of increasing α0.
     #[arg(long, default_value_t = DbhsPick::Closest)]
@@ -61,8 +66,15 @@ struct Answered {
 
 /// Runs the experiment; `Ok` carries the exit code (1 if some lines were bad).
 pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
+    let defaults = MethodOptions::default();
     let options = MethodOptions {
         dbhs_pick: args.dbhs_pick,
+        solver: args.solver,
+        solve_options: SolveOptions {
+            record_history: true,
+            ..defaults.solve_options
+        },
+        ..defaults
     };
     let methods: Vec<Box<dyn CurveMethod>> = args
         .methods
@@ -236,7 +248,10 @@ fn answer_json(a: &Answered) -> Value {
         }
         m.extend(curve_json(&a.problem, choice.alpha));
         if let Some(report) = &choice.report {
-            m.insert("report".into(), report.clone());
+            m.insert(
+                "report".into(),
+                serde_json::to_value(report).unwrap_or(Value::Null),
+            );
         }
         methods.insert((*name).to_string(), Value::Object(m));
     }
@@ -314,7 +329,7 @@ fn write_plots(dir: &Path, answered: &[Answered], args: &CurveArgs) -> Result<()
     let mut md = String::new();
     md.push_str("# Boundary curves for unit-chord problems\n\n");
     md.push_str(&format!(
-        "Written by `cargo run --release -p experiments -- curve{}{} --methods {} --dbhs-pick {} --plot {}`.\n\n",
+        "Written by `cargo run --release -p experiments -- curve{}{} --methods {} --dbhs-pick {} --solver {} --plot {}`.\n\n",
         args.input
             .as_ref()
             .map(|p| format!(" --input {}", p.display()))
@@ -325,6 +340,7 @@ fn write_plots(dir: &Path, answered: &[Answered], args: &CurveArgs) -> Result<()
             .unwrap_or_default(),
         args.methods.join(","),
         args.dbhs_pick,
+        args.solver,
         dir.display()
     ));
     md.push_str(

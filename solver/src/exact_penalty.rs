@@ -38,7 +38,10 @@
 //!    an optimum on a bound is returned **exactly on the bound**.
 //! 4. **Line search on the penalty.** A backtracking Armijo search (safeguarded quadratic
 //!    interpolation) on `φ` along the projected arc `x(α) = P(x + v + αh)`, with the
-//!    first-order change `(Jᵀr)ᵀ(x(α) − x)` as the predicted decrease.
+//!    first-order change `(Jᵀr)ᵀ(x(α) − x)` as the predicted decrease. When no step is
+//!    acceptable but the full step promises a relative decrease below `function_tolerance`, the
+//!    decrease is below the rounding of the cost: the run ends converged by the cost-change test
+//!    (seen on ring edges whose projected gradient stalls near 1e-9), not as a failure.
 //! 5. **Structured update.** With `s = x₊ − x`, `y = J₊ᵀr₊ − Jᵀr` and `y♯ = (J₊ − J)ᵀ r₊`, the
 //!    second-order term is sized by `min(1, |sᵀy♯| / |sᵀSs|)` and updated by the Dennis–Gay–Welsch
 //!    formula `S₊ = S + (w yᵀ + y wᵀ)/(yᵀs) − (wᵀs) y yᵀ/(yᵀs)²`, `w = y♯ − S s`, skipped when
@@ -245,6 +248,19 @@ where
                 s_term = SMatrix::zeros();
                 s_is_zero = true;
                 continue;
+            }
+            // Nothing acceptable, yet the model promises less than the function tolerance: the
+            // search failed because the decrease is below rounding of the cost, i.e. the
+            // iterate has converged in the sense of the cost-change test.
+            let step = project(&(x + v + h), &lower) - x;
+            let promised = (-g.dot(&step)).max(0.0) / cost.max(f64::MIN_POSITIVE);
+            if promised <= options.function_tolerance {
+                break Termination::Converged {
+                    test: ConvergenceTest::CostChange {
+                        relative_change: promised,
+                        tolerance: options.function_tolerance,
+                    },
+                };
             }
             break Termination::Failure {
                 reason: FailureReason::LineSearch,
