@@ -1,8 +1,38 @@
 //! Surfaces: triangle meshes with adjacency and per-vertex data (position, normal, shape
 //! tensor), the testbed's mesh format and OBJ, analytic data sets (sphere, ring, capsule, the
-//! octahedron of the testbed's Figure 2), triangular Bézier patches, the modified
-//! Shirman–Séquin split-domain scheme built on the boundary curves of the `curves` crate,
-//! tessellation with differential geometry, and G1 measurement.
+//! octahedron of the testbed's Figure 2), triangular Bézier patches and their tessellation with
+//! differential geometry.
 //!
-//! This crate is the next layer of the workbench (issue 4) and holds no code yet; the curve
-//! layer it builds on is complete in `curves`.
+//! * [`mesh`] — [`Mesh`]: validated triangle meshes with half-edge adjacency, stable edge
+//!   indices, vertex fans, walks;
+//! * [`testbed_format`] — the testbed's "semi-dstruct" mesh format (Lounsbery et al. 1990,
+//!   Figure 2), read and written;
+//! * [`obj`] — Wavefront OBJ, read and written;
+//! * [`datasets`] — analytic reference surfaces with exact closest points and curvatures, and
+//!   the named data sets sampled from them ([`dataset_by_name`]);
+//! * [`beztri`] — triangular Bézier patches of any degree ([`BezierTriangle`]);
+//! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
+//!   position, normal, Gaussian and mean curvature.
+//!
+//! Conventions (DESIGN.md): normal curvature `κn(d) = dᵀ S d` is positive where the surface
+//! bends towards its normal, so the unit sphere with outward normals has `κn = −1`, Gaussian
+//! curvature `K = +1` and mean curvature `H = (κ1 + κ2)/2 = −1`.
+
+pub mod beztri;
+pub mod datasets;
+pub mod mesh;
+pub mod obj;
+pub mod tessellate;
+pub mod testbed_format;
+
+pub use beztri::{BezTriError, BezierCurve, BezierTriangle, Curvature, Derivatives};
+pub use datasets::{
+    dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,
+    DATASET_NAMES,
+};
+pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
+pub use obj::{read_obj, read_obj_file, write_obj, write_obj_file, ObjError};
+pub use tessellate::{tessellate, TessError, Tessellation};
+pub use testbed_format::{
+    read_testbed, read_testbed_file, write_testbed, write_testbed_file, TestbedError,
+};

@@ -1,0 +1,760 @@
+//! Triangle meshes with half-edge adjacency and per-vertex data.
+//!
+//! The testbed's mesh library (Lounsbery et al. 1990, §4.1) stores meshes in a modified
+//! winged-edge structure and offers iterators over faces, over the vertices of a face, data
+//! attached to vertices, and "a command to walk along a user-specified path through the mesh".
+//! [`Mesh`] offers the same on an array-based half-edge structure.
+//!
+//! # Conventions
+//!
+//! * Faces are triangles `[a, b, c]` of vertex indices; their orientation (counter-clockwise
+//!   seen from the side the normals point to) is kept as given and checked to be consistent.
+//! * **Local edge** `l ∈ {0, 1, 2}` of a face runs from corner `l` to corner `(l + 1) % 3`;
+//!   it is opposite corner `(l + 2) % 3`. This matches the edges of a triangular Bézier patch in
+//!   [`crate::beztri`] (edge 0 is `w = 0`, from the `u` corner to the `v` corner).
+//! * Half-edge `h = 3 f + l` is local edge `l` of face `f`.
+//! * Undirected edges get a stable index: numbered in the order of their first half-edge
+//!   (faces in order, local edges in order), each edge once ([`Mesh::edge_index`]).
+//! * The faces around a vertex ([`Mesh::faces_around_vertex`]) come counter-clockwise (seen
+//!   from the side of the normals) as one unbroken fan; at a boundary vertex the fan starts at
+//!   the face reached by turning clockwise until a boundary edge is met, and ends at the other
+//!   boundary edge.
+//!
+//! # Validation
+//!
+//! [`Mesh::new`] rejects faces that reference a missing vertex, degenerate faces (a repeated
+//! vertex, or zero area relative to the face's size, [`DEGENERATE_FACE_SINE`]), non-finite vertex
+//! data, edges used by more than two faces or twice in the same direction (inconsistent
+//! orientation), and non-manifold vertices (two fans of faces touching at one vertex), each with
+//! the index of the face, edge or vertex at fault.
+
+use std::collections::{BTreeMap, HashMap};
+
+use curves::VertexData;
+use nalgebra::{Matrix3, Point3, Vector3};
+
+/// A face whose doubled area is below this fraction of the product of its two longest edges
+/// (the sine of its largest angle, in effect) is degenerate: below `1e-12` a face normal has lost
+/// most of its digits to cancellation.
+pub const DEGENERATE_FACE_SINE: f64 = 1e-12;
+
+/// Extra named per-vertex (or per-mesh) fields a reader found and did not interpret, kept so that
+/// a writer can put them back (the testbed's extensibility rule).
+pub type ExtraFields = BTreeMap<String, Vec<f64>>;
+
+/// One vertex: position, normal and shape tensor, whether the curvature is known, a name and
+/// extra fields.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Vertex {
+    /// Position, normal and shape tensor `S` (`κn(d) = dᵀ S d`).
+    pub data: VertexData,
+    /// False when the source gave no curvature: `data.shape` is then the zero matrix and a
+    /// method that needs curvature must say so rather than use it.
+    pub curvature_known: bool,
+    /// The vertex's name in its source file, if it had one.
+    pub name: Option<String>,
+    /// Fields the reader kept without interpreting them.
+    pub extra: ExtraFields,
+}
+
+impl Vertex {
+    /// A vertex with known position, normal and shape tensor.
+    pub fn new(data: VertexData) -> Self {
+        Vertex {
+            data,
+            curvature_known: true,
+            name: None,
+            extra: ExtraFields::new(),
+        }
+    }
+
+    /// A vertex whose curvature is unknown: shape tensor zero and flagged.
+    pub fn without_curvature(p: Point3<f64>, n: Vector3<f64>) -> Self {
+        Vertex {
+            data: VertexData::new(p, n, Matrix3::zeros()),
+            curvature_known: false,
+            name: None,
+            extra: ExtraFields::new(),
+        }
+    }
+
+    /// The same vertex with a name.
+    pub fn named(mut self, name: impl Into<String>) -> Self {
+        self.name = Some(name.into());
+        self
+    }
+}
+
+/// Why a mesh could not be built or a query could not be answered.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    /// A face refers to a vertex index that does not exist.
+    #[error("face {face}: corner {corner} refers to vertex {vertex}, but there are only {count} vertices")]
+    MissingVertex {
+        /// The face.
+        face: usize,
+        /// Which corner (0, 1, 2).
+        corner: usize,
+        /// The missing index.
+        vertex: usize,
+        /// How many vertices there are.
+        count: usize,
+    },
+    /// A face uses the same vertex twice.
+    #[error("face {face}: vertex {vertex} appears twice")]
+    RepeatedVertex {
+        /// The face.
+        face: usize,
+        /// The repeated vertex.
+        vertex: usize,
+    },
+    /// A face has (relatively) zero area.
+    #[error("face {face} (vertices {vertices:?}) has zero area")]
+    ZeroArea {
+        /// The face.
+        face: usize,
+        /// Its vertices.
+        vertices: [usize; 3],
+    },
+    /// A vertex has a NaN or infinite coordinate.
+    #[error("vertex {vertex}: non-finite {what}")]
+    NonFinite {
+        /// The vertex.
+        vertex: usize,
+        /// `"position"`, `"normal"` or `"shape tensor"`.
+        what: &'static str,
+    },
+    /// An edge is used by more than two faces.
+    #[error("edge {}–{} is used by more than two faces ({faces:?})", vertices[0], vertices[1])]
+    NonManifoldEdge {
+        /// The edge's vertices.
+        vertices: [usize; 2],
+        /// The faces using it.
+        faces: Vec<usize>,
+    },
+    /// Two faces traverse an edge in the same direction: their orientations disagree.
+    #[error("edge {}→{} is used in the same direction by faces {} and {}: inconsistent orientation", vertices[0], vertices[1], faces[0], faces[1])]
+    InconsistentOrientation {
+        /// The directed edge.
+        vertices: [usize; 2],
+        /// The two faces.
+        faces: [usize; 2],
+    },
+    /// The faces around a vertex form more than one fan.
+    #[error("vertex {vertex} is non-manifold: its faces form more than one fan")]
+    NonManifoldVertex {
+        /// The vertex.
+        vertex: usize,
+    },
+    /// A face index out of range in a query.
+    #[error("face {face} does not exist (there are {count} faces)")]
+    NoSuchFace {
+        /// The index asked for.
+        face: usize,
+        /// How many faces there are.
+        count: usize,
+    },
+    /// A local edge index other than 0, 1, 2.
+    #[error("local edge {0} does not exist (local edges are 0, 1, 2)")]
+    NoSuchLocalEdge(usize),
+    /// A walk tried to cross a boundary edge.
+    #[error("walk step {step}: local edge {local_edge} of face {face} is a boundary edge")]
+    WalkOffBoundary {
+        /// Index of the step in the walk.
+        step: usize,
+        /// The face the walk was on.
+        face: usize,
+        /// The edge it tried to cross.
+        local_edge: usize,
+    },
+}
+
+/// An undirected edge: its vertices and the one or two (face, local edge) pairs using it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Edge {
+    /// The vertices in the direction of the first face using the edge.
+    pub vertices: [usize; 2],
+    /// The first face using the edge and its local edge index there.
+    pub first: (usize, usize),
+    /// The second face and local edge, `None` on a boundary edge.
+    pub second: Option<(usize, usize)>,
+}
+
+impl Edge {
+    /// True when only one face uses the edge.
+    pub fn is_boundary(&self) -> bool {
+        self.second.is_none()
+    }
+}
+
+/// A validated triangle mesh with half-edge adjacency.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    vertices: Vec<Vertex>,
+    faces: Vec<[usize; 3]>,
+    face_names: Vec<Option<String>>,
+    /// Twin of each half-edge, `None` on the boundary.
+    twin: Vec<Option<usize>>,
+    /// Undirected edge of each half-edge.
+    edge_of: Vec<usize>,
+    edges: Vec<Edge>,
+    /// One outgoing half-edge per vertex, `None` for an isolated vertex.
+    outgoing: Vec<Option<usize>>,
+    /// Per-mesh fields a reader kept.
+    pub extra: ExtraFields,
+}
+
+fn check_vertex(i: usize, v: &Vertex) -> Result<(), MeshError> {
+    let bad = |what| Err(MeshError::NonFinite { vertex: i, what });
+    if !v.data.p.iter().all(|c| c.is_finite()) {
+        return bad("position");
+    }
+    if !v.data.n.iter().all(|c| c.is_finite()) {
+        return bad("normal");
+    }
+    if !v.data.shape.iter().all(|c| c.is_finite()) {
+        return bad("shape tensor");
+    }
+    Ok(())
+}
+
+impl Mesh {
+    /// Builds and validates a mesh (see the module docs for what is rejected).
+    pub fn new(vertices: Vec<Vertex>, faces: Vec<[usize; 3]>) -> Result<Self, MeshError> {
+        let count = vertices.len();
+        for (i, v) in vertices.iter().enumerate() {
+            check_vertex(i, v)?;
+        }
+        for (f, face) in faces.iter().enumerate() {
+            for (corner, &vertex) in face.iter().enumerate() {
+                if vertex >= count {
+                    return Err(MeshError::MissingVertex {
+                        face: f,
+                        corner,
+                        vertex,
+                        count,
+                    });
+                }
+            }
+            for l in 0..3 {
+                if face[l] == face[(l + 1) % 3] {
+                    return Err(MeshError::RepeatedVertex {
+                        face: f,
+                        vertex: face[l],
+                    });
+                }
+            }
+            let [a, b, c] = face.map(|i| vertices[i].data.p);
+            let (e1, e2, e3) = (b - a, c - a, c - b);
+            let mut lengths = [e1.norm(), e2.norm(), e3.norm()];
+            lengths.sort_by(f64::total_cmp);
+            let area2 = e1.cross(&e2).norm();
+            // Positions are finite (checked above), so no NaN reaches this comparison.
+            if area2 <= DEGENERATE_FACE_SINE * lengths[1] * lengths[2] {
+                return Err(MeshError::ZeroArea {
+                    face: f,
+                    vertices: *face,
+                });
+            }
+        }
+
+        let nh = 3 * faces.len();
+        let mut twin = vec![None; nh];
+        let mut edge_of = vec![0; nh];
+        let mut edges: Vec<Edge> = Vec::new();
+        // Undirected key → (edge index, half-edges so far).
+        let mut by_key: HashMap<(usize, usize), (usize, Vec<usize>)> = HashMap::new();
+        for (h, slot) in edge_of.iter_mut().enumerate() {
+            let (f, l) = (h / 3, h % 3);
+            let (a, b) = (faces[f][l], faces[f][(l + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            let entry = by_key.entry(key).or_insert_with(|| {
+                edges.push(Edge {
+                    vertices: [a, b],
+                    first: (f, l),
+                    second: None,
+                });
+                (edges.len() - 1, Vec::new())
+            });
+            entry.1.push(h);
+            let e = entry.0;
+            *slot = e;
+            match entry.1.as_slice() {
+                [_] => {}
+                [h0, h1] => {
+                    let (f0, l0) = (h0 / 3, h0 % 3);
+                    if faces[f0][l0] == a {
+                        return Err(MeshError::InconsistentOrientation {
+                            vertices: [a, b],
+                            faces: [f0, f],
+                        });
+                    }
+                    twin[*h0] = Some(*h1);
+                    twin[*h1] = Some(*h0);
+                    edges[e].second = Some((f, l));
+                }
+                hs => {
+                    return Err(MeshError::NonManifoldEdge {
+                        vertices: [key.0, key.1],
+                        faces: hs.iter().map(|h| h / 3).collect(),
+                    })
+                }
+            }
+        }
+
+        let mut outgoing = vec![None; count];
+        let mut incident = vec![0usize; count];
+        for (h, &t) in twin.iter().enumerate() {
+            let v = faces[h / 3][h % 3];
+            incident[v] += 1;
+            // Prefer an outgoing half-edge on the boundary: not needed for correctness (queries
+            // rotate to the boundary), but makes the common case cheap.
+            if outgoing[v].is_none() || t.is_none() {
+                outgoing[v] = Some(h);
+            }
+        }
+        let mesh = Mesh {
+            face_names: vec![None; faces.len()],
+            vertices,
+            faces,
+            twin,
+            edge_of,
+            edges,
+            outgoing,
+            extra: ExtraFields::new(),
+        };
+        for (v, &n) in incident.iter().enumerate() {
+            if mesh.faces_around_vertex(v).len() != n {
+                return Err(MeshError::NonManifoldVertex { vertex: v });
+            }
+        }
+        Ok(mesh)
+    }
+
+    /// The same mesh with face names (for writers and messages); `names` shorter than the face
+    /// list leaves the remaining faces unnamed.
+    pub fn with_face_names(mut self, names: Vec<String>) -> Self {
+        for (slot, name) in self.face_names.iter_mut().zip(names) {
+            *slot = Some(name);
+        }
+        self
+    }
+
+    /// Number of vertices `V`.
+    pub fn num_vertices(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// Number of faces `F`.
+    pub fn num_faces(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// Number of undirected edges `E`.
+    pub fn num_edges(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// Euler characteristic `V − E + F` (2 for a sphere, 0 for a torus).
+    pub fn euler_characteristic(&self) -> i64 {
+        self.num_vertices() as i64 - self.num_edges() as i64 + self.num_faces() as i64
+    }
+
+    /// All vertices.
+    pub fn vertices(&self) -> &[Vertex] {
+        &self.vertices
+    }
+
+    /// Vertex `v`, `None` when there is no such vertex.
+    pub fn vertex(&self, v: usize) -> Option<&Vertex> {
+        self.vertices.get(v)
+    }
+
+    /// Mutable access to the vertex data (positions, normals, shape tensors, extra fields); the
+    /// connectivity cannot change. Degenerate faces created this way are not re-checked.
+    pub fn vertices_mut(&mut self) -> &mut [Vertex] {
+        &mut self.vertices
+    }
+
+    /// All faces as vertex triples.
+    pub fn faces(&self) -> &[[usize; 3]] {
+        &self.faces
+    }
+
+    /// The vertices of face `f`, in its orientation.
+    pub fn face(&self, f: usize) -> Result<[usize; 3], MeshError> {
+        self.faces.get(f).copied().ok_or(MeshError::NoSuchFace {
+            face: f,
+            count: self.faces.len(),
+        })
+    }
+
+    /// The name of face `f`, if its source named it.
+    pub fn face_name(&self, f: usize) -> Option<&str> {
+        self.face_names.get(f).and_then(|n| n.as_deref())
+    }
+
+    /// Vertex data of the three corners of face `f`.
+    pub fn face_data(&self, f: usize) -> Result<[&VertexData; 3], MeshError> {
+        let [a, b, c] = self.face(f)?;
+        Ok([
+            &self.vertices[a].data,
+            &self.vertices[b].data,
+            &self.vertices[c].data,
+        ])
+    }
+
+    /// The geometric normal of face `f`: `(p1 − p0) × (p2 − p0)`, twice the area in length.
+    pub fn face_area_normal(&self, f: usize) -> Result<Vector3<f64>, MeshError> {
+        let [a, b, c] = self.face_data(f)?;
+        Ok((b.p - a.p).cross(&(c.p - a.p)))
+    }
+
+    fn check_local(&self, f: usize, l: usize) -> Result<usize, MeshError> {
+        self.face(f)?;
+        if l > 2 {
+            return Err(MeshError::NoSuchLocalEdge(l));
+        }
+        Ok(3 * f + l)
+    }
+
+    /// The face across local edge `l` of face `f` and the local index of the same edge in that
+    /// face; `None` on a boundary edge.
+    pub fn neighbour(&self, f: usize, l: usize) -> Result<Option<(usize, usize)>, MeshError> {
+        let h = self.check_local(f, l)?;
+        Ok(self.twin[h].map(|t| (t / 3, t % 3)))
+    }
+
+    /// The stable undirected index of local edge `l` of face `f`.
+    pub fn edge_index(&self, f: usize, l: usize) -> Result<usize, MeshError> {
+        let h = self.check_local(f, l)?;
+        Ok(self.edge_of[h])
+    }
+
+    /// All undirected edges, in index order.
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+
+    /// The undirected edge between vertices `a` and `b`, if there is one.
+    pub fn find_edge(&self, a: usize, b: usize) -> Option<usize> {
+        let h = self.outgoing.get(a).copied().flatten()?;
+        // Every edge at `a` is the edge of an outgoing or an incoming half-edge of a face in
+        // the fan around `a`.
+        self.faces_around_vertex_from(a, h)
+            .into_iter()
+            .find_map(|f| {
+                (0..3).find_map(|l| {
+                    let (x, y) = (self.faces[f][l], self.faces[f][(l + 1) % 3]);
+                    ((x == a && y == b) || (x == b && y == a)).then_some(self.edge_of[3 * f + l])
+                })
+            })
+    }
+
+    /// Indices of the boundary edges (used by one face), in index order; empty for a closed mesh.
+    pub fn boundary_edges(&self) -> Vec<usize> {
+        (0..self.edges.len())
+            .filter(|&e| self.edges[e].is_boundary())
+            .collect()
+    }
+
+    /// True when every edge has two faces.
+    pub fn is_closed(&self) -> bool {
+        self.edges.iter().all(|e| !e.is_boundary())
+    }
+
+    fn next(h: usize) -> usize {
+        3 * (h / 3) + (h % 3 + 1) % 3
+    }
+
+    fn prev(h: usize) -> usize {
+        3 * (h / 3) + (h % 3 + 2) % 3
+    }
+
+    fn faces_around_vertex_from(&self, v: usize, start: usize) -> Vec<usize> {
+        let nh = self.twin.len();
+        // Turn clockwise (h → next(twin(h))) until a boundary or back at the start.
+        let mut h = start;
+        for _ in 0..nh {
+            match self.twin[h] {
+                Some(t) if Self::next(t) != start => h = Self::next(t),
+                _ => break,
+            }
+        }
+        // Now collect counter-clockwise (h → twin(prev(h))).
+        let first = h;
+        let mut out = vec![h / 3];
+        for _ in 0..nh {
+            match self.twin[Self::prev(h)] {
+                Some(t) if t != first => {
+                    h = t;
+                    out.push(h / 3);
+                }
+                _ => break,
+            }
+        }
+        debug_assert!(out.iter().all(|&f| self.faces[f].contains(&v)));
+        out
+    }
+
+    /// The faces around vertex `v`, counter-clockwise (seen from the side of the normals) as one
+    /// fan; at a boundary vertex the fan starts at a boundary edge. Empty for an isolated or
+    /// missing vertex.
+    pub fn faces_around_vertex(&self, v: usize) -> Vec<usize> {
+        match self.outgoing.get(v).copied().flatten() {
+            Some(h) => self.faces_around_vertex_from(v, h),
+            None => Vec::new(),
+        }
+    }
+
+    /// The vertices adjacent to `v` in the same counter-clockwise order as
+    /// [`Mesh::faces_around_vertex`] (the one-ring; at a boundary vertex one more vertex than
+    /// faces).
+    pub fn vertex_ring(&self, v: usize) -> Vec<usize> {
+        let fan = self.faces_around_vertex(v);
+        let mut out = Vec::with_capacity(fan.len() + 1);
+        for (i, &f) in fan.iter().enumerate() {
+            let face = self.faces[f];
+            let Some(c) = face.iter().position(|&x| x == v) else {
+                continue;
+            };
+            // In face (v, a, b) counter-clockwise the ring runs a, then b.
+            if i == 0 {
+                out.push(face[(c + 1) % 3]);
+            }
+            let b = face[(c + 2) % 3];
+            if i + 1 < fan.len() || self.twin[3 * f + (c + 2) % 3].is_none() {
+                out.push(b);
+            }
+        }
+        out
+    }
+
+    /// Walks across the mesh like the testbed's path command: from `start_face`, each step names
+    /// a local edge (0, 1, 2) of the current face to cross. Returns every face visited, the start
+    /// first (`steps.len() + 1` faces). Crossing a boundary edge is an error naming the step.
+    pub fn walk(&self, start_face: usize, steps: &[usize]) -> Result<Vec<usize>, MeshError> {
+        self.face(start_face)?;
+        let mut out = Vec::with_capacity(steps.len() + 1);
+        out.push(start_face);
+        let mut f = start_face;
+        for (step, &l) in steps.iter().enumerate() {
+            match self.neighbour(f, l)? {
+                Some((g, _)) => {
+                    f = g;
+                    out.push(g);
+                }
+                None => {
+                    return Err(MeshError::WalkOffBoundary {
+                        step,
+                        face: f,
+                        local_edge: l,
+                    })
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Length of the longest bounding-box side, the scale for relative tolerances (0 for an
+    /// empty mesh).
+    pub fn size(&self) -> f64 {
+        bounding_size(self.vertices.iter().map(|v| &v.data.p))
+    }
+}
+
+/// Diagonal of the axis-aligned bounding box of some points (0 for none).
+pub fn bounding_size<'a>(points: impl IntoIterator<Item = &'a Point3<f64>>) -> f64 {
+    let mut lo = Vector3::repeat(f64::INFINITY);
+    let mut hi = Vector3::repeat(f64::NEG_INFINITY);
+    let mut any = false;
+    for p in points {
+        lo = lo.inf(&p.coords);
+        hi = hi.sup(&p.coords);
+        any = true;
+    }
+    if any {
+        (hi - lo).norm()
+    } else {
+        0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64, z: f64) -> Vertex {
+        Vertex::without_curvature(Point3::new(x, y, z), Vector3::z())
+    }
+
+    /// A unit square split into two triangles, plus a third triangle on its right.
+    fn strip() -> Mesh {
+        let verts = vec![
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(1.0, 1.0, 0.0),
+            v(0.0, 1.0, 0.0),
+            v(2.0, 0.5, 0.0),
+        ];
+        Mesh::new(verts, vec![[0, 1, 2], [0, 2, 3], [1, 4, 2]]).unwrap()
+    }
+
+    #[test]
+    fn counts_and_adjacency_of_a_strip() {
+        let m = strip();
+        assert_eq!((m.num_vertices(), m.num_edges(), m.num_faces()), (5, 7, 3));
+        assert_eq!(m.euler_characteristic(), 1);
+        // Local edge 2 of face 0 is 2→0, shared with face 1's local edge 0 (0→2).
+        assert_eq!(m.neighbour(0, 2).unwrap(), Some((1, 0)));
+        assert_eq!(m.neighbour(0, 1).unwrap(), Some((2, 2)));
+        assert_eq!(m.neighbour(0, 0).unwrap(), None);
+        assert_eq!(m.edge_index(0, 2).unwrap(), m.edge_index(1, 0).unwrap());
+        assert_eq!(m.boundary_edges().len(), 5);
+        assert!(!m.is_closed());
+        // Vertex 2 is touched by all three faces: fan counter-clockwise 2, 0, 1.
+        assert_eq!(m.faces_around_vertex(2), vec![1, 0, 2]);
+        assert_eq!(m.vertex_ring(2), vec![3, 0, 1, 4]);
+        assert_eq!(m.find_edge(3, 2), Some(m.edge_index(1, 1).unwrap()));
+        assert_eq!(m.find_edge(3, 4), None);
+        assert_eq!(m.walk(1, &[0, 1]).unwrap(), vec![1, 0, 2]);
+        assert_eq!(
+            m.walk(1, &[0, 0]),
+            Err(MeshError::WalkOffBoundary {
+                step: 1,
+                face: 0,
+                local_edge: 0
+            })
+        );
+        assert_eq!(m.neighbour(0, 3), Err(MeshError::NoSuchLocalEdge(3)));
+    }
+
+    #[test]
+    fn edges_have_stable_indices_each_once() {
+        let m = strip();
+        let mut seen = std::collections::BTreeSet::new();
+        for (e, edge) in m.edges().iter().enumerate() {
+            let [a, b] = edge.vertices;
+            assert!(seen.insert((a.min(b), a.max(b))));
+            assert_eq!(m.edge_index(edge.first.0, edge.first.1).unwrap(), e);
+            if let Some((f, l)) = edge.second {
+                assert_eq!(m.edge_index(f, l).unwrap(), e);
+            }
+        }
+        // First appearance order: face 0's edges are 0, 1, 2.
+        assert_eq!(
+            (0..3)
+                .map(|l| m.edge_index(0, l).unwrap())
+                .collect::<Vec<_>>(),
+            vec![0, 1, 2]
+        );
+    }
+
+    #[test]
+    fn invalid_meshes_are_named() {
+        let quad = || {
+            vec![
+                v(0.0, 0.0, 0.0),
+                v(1.0, 0.0, 0.0),
+                v(1.0, 1.0, 0.0),
+                v(0.0, 1.0, 0.0),
+            ]
+        };
+        assert_eq!(
+            Mesh::new(quad(), vec![[0, 1, 2], [0, 2, 7]]),
+            Err(MeshError::MissingVertex {
+                face: 1,
+                corner: 2,
+                vertex: 7,
+                count: 4
+            })
+        );
+        assert_eq!(
+            Mesh::new(quad(), vec![[0, 1, 1]]),
+            Err(MeshError::RepeatedVertex { face: 0, vertex: 1 })
+        );
+        let mut collinear = quad();
+        collinear[2].data.p = Point3::new(2.0, 0.0, 0.0);
+        assert_eq!(
+            Mesh::new(collinear, vec![[0, 1, 3], [0, 1, 2]]),
+            Err(MeshError::ZeroArea {
+                face: 1,
+                vertices: [0, 1, 2]
+            })
+        );
+        assert_eq!(
+            Mesh::new(quad(), vec![[0, 1, 2], [0, 3, 2]]),
+            Err(MeshError::InconsistentOrientation {
+                vertices: [2, 0],
+                faces: [0, 1]
+            })
+        );
+        let mut five = quad();
+        five.push(v(0.5, -1.0, 0.3));
+        five.push(v(0.5, -1.0, -0.3));
+        assert_eq!(
+            Mesh::new(five, vec![[0, 1, 2], [1, 0, 4], [0, 5, 1]]),
+            Err(MeshError::NonManifoldEdge {
+                vertices: [0, 1],
+                faces: vec![0, 1, 2]
+            })
+        );
+        let mut nan = quad();
+        nan[3].data.n.x = f64::NAN;
+        assert_eq!(
+            Mesh::new(nan, vec![[0, 1, 2]]),
+            Err(MeshError::NonFinite {
+                vertex: 3,
+                what: "normal"
+            })
+        );
+        // Two triangles touching only at vertex 0: a bow tie.
+        let bow = vec![
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(1.0, 1.0, 0.0),
+            v(-1.0, 0.0, 0.0),
+            v(-1.0, -1.0, 0.0),
+        ];
+        assert_eq!(
+            Mesh::new(bow, vec![[0, 1, 2], [0, 3, 4]]),
+            Err(MeshError::NonManifoldVertex { vertex: 0 })
+        );
+    }
+
+    #[test]
+    fn three_faces_on_one_edge_is_non_manifold() {
+        let verts = vec![
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(0.5, 1.0, 0.0),
+            v(0.5, -1.0, 0.0),
+            v(0.5, 0.0, 1.0),
+        ];
+        let err = Mesh::new(verts, vec![[0, 1, 2], [1, 0, 3], [1, 0, 4]]).unwrap_err();
+        // The third face on edge 0–1 is reported, whatever its direction.
+        assert_eq!(
+            err,
+            MeshError::NonManifoldEdge {
+                vertices: [0, 1],
+                faces: vec![0, 1, 2]
+            }
+        );
+        let verts = vec![
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(0.5, 1.0, 0.0),
+            v(0.5, -1.0, 0.0),
+            v(0.5, 0.0, 1.0),
+        ];
+        let err = Mesh::new(verts, vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]]).unwrap_err();
+        assert_eq!(
+            err,
+            MeshError::NonManifoldEdge {
+                vertices: [0, 1],
+                faces: vec![0, 1, 2]
+            }
+        );
+        assert!(err.to_string().contains("more than two faces"));
+    }
+}
