@@ -11,6 +11,10 @@
 //! * [`datasets`] — analytic reference surfaces with exact closest points and curvatures, and
 //!   the named data sets sampled from them ([`dataset_by_name`]);
 //! * [`beztri`] — triangular Bézier patches of any degree ([`BezierTriangle`]);
+//! * [`shirman_sequin`] — the modified Shirman–Séquin split-domain scheme: three quartic
+//!   patches per triangle, G1 by construction (derivation in the module docs);
+//! * [`fit`](mod@fit) — a whole mesh: one curve per edge (shared), one macro-patch per face;
+//! * [`g1`] — the testbed's `G1`: measured normal continuity and interpolation;
 //! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
 //!   position, normal, Gaussian and mean curvature.
 //!
@@ -20,8 +24,11 @@
 
 pub mod beztri;
 pub mod datasets;
+pub mod fit;
+pub mod g1;
 pub mod mesh;
 pub mod obj;
+pub mod shirman_sequin;
 pub mod tessellate;
 pub mod testbed_format;
 
@@ -30,8 +37,14 @@ pub use datasets::{
     dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,
     DATASET_NAMES,
 };
+pub use fit::{fit, Fit, FitError};
+pub use g1::{measure as measure_g1, Boundary, G1Report};
 pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
 pub use obj::{read_obj, read_obj_file, write_obj, write_obj_file, ObjError};
+pub use shirman_sequin::{
+    chiyokura_kimura, macro_patch, CrossEnd, CrossFailure, InteriorParameters, QuarticNet,
+    SchemeError,
+};
 pub use tessellate::{tessellate, TessError, Tessellation};
 pub use testbed_format::{
     read_testbed, read_testbed_file, write_testbed, write_testbed_file, TestbedError,

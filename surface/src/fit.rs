@@ -1,0 +1,137 @@
+//! Fitting a mesh with the modified Shirman–Séquin scheme: one boundary curve per mesh edge
+//! (built once, shared by both faces on it), then one macro-patch of three quartics per face.
+//!
+//! Both stages are local and run in parallel (rayon) with results collected in mesh order, so
+//! the output is deterministic.
+
+use curves::{BoundaryProblem, CubicBez3, CurveMethod, EdgeError};
+use rayon::prelude::*;
+
+use crate::beztri::BezierTriangle;
+use crate::mesh::Mesh;
+use crate::shirman_sequin::{macro_patch, InteriorParameters, SchemeError};
+
+/// Why a mesh could not be fitted.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum FitError {
+    /// An edge's boundary-curve problem is degenerate (names the edge's vertices).
+    #[error("cannot build the boundary curve of {0}")]
+    Edge(#[from] EdgeError),
+    /// A face's macro-patch could not be built.
+    #[error("face {face}: {source}")]
+    Face {
+        /// The face index.
+        face: usize,
+        /// What went wrong.
+        source: SchemeError,
+    },
+    /// The curve construction needs per-vertex curvature the mesh does not have.
+    #[error("the `{method}` curves need per-vertex curvature, which vertex {vertex} does not have (OBJ input, or a testbed file without `shape`): use `chord`")]
+    NeedsCurvature {
+        /// The construction's name.
+        method: &'static str,
+        /// The first vertex without curvature.
+        vertex: usize,
+    },
+    /// The mesh structure disagreed with itself (a bug, reported rather than panicking).
+    #[error("internal mesh inconsistency: {0}")]
+    Mesh(String),
+}
+
+/// A fitted surface.
+#[derive(Clone, Debug)]
+pub struct Fit {
+    /// The boundary curve of each mesh edge, in `mesh.edges()` order, running from
+    /// `edge.vertices[0]` to `edge.vertices[1]`.
+    pub curves: Vec<CubicBez3>,
+    /// End-derivative lengths `[α0, α1]` chosen for each edge (unit-chord form).
+    pub alphas: Vec<[f64; 2]>,
+    /// Edges whose construction fell back to the chord choice (e.g. dBHS without solution).
+    pub fallbacks: usize,
+    /// Edges whose optimization did not converge (the best point was used).
+    pub unconverged: usize,
+    /// Edges whose tangent had to be flipped to point along the chord (a normal turned past
+    /// 90°), summed over both ends.
+    pub flipped_tangents: usize,
+    /// Three quartic patches per face: patch `3f + e` is sub-patch `e` of face `f`, over the
+    /// corners `(V_e, V_{e+1}, S)` of the face.
+    pub patches: Vec<BezierTriangle>,
+}
+
+/// Fits every face of `mesh`, with boundary curves from `method` and the interior parameters
+/// of face `f` given by `params(f)`.
+pub fn fit(
+    mesh: &Mesh,
+    method: &dyn CurveMethod,
+    params: &(dyn Fn(usize) -> InteriorParameters + Sync),
+) -> Result<Fit, FitError> {
+    let verts = mesh.vertices();
+    if method.name() != "chord" {
+        if let Some(v) = verts.iter().position(|v| !v.curvature_known) {
+            return Err(FitError::NeedsCurvature {
+                method: method.name(),
+                vertex: v,
+            });
+        }
+    }
+    struct EdgeCurve {
+        curve: CubicBez3,
+        alpha: [f64; 2],
+        fallback: bool,
+        unconverged: bool,
+        flipped: usize,
+    }
+    let edge_curves: Vec<EdgeCurve> = mesh
+        .edges()
+        .par_iter()
+        .map(|e| {
+            let [a, b] = e.vertices;
+            let p = BoundaryProblem::new((a, b), &verts[a].data, &verts[b].data)?;
+            let choice = method.construct(&p.unit);
+            Ok(EdgeCurve {
+                curve: p.curve(choice.alpha),
+                alpha: choice.alpha,
+                fallback: choice.fallback,
+                unconverged: choice.report.as_ref().is_some_and(|r| !r.converged()),
+                flipped: p.flipped.iter().filter(|f| **f).count(),
+            })
+        })
+        .collect::<Result<_, FitError>>()?;
+
+    let nets: Vec<[BezierTriangle; 3]> = (0..mesh.num_faces())
+        .into_par_iter()
+        .map(|f| {
+            let face = mesh.face(f).map_err(|e| FitError::Mesh(e.to_string()))?;
+            let mut edges = [CubicBez3::new([nalgebra::Point3::origin(); 4]); 3];
+            for (l, slot) in edges.iter_mut().enumerate() {
+                let ei = mesh
+                    .edge_index(f, l)
+                    .map_err(|e| FitError::Mesh(e.to_string()))?;
+                let c = edge_curves[ei].curve;
+                *slot = if mesh.edges()[ei].vertices[0] == face[l] {
+                    c
+                } else {
+                    c.reversed()
+                };
+            }
+            let corners = [
+                &verts[face[0]].data,
+                &verts[face[1]].data,
+                &verts[face[2]].data,
+            ];
+            let nets = macro_patch(corners, &edges, &params(f))
+                .map_err(|source| FitError::Face { face: f, source })?;
+            Ok(nets
+                .map(|n| BezierTriangle::from_fn(4, |i, j, k| n[crate::beztri::index(4, i, j, k)])))
+        })
+        .collect::<Result<_, FitError>>()?;
+
+    Ok(Fit {
+        alphas: edge_curves.iter().map(|e| e.alpha).collect(),
+        fallbacks: edge_curves.iter().filter(|e| e.fallback).count(),
+        unconverged: edge_curves.iter().filter(|e| e.unconverged).count(),
+        flipped_tangents: edge_curves.iter().map(|e| e.flipped).sum(),
+        curves: edge_curves.into_iter().map(|e| e.curve).collect(),
+        patches: nets.into_iter().flatten().collect(),
+    })
+}

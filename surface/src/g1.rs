@@ -1,0 +1,130 @@
+//! The testbed's `G1` module: measured continuity of a fitted surface.
+//!
+//! Along every boundary shared by two patches — the interior boundaries inside a macro-patch and
+//! the exterior edges between faces — the unit normals of both patches are compared at `samples`
+//! equally spaced points (ends included), and the largest angle is reported with where it
+//! occurred. The angle is `atan2(|n₁ × n₂|, n₁ · n₂)`, accurate near zero where `acos` is not.
+//! Interpolation is measured at the same time: patch corners against vertex positions and
+//! normals.
+
+use nalgebra::Vector3;
+
+use crate::beztri::BezierTriangle;
+use crate::fit::Fit;
+use crate::mesh::Mesh;
+
+/// Where a G1 defect was measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Boundary {
+    /// The interior boundary from corner `corner` of face `face` to its split point.
+    Interior {
+        /// Face index.
+        face: usize,
+        /// Corner index in the face.
+        corner: usize,
+    },
+    /// The exterior edge between two faces.
+    Exterior {
+        /// Mesh edge index.
+        edge: usize,
+    },
+}
+
+/// The result of a G1 measurement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct G1Report {
+    /// Largest normal angle (radians) along interior boundaries.
+    pub interior_max: f64,
+    /// Where it occurred.
+    pub interior_at: Option<(Boundary, f64)>,
+    /// Largest normal angle (radians) along exterior edges between faces.
+    pub exterior_max: f64,
+    /// Where it occurred (boundary and curve parameter).
+    pub exterior_at: Option<(Boundary, f64)>,
+    /// Largest distance between a patch corner and its data vertex.
+    pub position_error: f64,
+    /// Largest angle (radians) between a patch's corner normal and its data vertex normal.
+    pub normal_error: f64,
+    /// Samples where a patch normal was undefined (degenerate derivatives), skipped.
+    pub undefined_normals: usize,
+}
+
+impl G1Report {
+    /// The largest normal angle anywhere.
+    pub fn max_angle(&self) -> f64 {
+        self.interior_max.max(self.exterior_max)
+    }
+}
+
+fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
+    a.cross(b).norm().atan2(a.dot(b))
+}
+
+fn normal(p: &BezierTriangle, u: f64, v: f64) -> Option<Vector3<f64>> {
+    p.normal(u, v)
+}
+
+/// Measures G1 continuity and interpolation of `fit` over `mesh` at `samples ≥ 2` points per
+/// boundary.
+pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
+    let samples = samples.max(2);
+    let mut r = G1Report {
+        interior_max: 0.0,
+        interior_at: None,
+        exterior_max: 0.0,
+        exterior_at: None,
+        position_error: 0.0,
+        normal_error: 0.0,
+        undefined_normals: 0,
+    };
+    let ts: Vec<f64> = (0..samples)
+        .map(|s| s as f64 / (samples - 1) as f64)
+        .collect();
+    for (f, face) in mesh.faces().iter().enumerate() {
+        for (i, &vi) in face.iter().enumerate() {
+            // Interior boundary V_i → S: sub-patch i at (1−t, 0), sub-patch i−1 at (0, 1−t).
+            let l = &fit.patches[3 * f + i];
+            let rt = &fit.patches[3 * f + (i + 2) % 3];
+            for &t in &ts {
+                match (normal(l, 1.0 - t, 0.0), normal(rt, 0.0, 1.0 - t)) {
+                    (Some(a), Some(b)) => {
+                        let d = angle(&a, &b);
+                        if d > r.interior_max || r.interior_at.is_none() {
+                            r.interior_max = r.interior_max.max(d);
+                            r.interior_at = Some((Boundary::Interior { face: f, corner: i }, t));
+                        }
+                    }
+                    _ => r.undefined_normals += 1,
+                }
+            }
+            // Interpolation at the corner V_i of sub-patch i.
+            let v = &mesh.vertices()[vi].data;
+            r.position_error = r.position_error.max((l.eval(1.0, 0.0, 0.0) - v.p).norm());
+            match normal(l, 1.0, 0.0) {
+                Some(n) => r.normal_error = r.normal_error.max(angle(&n, &v.n.normalize())),
+                None => r.undefined_normals += 1,
+            }
+        }
+    }
+    for (ei, e) in mesh.edges().iter().enumerate() {
+        let (Some((g, lg)), (f, lf)) = (e.second, e.first) else {
+            continue;
+        };
+        let pf = &fit.patches[3 * f + lf];
+        let pg = &fit.patches[3 * g + lg];
+        for &t in &ts {
+            // Face f's edge runs from its corner lf (u = 1) to lf+1 (v = 1); g's runs backwards.
+            match (normal(pf, 1.0 - t, t), normal(pg, t, 1.0 - t)) {
+                (Some(a), Some(b)) => {
+                    let d = angle(&a, &b);
+                    if d > r.exterior_max || r.exterior_at.is_none() {
+                        r.exterior_max = r.exterior_max.max(d);
+                        r.exterior_at = Some((Boundary::Exterior { edge: ei }, t));
+                    }
+                }
+                _ => r.undefined_normals += 1,
+            }
+        }
+    }
+    r
+}

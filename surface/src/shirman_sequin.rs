@@ -1,0 +1,325 @@
+//! The modified Shirman–Séquin split-domain scheme (Shirman & Séquin 1987; Mann 1994 §2):
+//! three quartic triangular Bézier patches per data triangle, meeting at a split point `S`, with
+//! cubic exterior boundaries built by any boundary-curve construction of the `curves` crate.
+//!
+//! The seed's formulas are inconsistent with its own Appendix A (see "Where the seed differs"),
+//! so the construction is rebuilt here from the G1 conditions; a reader can follow it without
+//! the seed.
+//!
+//! # Notation
+//!
+//! The data triangle has corners `V_0, V_1, V_2` (counter-clockwise about the normals) with unit
+//! normals `n_i`. Exterior edge `e` runs from `V_e` to `V_{e+1}` (indices mod 3) and carries the
+//! cubic `V_e, E_e¹, E_e², V_{e+1}` (shared with the neighbouring triangle). Sub-patch `e` is the
+//! quartic over the domain triangle `(V_e, V_{e+1}, S)` of the centroid split; its net, in rows
+//! parallel to the exterior edge (DESIGN.md row order, corners `b400 = V_e`, `b040 = V_{e+1}`,
+//! `b004 = S`):
+//!
+//! ```text
+//! row 0:  V_e      q1      q2      q3      V_{e+1}     (the exterior cubic, degree-raised)
+//! row 1:  I¹_e     C¹_e    C²_e    I¹_{e+1}
+//! row 2:  I²_e     N_e     I²_{e+1}
+//! row 3:  I³_e     I³_{e+1}
+//! row 4:  S
+//! ```
+//!
+//! The interior boundary from corner `i` to `S` is the cubic `V_i, J¹_i, J²_i, S`, whose
+//! degree-raised points are `I¹_i = (V_i + 3J¹_i)/4`, `I²_i = (J¹_i + J²_i)/2`,
+//! `I³_i = (3J²_i + S)/4`. Free parameters: `α` (in the exterior cubics), `β_i > 0` per corner,
+//! and Jensen's `c_e > 0` per exterior edge **of each triangle** (see below).
+//!
+//! # G1 across an exterior edge: Chiyokura–Kimura with Jensen's parameter
+//!
+//! For the edge cubic `B(t)` from `V_a` to `V_b` with control points `V_a, E¹, E², V_b`, let
+//! `Ĉ_0 = (n_a × (E¹ − V_a))/|…|` and `Ĉ_1 = (n_b × (V_b − E²))/|…|` (unit, in the tangent
+//! planes, perpendicular to the curve, to the left of the direction of travel: into a
+//! counter-clockwise face, and reversed for the neighbour, which travels the edge the other way;
+//! the seed's "sign chosen to make k positive" is the same thing on valid data, and on folded
+//! data it would hide a cusp). The corner cross vectors
+//! of the patch lie in the tangent planes and decompose as
+//! `I¹_a − V_a = k_0 Ĉ_0 + h_0 (E¹ − V_a)` and `I¹_b − V_b = k_1 Ĉ_1 + h_1 (V_b − E²)` (eqs 4–5).
+//! The cross-boundary derivative along `V_S − V_a` of a quartic is the cubic
+//! `D(t) = 4 Σ B³_m(t) (row1_m − row0_m)`. Chiyokura–Kimura choose
+//! `D(t) = 4 K(t) Ĉ(t) + (4/3) h(t) B'(t)` with `Ĉ(t) = (1−t)Ĉ_0 + tĈ_1` and `h` linear
+//! (`h(0) = h_0`, `h(1) = h_1 + 3/4`, the shift because the derivative is taken from `V_a`).
+//! Every such `D` lies in `span(Ĉ(t), B'(t))`, and `Ĉ(t)` depends only on the edge's curve and
+//! end normals, so both triangles on the edge get the same normal `B' × Ĉ` along it: G1. Matching
+//! the Bernstein coefficients gives (eqs 2–3 of the seed):
+//!
+//! ```text
+//! C¹ = E¹ + ⅓ { c (k_0 + k_1) Ĉ_0 + k_0 Ĉ_1 + 2h_0 (E² − E¹) + h_1 (E¹ − V_a) }
+//! C² = E² + ⅓ { k_1 Ĉ_0 + c (k_0 + k_1) Ĉ_1 + h_0 (V_b − E²) + 2h_1 (E² − E¹) }
+//! ```
+//!
+//! with `K(t) = k_0(1−t)(1 − t + ct) + k_1 t(t + c(1−t))`: Chiyokura–Kimura for `c = 1` (then
+//! `K` is linear), Jensen's generalization otherwise. The Ĉ-part of `D` factors as
+//! `K(t)·[(1−t)Ĉ_0 + tĈ_1]` for **every** `c`, so `c` never affects the neighbour: it is free
+//! per (triangle, edge), and the two triangles on an edge may use different values. It cannot
+//! vary between the two ends of one edge (the middle coefficients must equal `2K_1/3` in both
+//! the `Ĉ_0` and `Ĉ_1` parts). `K > 0` on `[0, 1]` needs `c > 0` and `k_0, k_1 > 0`.
+//!
+//! # G1 inside the triangle
+//!
+//! Across the interior boundary from `V_i` to `S` the two sub-patches `L` (edge `i`) and `R`
+//! (edge `i−1`) have cross-boundary derivatives `D_L`, `D_R` along the domain directions
+//! `V_{i+1} − V_i` and `V_{i−1} − V_i`, whose sum is `3(S − V_i)` in the centroid split. The
+//! scheme imposes `D_L(t) + D_R(t) = μ(t) P'(t)` with `P` the boundary and `μ` linear (degrees:
+//! `D` cubic, `P'` quadratic): coplanarity, hence G1 (C1 when `μ ≡ 3`). With `P'` written in the
+//! cubic's differences `Δ_m = J^{m+1} − J^m` (`J⁰ = V_i`, `J³ = S`), the degree-3 coefficients
+//! of `μ P'` are `3μ_0Δ_0`, `2μ_0Δ_1 + μ_1Δ_0`, `μ_0Δ_2 + 2μ_1Δ_1`, `3μ_1Δ_2`, and the condition
+//! `4[(l_m − p_m) + (r_m − p_m)] = coefficient m` gives, for `m = 0 … 3`:
+//!
+//! * `m = 0`: `J¹_i = V_i + β_i (E_a + E_b − 2V_i)` with `β_i = 1/μ_0` and `E_a, E_b` the
+//!   cubic points next to `V_i` on its two edges; equivalently
+//!   `I¹_i = V_i + β_i (E⁴_a + E⁴_b − 2V_i)` with the quartic points. `β = ⅓` gives C1.
+//! * `m = 3`: with `S = (J²_0 + J²_1 + J²_2)/3` the condition holds with `μ_1 = 3` on every
+//!   interior boundary (and `S` is C1).
+//! * `m = 1`: `J²_i = J¹_i + β_i [4(C_L + C_R − 2I¹_i) − 3(J¹_i − V_i)]/2`, where `C_L = C¹_i`
+//!   and `C_R = C²_{i−1}` are the cross-boundary points next to `V_i`.
+//! * `m = 2`: `N_i + N_{i−1} = R_i := 2I²_i + [(S − J²_i)/β_i + 6(J²_i − J¹_i)]/4` for each
+//!   corner: three equations, three unknowns, `N_e = (R_e + R_{e+1} − R_{e+2})/2`.
+//!
+//! Any `β_i > 0` gives a G1 surface, as the seed says.
+//!
+//! # Where the seed differs
+//!
+//! Mann's eq 1, `I_i2` and `N_i` formulas are mutually consistent and equal to the above with
+//! `β_here = 3 β_seed / 8` (eq 1 must be read with its left side as the cubic point `J¹`). But
+//! Appendix A's nets — the Shirman–Séquin default — are the C1 construction `β_here = ⅓`, i.e.
+//! `β_seed = 8/9`, not the `β_seed = ⅓` the text states. The tests reproduce Appendix A with
+//! `β = ⅓` in this module's parametrization.
+
+use curves::{CubicBez3, VertexData};
+use nalgebra::{Point3, Vector3};
+
+/// A quartic triangular Bézier net in DESIGN.md's row order (15 points).
+pub type QuarticNet = [Point3<f64>; 15];
+
+/// Below this sine the construction's perpendiculars are undefined (a zero-length end
+/// derivative or a corner cross vector along the edge): the same threshold as the curve layer.
+pub const DEGENERATE: f64 = curves::DEGENERATE_SINE;
+
+/// The Shirman–Séquin defaults: `β = ⅓` at every corner (C1 inside the triangle, Appendix A),
+/// `c = 1` on every edge (Chiyokura–Kimura).
+pub const DEFAULT_BETA: f64 = 1.0 / 3.0;
+/// Jensen's parameter of Chiyokura–Kimura's cross-boundary construction.
+pub const DEFAULT_C: f64 = 1.0;
+
+/// The free interior parameters of one macro-patch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InteriorParameters {
+    /// `β_i` for corners `0, 1, 2` of the triangle; any positive value gives G1.
+    pub beta: [f64; 3],
+    /// Jensen's `c_e` for exterior edges `0, 1, 2` (edge `e` from corner `e` to `e + 1`) of this
+    /// triangle; independent of the neighbouring triangle's value on the same edge.
+    pub c: [f64; 3],
+}
+
+impl Default for InteriorParameters {
+    fn default() -> Self {
+        InteriorParameters {
+            beta: [DEFAULT_BETA; 3],
+            c: [DEFAULT_C; 3],
+        }
+    }
+}
+
+/// Why a macro-patch could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum SchemeError {
+    /// A β or c is not positive and finite.
+    #[error("{name}[{index}] = {value} must be positive and finite")]
+    BadParameter {
+        /// `"beta"` or `"c"`.
+        name: &'static str,
+        /// Corner or edge index.
+        index: usize,
+        /// The value.
+        value: f64,
+    },
+    /// An exterior curve has a zero end derivative at a corner.
+    #[error("edge {edge}: zero end derivative at corner {corner}")]
+    ZeroEndDerivative {
+        /// Edge index in the triangle.
+        edge: usize,
+        /// Corner index in the triangle.
+        corner: usize,
+    },
+    /// The corner cross vector has no component across the edge (`k ≤ 0`): the
+    /// Chiyokura–Kimura decomposition fails and G1 cannot be guaranteed.
+    #[error("edge {edge}: cross-boundary vector at corner {corner} does not point into the patch")]
+    NoCrossComponent {
+        /// Edge index in the triangle.
+        edge: usize,
+        /// Corner index in the triangle.
+        corner: usize,
+    },
+}
+
+fn mid(a: &Point3<f64>, b: &Point3<f64>, t: f64) -> Point3<f64> {
+    a + (b - a) * t
+}
+
+/// The unit perpendicular `Ĉ = n × t / |n × t|` (left of the direction of travel `t`, i.e. into a
+/// counter-clockwise face) and the decomposition `a = k Ĉ + h t`. The sign of `Ĉ` is fixed by the
+/// geometry, not chosen to make `k` positive: the neighbouring face, travelling the edge the
+/// other way, gets `−Ĉ`, as G1 needs. `k ≤ 0` means the corner cross vector folds over the edge
+/// and no G1 surface of this form exists: `None`.
+fn decompose(
+    n: &Vector3<f64>,
+    t: &Vector3<f64>,
+    a: &Vector3<f64>,
+) -> Option<(Vector3<f64>, f64, f64)> {
+    let perp = n.cross(t);
+    let len = perp.norm();
+    let tt = t.norm_squared();
+    if len <= DEGENERATE * t.norm() || tt == 0.0 {
+        return None;
+    }
+    let c_hat = perp / len;
+    let k = a.dot(&c_hat);
+    if k <= DEGENERATE * a.norm().max(f64::MIN_POSITIVE) {
+        return None;
+    }
+    Some((c_hat, k, a.dot(t) / tt))
+}
+
+/// Data at one end of an exterior edge for the cross-boundary construction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CrossEnd {
+    /// Unit normal at the end vertex.
+    pub normal: Vector3<f64>,
+    /// The patch's corner cross vector there: the row-1 point next to the vertex minus the
+    /// vertex (`I¹ − V`), in the tangent plane.
+    pub cross: Vector3<f64>,
+}
+
+/// Why the cross-boundary construction failed at an end (0: start, 1: end).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CrossFailure {
+    /// The curve's end derivative is zero.
+    ZeroDerivative(usize),
+    /// The corner cross vector has no component across the edge.
+    NoCrossComponent(usize),
+}
+
+/// Chiyokura–Kimura's cross-boundary construction with Jensen's parameter `c` (module docs):
+/// the two interior row-1 points `[C¹, C²]` of the quartic patch whose boundary is the cubic
+/// `curve` (degree-raised), given the end normals and corner cross vectors.
+pub fn chiyokura_kimura(
+    curve: &CubicBez3,
+    ends: &[CrossEnd; 2],
+    c: f64,
+) -> Result<[Point3<f64>; 2], CrossFailure> {
+    let [va, e1, e2, vb] = curve.points;
+    let t0 = e1 - va;
+    let t1 = vb - e2;
+    if t0.norm() == 0.0 {
+        return Err(CrossFailure::ZeroDerivative(0));
+    }
+    if t1.norm() == 0.0 {
+        return Err(CrossFailure::ZeroDerivative(1));
+    }
+    let (ch0, k0, h0) =
+        decompose(&ends[0].normal, &t0, &ends[0].cross).ok_or(CrossFailure::NoCrossComponent(0))?;
+    let (ch1, k1, h1) =
+        decompose(&ends[1].normal, &t1, &ends[1].cross).ok_or(CrossFailure::NoCrossComponent(1))?;
+    Ok([
+        e1 + (ch0 * (c * (k0 + k1)) + ch1 * k0 + (e2 - e1) * (2.0 * h0) + (e1 - va) * h1) / 3.0,
+        e2 + (ch0 * k1 + ch1 * (c * (k0 + k1)) + (vb - e2) * h0 + (e2 - e1) * (2.0 * h1)) / 3.0,
+    ])
+}
+
+/// Builds the three quartic sub-patches of one data triangle.
+///
+/// `vertices` are the corners `V_0, V_1, V_2`; `edges[e]` is the exterior cubic from `V_e` to
+/// `V_{e+1}` (the caller orients the shared curve); its end points must be the vertex positions.
+/// Returns the nets of sub-patches `0, 1, 2` (sub-patch `e` over `(V_e, V_{e+1}, S)`).
+pub fn macro_patch(
+    vertices: [&VertexData; 3],
+    edges: &[CubicBez3; 3],
+    params: &InteriorParameters,
+) -> Result<[QuarticNet; 3], SchemeError> {
+    for (name, values) in [("beta", params.beta), ("c", params.c)] {
+        for (index, value) in values.into_iter().enumerate() {
+            if !(value > 0.0 && value.is_finite()) {
+                return Err(SchemeError::BadParameter { name, index, value });
+            }
+        }
+    }
+    let v: [Point3<f64>; 3] = std::array::from_fn(|i| vertices[i].p);
+    let n: [Vector3<f64>; 3] = std::array::from_fn(|i| vertices[i].n.normalize());
+    let prev = |i: usize| (i + 2) % 3;
+    let next = |i: usize| (i + 1) % 3;
+    let beta = params.beta;
+
+    // m = 0: first interior-boundary points.
+    let j1: [Point3<f64>; 3] = std::array::from_fn(|i| {
+        let ea = edges[i].points[1];
+        let eb = edges[prev(i)].points[2];
+        v[i] + ((ea - v[i]) + (eb - v[i])) * beta[i]
+    });
+    let i1: [Point3<f64>; 3] = std::array::from_fn(|i| mid(&v[i], &j1[i], 0.75));
+
+    // Chiyokura–Kimura cross-boundary points of every exterior edge.
+    let mut c1 = [Point3::origin(); 3];
+    let mut c2 = [Point3::origin(); 3];
+    for e in 0..3 {
+        let (a, b) = (e, next(e));
+        let ends = [
+            CrossEnd {
+                normal: n[a],
+                cross: i1[a] - v[a],
+            },
+            CrossEnd {
+                normal: n[b],
+                cross: i1[b] - v[b],
+            },
+        ];
+        [c1[e], c2[e]] =
+            chiyokura_kimura(&edges[e], &ends, params.c[e]).map_err(|end| match end {
+                CrossFailure::ZeroDerivative(0) => {
+                    SchemeError::ZeroEndDerivative { edge: e, corner: a }
+                }
+                CrossFailure::ZeroDerivative(_) => {
+                    SchemeError::ZeroEndDerivative { edge: e, corner: b }
+                }
+                CrossFailure::NoCrossComponent(0) => {
+                    SchemeError::NoCrossComponent { edge: e, corner: a }
+                }
+                CrossFailure::NoCrossComponent(_) => {
+                    SchemeError::NoCrossComponent { edge: e, corner: b }
+                }
+            })?;
+    }
+
+    // m = 1: second interior-boundary points; m = 3: the split point.
+    let j2: [Point3<f64>; 3] = std::array::from_fn(|i| {
+        let cl = c1[i];
+        let cr = c2[prev(i)];
+        let sum = (cl - i1[i]) + (cr - i1[i]);
+        j1[i] + (sum * 4.0 - (j1[i] - v[i]) * 3.0) * (beta[i] / 2.0)
+    });
+    let s = Point3::from((j2[0].coords + j2[1].coords + j2[2].coords) / 3.0);
+    let i2: [Point3<f64>; 3] = std::array::from_fn(|i| mid(&j1[i], &j2[i], 0.5));
+    let i3: [Point3<f64>; 3] = std::array::from_fn(|i| mid(&j2[i], &s, 0.25));
+
+    // m = 2: the row-2 middle points.
+    let r: [Vector3<f64>; 3] = std::array::from_fn(|i| {
+        i2[i].coords * 2.0 + ((s - j2[i]) / beta[i] + (j2[i] - j1[i]) * 6.0) / 4.0
+    });
+    let nmid: [Point3<f64>; 3] =
+        std::array::from_fn(|e| Point3::from((r[e] + r[next(e)] - r[prev(e)]) / 2.0));
+
+    Ok(std::array::from_fn(|e| {
+        let (a, b) = (e, next(e));
+        let q = edges[e].elevate().points;
+        [
+            q[0], q[1], q[2], q[3], q[4], //
+            i1[a], c1[e], c2[e], i1[b], //
+            i2[a], nmid[e], i2[b], //
+            i3[a], i3[b], //
+            s,
+        ]
+    }))
+}
