@@ -5,7 +5,9 @@
 //! atomically (temporary file, then rename) so an interrupted run never leaves half a file.
 
 mod curve;
+mod datasets;
 mod error;
+mod fit;
 mod output;
 
 use std::process::ExitCode;
@@ -25,12 +27,16 @@ enum Experiment {
     /// Boundary curves for planar unit-chord problems given as JSON Lines: every construction's
     /// (α0, α1), control points and end curvatures, and Figure-2-style plots.
     Curve(curve::CurveArgs),
+    /// Fit a data set or mesh file with the modified Shirman–Séquin scheme; write the patches as
+    /// JSON Lines and report G1 defect, interpolation error and speed.
+    Fit(fit::FitArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.experiment {
         Experiment::Curve(args) => curve::run(&args),
+        Experiment::Fit(args) => fit::run(&args),
     };
     match result {
         Ok(code) => code,

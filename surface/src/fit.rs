@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use crate::beztri::BezierTriangle;
 use crate::mesh::Mesh;
-use crate::shirman_sequin::{macro_patch, InteriorParameters, SchemeError};
+use crate::shirman_sequin::{macro_patch, InteriorParameters, QuarticNet, SchemeError};
 
 /// Why a mesh could not be fitted.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -33,6 +33,12 @@ pub enum FitError {
         /// The first vertex without curvature.
         vertex: usize,
     },
+    /// A patch came out with non-finite control points (extreme data).
+    #[error("face {face}: the patch has non-finite control points")]
+    NonFinite {
+        /// The face index.
+        face: usize,
+    },
     /// The mesh structure disagreed with itself (a bug, reported rather than panicking).
     #[error("internal mesh inconsistency: {0}")]
     Mesh(String),
@@ -53,9 +59,26 @@ pub struct Fit {
     /// Edges whose tangent had to be flipped to point along the chord (a normal turned past
     /// 90°), summed over both ends.
     pub flipped_tangents: usize,
-    /// Three quartic patches per face: patch `3f + e` is sub-patch `e` of face `f`, over the
-    /// corners `(V_e, V_{e+1}, S)` of the face.
-    pub patches: Vec<BezierTriangle>,
+    /// Three quartic nets per face (DESIGN.md row order): net `3f + e` is sub-patch `e` of face
+    /// `f`, over the corners `(V_e, V_{e+1}, S)` of the face. Fixed-size arrays, so a fit of a
+    /// million triangles makes no per-patch allocation (about 1.1 kB per triangle).
+    pub patches: Vec<QuarticNet>,
+}
+
+impl Fit {
+    /// Patch `i` (`3f + e`) as a [`BezierTriangle`].
+    pub fn patch(&self, i: usize) -> Option<BezierTriangle> {
+        self.patches
+            .get(i)
+            .and_then(|n| BezierTriangle::new(4, n.to_vec()).ok())
+    }
+
+    /// Every patch as a [`BezierTriangle`], in order (for tessellation and output).
+    pub fn bezier_patches(&self) -> Vec<BezierTriangle> {
+        (0..self.patches.len())
+            .filter_map(|i| self.patch(i))
+            .collect()
+    }
 }
 
 /// Fits every face of `mesh`, with boundary curves from `method` and the interior parameters
@@ -98,7 +121,7 @@ pub fn fit(
         })
         .collect::<Result<_, FitError>>()?;
 
-    let nets: Vec<[BezierTriangle; 3]> = (0..mesh.num_faces())
+    let nets: Vec<[QuarticNet; 3]> = (0..mesh.num_faces())
         .into_par_iter()
         .map(|f| {
             let face = mesh.face(f).map_err(|e| FitError::Mesh(e.to_string()))?;
@@ -121,8 +144,14 @@ pub fn fit(
             ];
             let nets = macro_patch(corners, &edges, &params(f))
                 .map_err(|source| FitError::Face { face: f, source })?;
-            Ok(nets
-                .map(|n| BezierTriangle::from_fn(4, |i, j, k| n[crate::beztri::index(4, i, j, k)])))
+            if nets
+                .iter()
+                .flatten()
+                .any(|p| !p.iter().all(|c| c.is_finite()))
+            {
+                return Err(FitError::NonFinite { face: f });
+            }
+            Ok(nets)
         })
         .collect::<Result<_, FitError>>()?;
 

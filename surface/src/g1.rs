@@ -9,9 +9,10 @@
 
 use nalgebra::Vector3;
 
-use crate::beztri::BezierTriangle;
+use crate::beztri::index;
 use crate::fit::Fit;
 use crate::mesh::Mesh;
+use crate::shirman_sequin::QuarticNet;
 
 /// Where a G1 defect was measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,8 +61,37 @@ fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     a.cross(b).norm().atan2(a.dot(b))
 }
 
-fn normal(p: &BezierTriangle, u: f64, v: f64) -> Option<Vector3<f64>> {
-    p.normal(u, v)
+/// Unit normal of a quartic net at `(u, v, 1 − u − v)`: the cross product of the two first
+/// partials, each from one de Casteljau pass down to degree 1 (no allocation).
+fn normal(net: &QuarticNet, u: f64, v: f64) -> Option<Vector3<f64>> {
+    let w = 1.0 - u - v;
+    // Reduce to the degree-1 net b100, b010, b001 by de Casteljau at (u, v, w).
+    let mut pts: [Vector3<f64>; 15] = std::array::from_fn(|i| net[i].coords);
+    let mut n = 4;
+    while n > 1 {
+        let mut next = [Vector3::zeros(); 15];
+        for k in 0..n {
+            for i in 0..n - k {
+                let j = n - 1 - k - i;
+                next[index(n - 1, i, j, k)] = pts[index(n, i + 1, j, k)] * u
+                    + pts[index(n, i, j + 1, k)] * v
+                    + pts[index(n, i, j, k + 1)] * w;
+            }
+        }
+        pts = next;
+        n -= 1;
+    }
+    // Partials along u and v with w = 1 − u − v: 4(b100 − b001), 4(b010 − b001).
+    let du = pts[index(1, 1, 0, 0)] - pts[index(1, 0, 0, 1)];
+    let dv = pts[index(1, 0, 1, 0)] - pts[index(1, 0, 0, 1)];
+    let c = du.cross(&dv);
+    let len = c.norm();
+    (len > 0.0 && len.is_finite()).then(|| c / len)
+}
+
+/// Position of a quartic net at a corner.
+fn corner(net: &QuarticNet, i: usize) -> nalgebra::Point3<f64> {
+    net[[index(4, 4, 0, 0), index(4, 0, 4, 0), index(4, 0, 0, 4)][i]]
 }
 
 /// Measures G1 continuity and interpolation of `fit` over `mesh` at `samples ≥ 2` points per
@@ -99,7 +129,7 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
             }
             // Interpolation at the corner V_i of sub-patch i.
             let v = &mesh.vertices()[vi].data;
-            r.position_error = r.position_error.max((l.eval(1.0, 0.0, 0.0) - v.p).norm());
+            r.position_error = r.position_error.max((corner(l, 0) - v.p).norm());
             match normal(l, 1.0, 0.0) {
                 Some(n) => r.normal_error = r.normal_error.max(angle(&n, &v.n.normalize())),
                 None => r.undefined_normals += 1,

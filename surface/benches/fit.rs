@@ -1,0 +1,28 @@
+//! Fitting speed: the modified Shirman–Séquin scheme on rings of 10³ to 10⁶ triangles with
+//! `chord` and `optimized` (exact-penalty) curves, all cores (rayon). Throughput is reported in
+//! triangles per second.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use curves::{method_by_name, MethodOptions};
+use surface::{fit, InteriorParameters};
+
+fn bench(c: &mut Criterion) {
+    let mut g = c.benchmark_group("fit_ring");
+    g.sample_size(10);
+    // ring(nu, nv) has 2·nu·nv triangles.
+    for (nu, nv) in [(32usize, 16usize), (100, 50), (320, 160), (1000, 500)] {
+        let data = surface::datasets::ring(nu, nv).expect("valid resolution");
+        let faces = data.mesh.num_faces();
+        g.throughput(Throughput::Elements(faces as u64));
+        for name in ["chord", "optimized"] {
+            let m = method_by_name(name, &MethodOptions::default()).expect("registered");
+            g.bench_with_input(BenchmarkId::new(name, faces), &data.mesh, |b, mesh| {
+                b.iter(|| fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).expect("fits"))
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
