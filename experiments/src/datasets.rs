@@ -11,12 +11,13 @@ pub fn load(name: &str) -> Result<DataSet, ExperimentError> {
     dataset_by_name(name, None).map_err(|e| ExperimentError::Usage(e.to_string()))
 }
 
+/// The edge problems of a data set, each with its `(a, b)` vertex pair.
+pub type EdgeProblems = Vec<((usize, usize), BoundaryProblem)>;
+
 /// Every edge of a data set as a boundary-curve problem (each edge once, oriented as in its
 /// first face), and the number of edges whose problem is degenerate (skipped).
 #[allow(dead_code)] // used by the solvers experiment
-pub fn edge_problems(
-    name: &str,
-) -> Result<(Vec<((usize, usize), BoundaryProblem)>, usize), ExperimentError> {
+pub fn edge_problems(name: &str) -> Result<(EdgeProblems, usize), ExperimentError> {
     let data = load(name)?;
     let verts = data.mesh.vertices();
     let mut out = Vec::with_capacity(data.mesh.edges().len());
