@@ -2,6 +2,8 @@
 //! `chord` and `optimized` (exact-penalty) curves, all cores (rayon). Throughput is reported in
 //! triangles per second.
 
+#![allow(clippy::expect_used)] // a benchmark on fixed valid data
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use curves::{method_by_name, MethodOptions};
 use surface::{fit, InteriorParameters};
