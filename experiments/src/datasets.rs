@@ -16,7 +16,6 @@ pub type EdgeProblems = Vec<((usize, usize), BoundaryProblem)>;
 
 /// Every edge of a data set as a boundary-curve problem (each edge once, oriented as in its
 /// first face), and the number of edges whose problem is degenerate (skipped).
-#[allow(dead_code)] // used by the solvers experiment
 pub fn edge_problems(name: &str) -> Result<(EdgeProblems, usize), ExperimentError> {
     let data = load(name)?;
     let verts = data.mesh.vertices();

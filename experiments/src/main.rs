@@ -9,6 +9,7 @@ mod datasets;
 mod error;
 mod fit;
 mod output;
+mod solvers;
 
 use std::process::ExitCode;
 
@@ -27,6 +28,9 @@ enum Experiment {
     /// Boundary curves for planar unit-chord problems given as JSON Lines: every construction's
     /// (α0, α1), control points and end curvatures, and Figure-2-style plots.
     Curve(curve::CurveArgs),
+    /// Every boundary-curve problem of the data sets solved by every solver adapter (exact
+    /// penalty, L-BFGS, Levenberg–Marquardt): convergence, agreement, iterations, time.
+    Solvers(solvers::SolversArgs),
     /// Fit a data set or mesh file with the modified Shirman–Séquin scheme; write the patches as
     /// JSON Lines and report G1 defect, interpolation error and speed.
     Fit(fit::FitArgs),
@@ -36,6 +40,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.experiment {
         Experiment::Curve(args) => curve::run(&args),
+        Experiment::Solvers(args) => solvers::run(&args),
         Experiment::Fit(args) => fit::run(&args),
     };
     match result {

@@ -963,7 +963,7 @@ pub fn write_curve_figure(fig: &CurveFigure, png: &Path, svg: &Path) -> Result<(
     write_atomic(svg, svg_text.as_bytes())
 }
 
-fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, png::EncodingError> {
+pub(crate) fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, png::EncodingError> {
     let mut out = Vec::new();
     let mut encoder = png::Encoder::new(&mut out, w, h);
     encoder.set_color(png::ColorType::Rgb);

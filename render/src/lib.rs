@@ -12,11 +12,15 @@
 //! * [`io`] — atomic file output shared by all renderers.
 //! * [`font`] — the bundled font and its one-time registration.
 
+pub mod chart;
 pub mod curveplot;
 pub mod error;
 pub mod font;
 pub mod io;
 
+pub use chart::{
+    write_histogram, write_line_chart, write_line_charts, Histogram, LineChart, Series,
+};
 pub use curveplot::{
     curvature_y_range, equal_aspect_ranges, figure_size, write_curve_figure, CurveFigure,
     CurvePanel, YRange,
