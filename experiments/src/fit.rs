@@ -47,6 +47,13 @@ pub struct FitArgs {
     /// Where to write the patches (JSON Lines); none are written when absent.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Tessellate the patches at this many segments per patch edge (the testbed's `Tess -s`)
+    /// and write the welded triangle mesh with normals as OBJ to `--mesh-out`.
+    #[arg(long, default_value_t = 4)]
+    tess: usize,
+    /// Where to write the tessellation (OBJ); none is made when absent.
+    #[arg(long)]
+    mesh_out: Option<PathBuf>,
 }
 
 fn read_mesh(arg: &str, resolution: Option<usize>) -> Result<Mesh, ExperimentError> {
@@ -100,6 +107,27 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             let _ = writeln!(text, "{rec}");
         }
         write_result(Some(out), text.as_bytes())?;
+    }
+    if let Some(path) = &args.mesh_out {
+        let t3 = Instant::now();
+        let tess = surface::tessellate(&fitted.bezier_patches(), args.tess)
+            .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;
+        let mut bytes = Vec::new();
+        tess.write_obj(&mut bytes)
+            .map_err(|source| ExperimentError::Write {
+                path: path.clone(),
+                source,
+            })?;
+        write_result(Some(path), &bytes)?;
+        eprintln!(
+            "  tessellation: s = {}, {} vertices, {} triangles, {} seam welds, in {:.3} s → {}",
+            args.tess,
+            tess.positions.len(),
+            tess.faces.len(),
+            tess.welds,
+            t3.elapsed().as_secs_f64(),
+            path.display()
+        );
     }
     let faces = mesh.num_faces();
     eprintln!(

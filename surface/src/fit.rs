@@ -97,29 +97,28 @@ pub fn fit(
             });
         }
     }
-    struct EdgeCurve {
-        curve: CubicBez3,
-        alpha: [f64; 2],
-        fallback: bool,
-        unconverged: bool,
-        flipped: usize,
-    }
-    let edge_curves: Vec<EdgeCurve> = mesh
-        .edges()
-        .par_iter()
-        .map(|e| {
+    // Curves, α and per-edge flags are written in place (bit 0: fallback, bit 1: unconverged,
+    // bits 2–3: number of flipped tangents), so no intermediate collection is copied.
+    let n_edges = mesh.edges().len();
+    let mut curves = vec![CubicBez3::new([nalgebra::Point3::origin(); 4]); n_edges];
+    let mut alphas = vec![[0.0; 2]; n_edges];
+    let mut flags = vec![0u8; n_edges];
+    curves
+        .par_iter_mut()
+        .zip(alphas.par_iter_mut())
+        .zip(flags.par_iter_mut())
+        .zip(mesh.edges().par_iter())
+        .try_for_each(|(((curve, alpha), flag), e)| -> Result<(), FitError> {
             let [a, b] = e.vertices;
             let p = BoundaryProblem::new((a, b), &verts[a].data, &verts[b].data)?;
             let choice = method.construct(&p.unit);
-            Ok(EdgeCurve {
-                curve: p.curve(choice.alpha),
-                alpha: choice.alpha,
-                fallback: choice.fallback,
-                unconverged: choice.report.as_ref().is_some_and(|r| !r.converged()),
-                flipped: p.flipped.iter().filter(|f| **f).count(),
-            })
-        })
-        .collect::<Result<_, FitError>>()?;
+            *curve = p.curve(choice.alpha);
+            *alpha = choice.alpha;
+            let unconverged = choice.report.as_ref().is_some_and(|r| !r.converged());
+            let flipped = p.flipped.iter().filter(|f| **f).count() as u8;
+            *flag = u8::from(choice.fallback) | (u8::from(unconverged) << 1) | (flipped << 2);
+            Ok(())
+        })?;
 
     // Each face writes its three nets straight into the output (no intermediate copies: at a
     // million faces the nets are a gigabyte, and memory traffic dominates the arithmetic).
@@ -134,7 +133,7 @@ pub fn fit(
                 let ei = mesh
                     .edge_index(f, l)
                     .map_err(|e| FitError::Mesh(e.to_string()))?;
-                let c = edge_curves[ei].curve;
+                let c = curves[ei];
                 *slot = if mesh.edges()[ei].vertices[0] == face[l] {
                     c
                 } else {
@@ -160,11 +159,11 @@ pub fn fit(
         })?;
 
     Ok(Fit {
-        alphas: edge_curves.iter().map(|e| e.alpha).collect(),
-        fallbacks: edge_curves.iter().filter(|e| e.fallback).count(),
-        unconverged: edge_curves.iter().filter(|e| e.unconverged).count(),
-        flipped_tangents: edge_curves.iter().map(|e| e.flipped).sum(),
-        curves: edge_curves.into_iter().map(|e| e.curve).collect(),
+        fallbacks: flags.iter().filter(|f| *f & 1 != 0).count(),
+        unconverged: flags.iter().filter(|f| *f & 2 != 0).count(),
+        flipped_tangents: flags.iter().map(|f| usize::from(f >> 2)).sum(),
+        alphas,
+        curves,
         patches,
     })
 }
