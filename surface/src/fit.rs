@@ -45,7 +45,7 @@ pub enum FitError {
 }
 
 /// A fitted surface.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct Fit {
     /// The boundary curve of each mesh edge, in `mesh.edges()` order, running from
     /// `edge.vertices[0]` to `edge.vertices[1]`.
@@ -88,6 +88,20 @@ pub fn fit(
     method: &dyn CurveMethod,
     params: &(dyn Fn(usize) -> InteriorParameters + Sync),
 ) -> Result<Fit, FitError> {
+    let mut out = Fit::default();
+    fit_into(mesh, method, params, &mut out)?;
+    Ok(out)
+}
+
+/// [`fit`] into an existing [`Fit`], reusing its buffers: sweeps that fit many meshes (or one
+/// mesh many times) then allocate nothing after the first fit. On error `out` holds partial
+/// results and must not be used.
+pub fn fit_into(
+    mesh: &Mesh,
+    method: &dyn CurveMethod,
+    params: &(dyn Fn(usize) -> InteriorParameters + Sync),
+    out: &mut Fit,
+) -> Result<(), FitError> {
     let verts = mesh.vertices();
     if method.name() != "chord" {
         if let Some(v) = verts.iter().position(|v| !v.curvature_known) {
@@ -100,8 +114,16 @@ pub fn fit(
     // Curves, α and per-edge flags are written in place (bit 0: fallback, bit 1: unconverged,
     // bits 2–3: number of flipped tangents), so no intermediate collection is copied.
     let n_edges = mesh.edges().len();
-    let mut curves = vec![CubicBez3::new([nalgebra::Point3::origin(); 4]); n_edges];
-    let mut alphas = vec![[0.0; 2]; n_edges];
+    let Fit {
+        curves,
+        alphas,
+        patches,
+        ..
+    } = out;
+    curves.clear();
+    curves.resize(n_edges, CubicBez3::new([nalgebra::Point3::origin(); 4]));
+    alphas.clear();
+    alphas.resize(n_edges, [0.0; 2]);
     let mut flags = vec![0u8; n_edges];
     curves
         .par_iter_mut()
@@ -122,7 +144,8 @@ pub fn fit(
 
     // Each face writes its three nets straight into the output (no intermediate copies: at a
     // million faces the nets are a gigabyte, and memory traffic dominates the arithmetic).
-    let mut patches = vec![[nalgebra::Point3::origin(); 15]; 3 * mesh.num_faces()];
+    patches.clear();
+    patches.resize(3 * mesh.num_faces(), [nalgebra::Point3::origin(); 15]);
     patches
         .par_chunks_mut(3)
         .enumerate()
@@ -158,12 +181,8 @@ pub fn fit(
             Ok(())
         })?;
 
-    Ok(Fit {
-        fallbacks: flags.iter().filter(|f| *f & 1 != 0).count(),
-        unconverged: flags.iter().filter(|f| *f & 2 != 0).count(),
-        flipped_tangents: flags.iter().map(|f| usize::from(f >> 2)).sum(),
-        alphas,
-        curves,
-        patches,
-    })
+    out.fallbacks = flags.iter().filter(|f| *f & 1 != 0).count();
+    out.unconverged = flags.iter().filter(|f| *f & 2 != 0).count();
+    out.flipped_tangents = flags.iter().map(|f| usize::from(f >> 2)).sum();
+    Ok(())
 }

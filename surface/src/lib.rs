@@ -37,7 +37,7 @@ pub use datasets::{
     dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,
     DATASET_NAMES,
 };
-pub use fit::{fit, Fit, FitError};
+pub use fit::{fit, fit_into, Fit, FitError};
 pub use g1::{measure as measure_g1, Boundary, G1Report};
 pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
 pub use obj::{read_obj, read_obj_file, write_obj, write_obj_file, ObjError};
