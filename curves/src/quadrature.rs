@@ -21,9 +21,10 @@ const WEIGHTS: [f64; 4] = [
     0.101_228_536_290_376_3,
 ];
 
-/// Deepest bisection: intervals of width `2⁻⁴⁰` are far below anything the integrands here
-/// resolve, so deeper recursion would only chase rounding noise near a cusp.
-const MAX_DEPTH: u32 = 40;
+/// Deepest bisection below a panel: intervals of width `2⁻³⁴` of the whole are far below
+/// anything the integrands here resolve, so deeper recursion would only chase rounding noise
+/// near a cusp.
+const MAX_DEPTH: u32 = 30;
 
 fn gauss<F: Fn(f64) -> f64>(f: &F, a: f64, b: f64) -> f64 {
     let m = 0.5 * (a + b);
@@ -46,14 +47,42 @@ fn adapt<F: Fn(f64) -> f64>(f: &F, a: f64, b: f64, whole: f64, tol: f64, depth: 
     adapt(f, a, m, left, 0.5 * tol, depth + 1) + adapt(f, m, b, right, 0.5 * tol, depth + 1)
 }
 
+/// Panels of the first estimate. A single 8-point rule can miss a narrow spike (the curvature
+/// of a cubic with a very short end derivative) and then set a tolerance far below the true
+/// integral's scale, which sends the recursion to full depth everywhere; 16 panels see spikes
+/// down to about 1/128 of the interval.
+const PANELS: usize = 16;
+
 /// `∫_a^b f` to relative accuracy `rel_tol` (absolute when the integral is near zero).
 pub fn integrate<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, rel_tol: f64) -> f64 {
     if a == b {
         return 0.0;
     }
-    let whole = gauss(&f, a, b);
-    let tol = rel_tol * whole.abs().max(f64::MIN_POSITIVE);
-    adapt(&f, a, b, whole, tol, 0)
+    let h = (b - a) / PANELS as f64;
+    let panel = |i: usize| {
+        (
+            a + h * i as f64,
+            if i + 1 == PANELS {
+                b
+            } else {
+                a + h * (i + 1) as f64
+            },
+        )
+    };
+    let parts: [f64; PANELS] = std::array::from_fn(|i| {
+        let (x, y) = panel(i);
+        gauss(&f, x, y)
+    });
+    let whole: f64 = parts.iter().sum();
+    let tol = rel_tol * whole.abs().max(f64::MIN_POSITIVE) / PANELS as f64;
+    parts
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| {
+            let (x, y) = panel(i);
+            adapt(&f, x, y, p, tol, 0)
+        })
+        .sum()
 }
 
 #[cfg(test)]

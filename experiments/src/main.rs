@@ -9,6 +9,8 @@ mod datasets;
 mod error;
 mod fit;
 mod output;
+mod ring;
+mod ring_render;
 mod solvers;
 
 use std::process::ExitCode;
@@ -25,6 +27,10 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Experiment {
+    /// The seeds' ring study: true ring, flat triangles and the Shirman–Séquin surface with chord,
+    /// dBHS and optimized curves, measured against the torus, pictured (shaded, KColor, Radial)
+    /// and written to results/ring/.
+    Ring(ring::RingArgs),
     /// Boundary curves for planar unit-chord problems given as JSON Lines: every construction's
     /// (α0, α1), control points and end curvatures, and Figure-2-style plots.
     Curve(curve::CurveArgs),
@@ -39,6 +45,7 @@ enum Experiment {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.experiment {
+        Experiment::Ring(args) => ring::run(&args),
         Experiment::Curve(args) => curve::run(&args),
         Experiment::Solvers(args) => solvers::run(&args),
         Experiment::Fit(args) => fit::run(&args),

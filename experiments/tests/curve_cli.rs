@@ -80,3 +80,36 @@ fn unknown_method_and_missing_file_are_usage_errors() {
     assert_eq!(code, 2);
     assert!(err.contains("/nonexistent/problems.jsonl"), "{err}");
 }
+
+#[test]
+fn ring_study_runs_small_and_reports_g1() {
+    let dir = std::env::temp_dir().join(format!("ring-test-{}", std::process::id()));
+    let out = dir.to_str().expect("utf-8 path");
+    let (code, stdout, err) = run(
+        &["ring", "--resolution", "6", "--sampling", "2", "--out", out],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("optimized"), "{stdout}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).expect("report"))
+            .expect("JSON");
+    for m in ["chord", "dbhs", "optimized"] {
+        let g1 = report["methods"][m]["g1_defect_exterior_radians"]
+            .as_f64()
+            .expect("number");
+        assert!(g1 < 1e-9, "{m}: {g1}");
+    }
+    assert_eq!(report["surfaces"].as_array().map(Vec::len), Some(5));
+    for f in [
+        "shaded.png",
+        "kcolor.png",
+        "radial.png",
+        "figure2.png",
+        "optimized.ply",
+        "report.md",
+    ] {
+        assert!(dir.join(f).exists(), "{f} missing");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

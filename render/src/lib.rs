@@ -13,10 +13,14 @@
 //! * [`font`] — the bundled font and its one-time registration.
 
 pub mod chart;
+pub mod colors;
 pub mod curveplot;
 pub mod error;
 pub mod font;
 pub mod io;
+pub mod mosaic;
+pub mod plyfile;
+pub mod shade;
 
 pub use chart::{
     write_histogram, write_line_chart, write_line_charts, Histogram, LineChart, Series,
@@ -27,3 +31,6 @@ pub use curveplot::{
 };
 pub use error::RenderError;
 pub use io::write_atomic;
+pub use mosaic::{write_composite, Legend, LegendKind, Tile};
+pub use plyfile::{ply_bytes, write_ply_binary};
+pub use shade::{render, Camera, Image, RenderMesh, RenderOptions};

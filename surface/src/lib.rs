@@ -14,6 +14,7 @@
 //! * [`shirman_sequin`] — the modified Shirman–Séquin split-domain scheme: three quartic
 //!   patches per triangle, G1 by construction (derivation in the module docs);
 //! * [`fit`](mod@fit) — a whole mesh: one curve per edge (shared), one macro-patch per face;
+//! * [`metrics`] — errors of a tessellation against the true surface;
 //! * [`g1`] — the testbed's `G1`: measured normal continuity and interpolation;
 //! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
 //!   position, normal, Gaussian and mean curvature.
@@ -27,6 +28,7 @@ pub mod datasets;
 pub mod fit;
 pub mod g1;
 pub mod mesh;
+pub mod metrics;
 pub mod obj;
 pub mod shirman_sequin;
 pub mod tessellate;
@@ -40,6 +42,7 @@ pub use datasets::{
 pub use fit::{fit, fit_into, Fit, FitError};
 pub use g1::{measure as measure_g1, Boundary, G1Report};
 pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
+pub use metrics::{compare as compare_with_truth, SurfaceErrors};
 pub use obj::{read_obj, read_obj_file, write_obj, write_obj_file, ObjError};
 pub use shirman_sequin::{
     chiyokura_kimura, macro_patch, CrossEnd, CrossFailure, InteriorParameters, QuarticNet,

@@ -1,0 +1,204 @@
+//! Pictures and mesh files of the ring study: every surface from three views, shaded, coloured
+//! by Gaussian curvature (KColor) and by distance to the true surface (Radial).
+
+use std::path::Path;
+
+use nalgebra::{Point3, Vector3};
+use render::colors as colormap;
+use render::{
+    render, write_composite, write_ply_binary, Camera, Image, Legend, LegendKind, RenderMesh,
+    RenderOptions, Tile,
+};
+use serde_json::{json, Value};
+
+use crate::error::ExperimentError;
+use crate::output::write_result;
+use crate::ring::SurfaceView;
+
+/// The three views (azimuth°, elevation°, name) of the seeds' Pictures 1–3: an overview, a view
+/// from above onto the top of the ring (where Mann's Picture 2 shows the worst artifact), and a
+/// grazing side view under which bumps and flat spots stand out.
+pub const VIEWS: [(f64, f64, &str); 3] = [
+    (35.0, 35.0, "overview"),
+    (100.0, 65.0, "from above"),
+    (200.0, 6.0, "grazing"),
+];
+
+/// Size of one picture in a composite.
+const TILE: (u32, u32) = (380, 285);
+
+enum Colouring {
+    Uniform,
+    Gaussian(f64),
+    Distance(f64),
+}
+
+fn render_mesh(s: &SurfaceView<'_>, colouring: &Colouring) -> RenderMesh {
+    let t = s.tess;
+    let colour = |i: usize| match colouring {
+        Colouring::Uniform => colormap::MATERIAL,
+        Colouring::Gaussian(limit) => colormap::diverging(t.gaussian[i], *limit),
+        Colouring::Distance(hi) => colormap::sequential(s.distance[i], 0.0, *hi),
+    };
+    if s.flat {
+        // One vertex per face corner with the face normal: flat shading.
+        let mut m = RenderMesh {
+            positions: Vec::with_capacity(3 * t.faces.len()),
+            normals: Vec::with_capacity(3 * t.faces.len()),
+            colors: Vec::with_capacity(3 * t.faces.len()),
+            faces: Vec::with_capacity(t.faces.len()),
+        };
+        for f in &t.faces {
+            let [a, b, c] = f.map(|i| t.positions[i]);
+            let n = (b - a).cross(&(c - a));
+            let n = if n.norm() > 0.0 {
+                n.normalize()
+            } else {
+                Vector3::z()
+            };
+            let base = m.positions.len();
+            for &i in f {
+                m.positions.push(t.positions[i]);
+                m.normals.push(n);
+                m.colors.push(colour(i));
+            }
+            m.faces.push([base, base + 1, base + 2]);
+        }
+        m
+    } else {
+        RenderMesh {
+            positions: t.positions.clone(),
+            normals: t.normals.clone(),
+            colors: (0..t.positions.len()).map(colour).collect(),
+            faces: t.faces.clone(),
+        }
+    }
+}
+
+fn bbox(views: &[SurfaceView<'_>]) -> (Point3<f64>, Point3<f64>) {
+    let mut lo = Point3::from(Vector3::repeat(f64::INFINITY));
+    let mut hi = Point3::from(Vector3::repeat(f64::NEG_INFINITY));
+    for v in views {
+        for p in &v.tess.positions {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+    }
+    (lo, hi)
+}
+
+/// Renders the three composites; returns their description for the report.
+pub fn render_all(out: &Path, views: &[SurfaceView<'_>]) -> Result<Value, ExperimentError> {
+    let (lo, hi) = bbox(views);
+    // Colour limits shared by every surface so the pictures compare: the true ring's largest
+    // |K|, and twice the median over the fitted surfaces of their largest distance (so the
+    // typical fitted surface uses the lower half of the scale; lumps and flat triangles
+    // saturate).
+    let k_limit = views
+        .iter()
+        .find(|v| v.name == "true")
+        .map(|v| v.tess.gaussian.iter().fold(0.0f64, |m, k| m.max(k.abs())))
+        .unwrap_or(1.0)
+        .max(1e-12);
+    let mut maxima: Vec<f64> = views
+        .iter()
+        .filter(|v| !matches!(v.name, "true" | "flat"))
+        .map(|v| v.distance.iter().copied().fold(0.0f64, f64::max))
+        .collect();
+    maxima.sort_by(f64::total_cmp);
+    let d_limit = (2.0 * maxima.get(maxima.len() / 2).copied().unwrap_or(1.0)).max(1e-12);
+    let options = RenderOptions {
+        width: TILE.0,
+        height: TILE.1,
+        ..RenderOptions::default()
+    };
+    let modes = [
+        ("shaded", "Shaded", Colouring::Uniform, None),
+        (
+            "kcolor",
+            "Gaussian curvature (KColor)",
+            Colouring::Gaussian(k_limit),
+            Some(Legend {
+                title: "Gaussian curvature K".into(),
+                kind: LegendKind::Diverging { limit: k_limit },
+            }),
+        ),
+        (
+            "radial",
+            "Distance to the true ring (Radial)",
+            Colouring::Distance(d_limit),
+            Some(Legend {
+                title: "distance to the torus".into(),
+                kind: LegendKind::Sequential {
+                    lo: 0.0,
+                    hi: d_limit,
+                },
+            }),
+        ),
+    ];
+    let mut files = Vec::new();
+    for (file, title, colouring, legend) in &modes {
+        let meshes: Vec<RenderMesh> = views.iter().map(|v| render_mesh(v, colouring)).collect();
+        let mut tiles = Vec::new();
+        for (az, el, vname) in VIEWS {
+            let cam = Camera::framing(lo, hi, az, el);
+            for (v, m) in views.iter().zip(&meshes) {
+                let image: Image = render(m, &cam, &options)?;
+                tiles.push(Tile {
+                    image,
+                    label: format!("{} — {vname}", v.label),
+                });
+            }
+        }
+        let path = out.join(format!("{file}.png"));
+        write_composite(&tiles, views.len(), title, legend.as_ref(), &path)?;
+        files.push(json!({"file": format!("{file}.png"), "title": title}));
+    }
+    Ok(
+        json!({"views": VIEWS.iter().map(|v| json!({"azimuth_degrees": v.0, "elevation_degrees": v.1, "name": v.2})).collect::<Vec<_>>(),
+              "gaussian_colour_limit": k_limit, "distance_colour_limit": d_limit, "files": files}),
+    )
+}
+
+/// PLY (binary, KColor colours, K as quality) of every surface, and OBJ of the optimized one
+/// (committed results stay a few MB).
+pub fn write_meshes(out: &Path, views: &[SurfaceView<'_>]) -> Result<(), ExperimentError> {
+    let k_limit = views
+        .iter()
+        .find(|v| v.name == "true")
+        .map(|v| v.tess.gaussian.iter().fold(0.0f64, |m, k| m.max(k.abs())))
+        .unwrap_or(1.0)
+        .max(1e-12);
+    for v in views {
+        let t = v.tess;
+        let colors: Vec<[u8; 3]> = t
+            .gaussian
+            .iter()
+            .map(|k| {
+                colormap::diverging(*k, k_limit).map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+            })
+            .collect();
+        let quality: Vec<f32> = t.gaussian.iter().map(|k| *k as f32).collect();
+        write_ply_binary(
+            &out.join(format!("{}.ply", v.name)),
+            &t.positions,
+            &t.normals,
+            &colors,
+            Some(&quality),
+            &t.faces,
+        )?;
+        if v.name != "optimized" {
+            continue;
+        }
+        let mut obj = Vec::new();
+        t.write_obj(&mut obj)
+            .map_err(|source| ExperimentError::Write {
+                path: out.join(format!("{}.obj", v.name)),
+                source,
+            })?;
+        write_result(Some(&out.join(format!("{}.obj", v.name))), &obj)?;
+    }
+    Ok(())
+}
