@@ -12,6 +12,7 @@ mod output;
 mod ring;
 mod ring_render;
 mod solvers;
+mod sweep;
 
 use std::process::ExitCode;
 
@@ -34,6 +35,11 @@ enum Experiment {
     /// Boundary curves for planar unit-chord problems given as JSON Lines: every construction's
     /// (α0, α1), control points and end curvatures, and Figure-2-style plots.
     Curve(curve::CurveArgs),
+    /// The ring study's measures over every data set × curve construction × solver, as one
+    /// table; `--shard i/n` runs a deterministic slice for cluster schedulers.
+    Sweep(sweep::SweepArgs),
+    /// Join the shard reports of `sweep --shard` into one report.
+    Merge(sweep::MergeArgs),
     /// Every boundary-curve problem of the data sets solved by every solver adapter (exact
     /// penalty, L-BFGS, Levenberg–Marquardt): convergence, agreement, iterations, time.
     Solvers(solvers::SolversArgs),
@@ -47,6 +53,8 @@ fn main() -> ExitCode {
     let result = match cli.experiment {
         Experiment::Ring(args) => ring::run(&args),
         Experiment::Curve(args) => curve::run(&args),
+        Experiment::Sweep(args) => sweep::run(&args),
+        Experiment::Merge(args) => sweep::merge(&args),
         Experiment::Solvers(args) => solvers::run(&args),
         Experiment::Fit(args) => fit::run(&args),
     };

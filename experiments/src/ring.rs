@@ -65,14 +65,21 @@ struct Surface {
 
 /// Statistics of one construction's boundary curves over all edges (unit-chord measures).
 #[derive(Default)]
-struct CurveStats {
-    end_curvature_error_max: f64,
-    end_curvature_error_rms: f64,
-    shortest_alpha: f64,
-    curvature_variation_max: f64,
-    curvature_variation_median: f64,
-    fallbacks: usize,
-    unconverged: usize,
+pub struct CurveStats {
+    /// Largest |κ − k| at a curve end.
+    pub end_curvature_error_max: f64,
+    /// RMS of |κ − k| over all curve ends.
+    pub end_curvature_error_rms: f64,
+    /// Shortest end-derivative length α.
+    pub shortest_alpha: f64,
+    /// Largest ∫(dκ/ds)² ds.
+    pub curvature_variation_max: f64,
+    /// Median ∫(dκ/ds)² ds.
+    pub curvature_variation_median: f64,
+    /// Edges that fell back to the chord curve.
+    pub fallbacks: usize,
+    /// Edges whose optimization did not converge.
+    pub unconverged: usize,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -84,7 +91,8 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-fn curve_stats(problems: &[BoundaryProblem], fit: &Fit) -> CurveStats {
+/// Curve measures of a fit's edge curves, from the edges' unit problems.
+pub fn curve_stats(problems: &[BoundaryProblem], fit: &Fit) -> CurveStats {
     let mut s = CurveStats {
         shortest_alpha: f64::INFINITY,
         fallbacks: fit.fallbacks,

@@ -113,3 +113,18 @@ fn ring_study_runs_small_and_reports_g1() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn merge_refuses_an_incomplete_set_of_shards() {
+    let dir = std::env::temp_dir().join(format!("sweep-test-{}", std::process::id()));
+    let out = dir.to_str().expect("utf-8 path");
+    let (code, _, err) = run(&["sweep", "--shard", "0/20", "--out", out], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.join("shard-0-of-20.json").exists());
+    let (code, _, err) = run(&["merge", "--out", out], "");
+    assert_eq!(code, 2);
+    assert!(err.contains("19 of 20 tasks missing"), "{err}");
+    let (code, _, err) = run(&["sweep", "--shard", "3/2", "--out", out], "");
+    assert_eq!(code, 2, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

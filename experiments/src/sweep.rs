@@ -1,0 +1,345 @@
+//! `experiments -- sweep` and `experiments -- merge`: the ring study's measures over every data
+//! set × curve construction × solver, as one comparison table.
+//!
+//! The task list is fixed and ordered (data sets in registry order, then constructions, then —
+//! for `optimized` — solvers). `--shard i/n` runs the tasks whose index is `i mod n`
+//! (round-robin, so shards get similar mixes) and writes `shard-i-of-n.json`; `merge` joins the
+//! shard files of a directory, checks that every task is present exactly once, and writes the
+//! same `report.json`/`report.md` an unsharded run writes. Nothing depends on the shard: a task's
+//! result is the same whichever shard runs it, so any scheduler (a Slurm array with
+//! `--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`, GNU parallel) can run the shards.
+
+use std::fmt::Write as _;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use curves::{method_by_name, BoundaryProblem, MethodOptions};
+use serde_json::{json, Value};
+use solver::SolverKind;
+use surface::{compare_with_truth, fit, measure_g1, tessellate, InteriorParameters};
+
+use crate::error::ExperimentError;
+use crate::output::{ensure_dir, write_result};
+use crate::ring::curve_stats;
+
+/// Data sets of the sweep, in order.
+const DATASETS: [&str; 4] = ["ring", "sphere", "capsule", "octa"];
+/// Tessellation density of the sweep's measurements.
+const SAMPLING: usize = 4;
+
+/// One task of the sweep.
+#[derive(Clone, Debug, PartialEq)]
+struct Task {
+    dataset: &'static str,
+    curves: &'static str,
+    solver: Option<SolverKind>,
+}
+
+impl Task {
+    fn id(&self) -> String {
+        match self.solver {
+            Some(s) => format!("{}/{}/{}", self.dataset, self.curves, s),
+            None => format!("{}/{}", self.dataset, self.curves),
+        }
+    }
+}
+
+fn tasks() -> Vec<Task> {
+    let mut out = Vec::new();
+    for dataset in DATASETS {
+        out.push(Task {
+            dataset,
+            curves: "chord",
+            solver: None,
+        });
+        out.push(Task {
+            dataset,
+            curves: "dbhs",
+            solver: None,
+        });
+        for s in SolverKind::ALL {
+            out.push(Task {
+                dataset,
+                curves: "optimized",
+                solver: Some(s),
+            });
+        }
+    }
+    out
+}
+
+/// A shard `i/n`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    index: usize,
+    count: usize,
+}
+
+impl std::str::FromStr for Shard {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let (i, n) = s
+            .split_once('/')
+            .ok_or_else(|| format!("expected i/n, got `{s}`"))?;
+        let index: usize = i
+            .trim()
+            .parse()
+            .map_err(|_| format!("bad shard index `{i}`"))?;
+        let count: usize = n
+            .trim()
+            .parse()
+            .map_err(|_| format!("bad shard count `{n}`"))?;
+        if count == 0 || index >= count {
+            return Err(format!("shard {index}/{count}: need 0 ≤ i < n"));
+        }
+        Ok(Shard { index, count })
+    }
+}
+
+/// Options of the `sweep` experiment.
+#[derive(clap::Args, Debug)]
+pub struct SweepArgs {
+    /// Run only the tasks `k` with `k mod n = i` and write `shard-i-of-n.json` (join with
+    /// `merge`).
+    #[arg(long)]
+    shard: Option<Shard>,
+    /// Output directory.
+    #[arg(long, default_value = "results/sweep")]
+    out: PathBuf,
+}
+
+/// Options of the `merge` step.
+#[derive(clap::Args, Debug)]
+pub struct MergeArgs {
+    /// Directory holding the `shard-*-of-*.json` files; the merged report is written there.
+    #[arg(long, default_value = "results/sweep")]
+    out: PathBuf,
+}
+
+fn run_task(t: &Task) -> Result<Value, ExperimentError> {
+    let start = Instant::now();
+    let data = surface::dataset_by_name(t.dataset, None)
+        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    let mesh = &data.mesh;
+    let options = MethodOptions {
+        solver: t.solver.unwrap_or(SolverKind::ExactPenalty),
+        ..MethodOptions::default()
+    };
+    let m =
+        method_by_name(t.curves, &options).map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    let problems: Vec<BoundaryProblem> = mesh
+        .edges()
+        .iter()
+        .map(|e| {
+            let [a, b] = e.vertices;
+            BoundaryProblem::new((a, b), &mesh.vertices()[a].data, &mesh.vertices()[b].data)
+        })
+        .collect::<Result<_, _>>()
+        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
+    let t_fit = Instant::now();
+    let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
+        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
+    let fit_time = t_fit.elapsed().as_secs_f64();
+    let g1 = measure_g1(mesh, &f, 9);
+    let cs = curve_stats(&problems, &f);
+    let tess = tessellate(&f.bezier_patches(), SAMPLING)
+        .map_err(|e| ExperimentError::Usage(format!("{}: tessellation: {e}", t.id())))?;
+    let errors = compare_with_truth(&tess, data.surface.as_ref());
+    Ok(json!({
+        "task": t.id(),
+        "dataset": t.dataset,
+        "curves": t.curves,
+        "solver": t.solver.map(|s| s.name()),
+        "faces": mesh.num_faces(),
+        "g1_defect_radians": g1.max_angle(),
+        "errors": serde_json::to_value(errors).unwrap_or(Value::Null),
+        "curve_measures": {
+            "end_curvature_error_max": cs.end_curvature_error_max,
+            "shortest_alpha": cs.shortest_alpha,
+            "curvature_variation_max": cs.curvature_variation_max,
+            "fallbacks_to_chord": cs.fallbacks,
+            "unconverged_optimizations": cs.unconverged,
+        },
+        "fit_time_seconds": fit_time,
+        "task_time_seconds": start.elapsed().as_secs_f64(),
+    }))
+}
+
+/// Runs the sweep (or one shard of it).
+pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
+    let all = tasks();
+    let mine: Vec<(usize, &Task)> = all
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| args.shard.is_none_or(|s| k % s.count == s.index))
+        .collect();
+    let tty = std::io::stderr().is_terminal();
+    let mut results = Vec::with_capacity(mine.len());
+    for (done, (k, t)) in mine.iter().enumerate() {
+        if tty {
+            eprint!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
+        }
+        let mut v = run_task(t)?;
+        v["index"] = json!(k);
+        results.push(v);
+    }
+    if tty {
+        eprintln!();
+    }
+    ensure_dir(&args.out)?;
+    match args.shard {
+        Some(s) => {
+            let shard =
+                json!({"shard": [s.index, s.count], "tasks_total": all.len(), "results": results});
+            let mut text = serde_json::to_string_pretty(&shard)
+                .map_err(|e| ExperimentError::Usage(format!("cannot serialize: {e}")))?;
+            text.push('\n');
+            let path = args
+                .out
+                .join(format!("shard-{}-of-{}.json", s.index, s.count));
+            write_result(Some(&path), text.as_bytes())?;
+            eprintln!(
+                "sweep: shard {}/{}: {} tasks → {}",
+                s.index,
+                s.count,
+                results.len(),
+                path.display()
+            );
+        }
+        None => write_report(&args.out, results)?,
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Joins shard files into the report.
+pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
+    let read_dir = std::fs::read_dir(&args.out).map_err(|source| ExperimentError::Read {
+        path: args.out.clone(),
+        source,
+    })?;
+    let mut paths: Vec<PathBuf> = read_dir
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("shard-") && n.ends_with(".json"))
+        })
+        .collect();
+    paths.sort();
+    let total = tasks().len();
+    let mut results: Vec<Option<Value>> = vec![None; total];
+    for p in &paths {
+        let text = std::fs::read_to_string(p).map_err(|source| ExperimentError::Read {
+            path: p.clone(),
+            source,
+        })?;
+        let v: Value = serde_json::from_str(&text).map_err(|e| {
+            ExperimentError::Usage(format!("{}: not a shard report: {e}", p.display()))
+        })?;
+        for r in v["results"].as_array().into_iter().flatten() {
+            let k = r["index"]
+                .as_u64()
+                .map(|k| k as usize)
+                .filter(|k| *k < total)
+                .ok_or_else(|| {
+                    ExperimentError::Usage(format!(
+                        "{}: a result without a valid task index",
+                        p.display()
+                    ))
+                })?;
+            if results[k].is_some() {
+                return Err(ExperimentError::Usage(format!(
+                    "{}: task {k} ({}) appears in more than one shard",
+                    p.display(),
+                    r["task"]
+                )));
+            }
+            results[k] = Some(r.clone());
+        }
+    }
+    let missing: Vec<String> = results
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.is_none())
+        .map(|(k, _)| tasks()[k].id())
+        .collect();
+    if !missing.is_empty() {
+        return Err(ExperimentError::Usage(format!(
+            "merge: {} of {total} tasks missing from {} shard file(s): {}",
+            missing.len(),
+            paths.len(),
+            missing.join(", ")
+        )));
+    }
+    write_report(&args.out, results.into_iter().flatten().collect())?;
+    eprintln!(
+        "merge: {} shard file(s), {total} tasks → {}",
+        paths.len(),
+        args.out.join("report.md").display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+fn write_report(out: &Path, results: Vec<Value>) -> Result<(), ExperimentError> {
+    let report = json!({"experiment": "sweep", "sampling": SAMPLING, "beta": surface::shirman_sequin::DEFAULT_BETA,
+                        "c": surface::shirman_sequin::DEFAULT_C, "results": results});
+    let mut text = serde_json::to_string_pretty(&report)
+        .map_err(|e| ExperimentError::Usage(format!("cannot serialize: {e}")))?;
+    text.push('\n');
+    write_result(Some(&out.join("report.json")), text.as_bytes())?;
+    let mut md = String::new();
+    let _ = writeln!(md, "# Sweep: data sets × boundary curves × solvers\n");
+    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` (or shards joined by `merge`). Every data set at its default resolution, the modified Shirman–Séquin scheme with β = 1/3, c = 1, tessellated at s = {SAMPLING}, measured against the true surface.\n");
+    let _ = writeln!(md, "| task | faces | position max | normal RMS (°) | K RMS | H RMS | G1 (rad) | κ error max | shortest α | fallbacks | fit (ms) |");
+    let _ = writeln!(
+        md,
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    for r in &results {
+        let e = &r["errors"];
+        let c = &r["curve_measures"];
+        let f = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.3e} | {:.3} | {:.4} | {:.4} | {:.1e} | {:.4} | {:.4} | {} | {:.2} |",
+            r["task"].as_str().unwrap_or("?"),
+            r["faces"],
+            f(&e["position_max"]),
+            f(&e["normal_rms_degrees"]),
+            f(&e["gaussian_rms"]),
+            f(&e["mean_rms"]),
+            f(&r["g1_defect_radians"]),
+            f(&c["end_curvature_error_max"]),
+            f(&c["shortest_alpha"]),
+            c["fallbacks_to_chord"],
+            f(&r["fit_time_seconds"]) * 1e3
+        );
+    }
+    write_result(Some(&out.join("report.md")), md.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shards_partition_the_task_list() {
+        let n = tasks().len();
+        assert_eq!(n, 20);
+        for count in 1..=7 {
+            let mut seen = vec![0; n];
+            for index in 0..count {
+                for k in (0..n).filter(|k| k % count == index) {
+                    seen[k] += 1;
+                }
+            }
+            assert!(seen.iter().all(|c| *c == 1));
+        }
+        assert_eq!("2/5".parse::<Shard>(), Ok(Shard { index: 2, count: 5 }));
+        assert!("5/5".parse::<Shard>().is_err());
+        assert!("x".parse::<Shard>().is_err());
+    }
+}
