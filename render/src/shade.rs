@@ -81,6 +81,9 @@ pub struct RenderOptions {
     pub shininess: f64,
     /// Background colour, linear RGB.
     pub background: [f32; 3],
+    /// Colour of a triangle-edge overlay (the testbed's XRender view), drawn with the depth
+    /// test; `None` draws no edges.
+    pub wireframe: Option<[f32; 3]>,
 }
 
 impl Default for RenderOptions {
@@ -94,6 +97,7 @@ impl Default for RenderOptions {
             specular: 0.35,
             shininess: 40.0,
             background: [1.0, 1.0, 1.0],
+            wireframe: None,
         }
     }
 }
@@ -201,6 +205,26 @@ pub fn render(
             );
         }
     }
+    if let Some(wire) = options.wireframe {
+        for face in &mesh.faces {
+            if face.iter().any(|&i| i >= mesh.positions.len()) {
+                continue;
+            }
+            let c = face.map(|i| to_cam(&mesh.positions[i]));
+            for k in 0..3 {
+                draw_edge(
+                    &c[k],
+                    &c[(k + 1) % 3],
+                    (w, h),
+                    fpx,
+                    near,
+                    &depth,
+                    &mut colour,
+                    wire,
+                );
+            }
+        }
+    }
     let mut rgb = Vec::with_capacity(3 * w * h);
     for c in &colour {
         rgb.extend(c.iter().map(|x| to_srgb8(*x)));
@@ -210,6 +234,47 @@ pub fn render(
         height: h as u32,
         rgb,
     })
+}
+
+/// Relative depth tolerance of the wireframe against the filled surface it lies on.
+const WIRE_DEPTH_BIAS: f64 = 2e-3;
+
+/// Draws one camera-space edge as a 1-pixel line where it is not hidden.
+#[allow(clippy::too_many_arguments)]
+fn draw_edge(
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+    (w, h): (usize, usize),
+    fpx: f64,
+    near: f64,
+    depth: &[f64],
+    colour: &mut [[f32; 3]],
+    wire: [f32; 3],
+) {
+    if !(a.iter().chain(b.iter()).all(|x| x.is_finite())) || a.z < near || b.z < near {
+        return;
+    }
+    let sx = |v: &Vector3<f64>| {
+        (
+            w as f64 * 0.5 + v.x / v.z * fpx,
+            h as f64 * 0.5 - v.y / v.z * fpx,
+        )
+    };
+    let (p, q) = (sx(a), sx(b));
+    let steps = ((q.0 - p.0).abs().max((q.1 - p.1).abs()).ceil() as usize).clamp(1, 4 * (w + h));
+    for i in 0..=steps {
+        let t = i as f64 / steps as f64;
+        let (x, y) = (p.0 + (q.0 - p.0) * t, p.1 + (q.1 - p.1) * t);
+        if x < 0.0 || y < 0.0 || x >= w as f64 || y >= h as f64 {
+            continue;
+        }
+        // 1/z is linear in screen space.
+        let z = 1.0 / ((1.0 - t) / a.z + t / b.z);
+        let idx = y as usize * w + x as usize;
+        if z <= depth[idx] * (1.0 + WIRE_DEPTH_BIAS) {
+            colour[idx] = wire;
+        }
+    }
 }
 
 fn shade(
@@ -406,6 +471,22 @@ mod tests {
             ..m
         };
         assert!(render(&nan, &top_camera(), &RenderOptions::default()).is_ok());
+    }
+
+    #[test]
+    fn wireframe_draws_visible_edges_only() {
+        let o = RenderOptions {
+            wireframe: Some([0.0, 0.0, 0.0]),
+            ..RenderOptions::default()
+        };
+        let img = render(&quad(0.0, [1.0, 1.0, 1.0]), &top_camera(), &o).unwrap();
+        let dark = img
+            .rgb
+            .chunks(3)
+            .filter(|p| p.iter().all(|c| *c == 0))
+            .count();
+        // Four sides and a diagonal of a square about 139 px wide: roughly 5 × 139 pixels.
+        assert!(dark > 500 && dark < 900, "{dark}");
     }
 
     #[test]
