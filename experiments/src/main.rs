@@ -8,6 +8,7 @@ mod curve;
 mod datasets;
 mod error;
 mod fit;
+mod interior;
 mod output;
 mod ring;
 mod ring_render;
@@ -38,6 +39,8 @@ enum Experiment {
     /// The ring study's measures over every data set × curve construction × solver, as one
     /// table; `--shard i/n` runs a deterministic slice for cluster schedulers.
     Sweep(sweep::SweepArgs),
+    /// Section 4's claim measured: interior-boundary curvature and corner twists against β and c.
+    Interior(interior::InteriorArgs),
     /// Join the shard reports of `sweep --shard` into one report.
     Merge(sweep::MergeArgs),
     /// Every boundary-curve problem of the data sets solved by every solver adapter (exact
@@ -55,6 +58,7 @@ fn main() -> ExitCode {
         Experiment::Curve(args) => curve::run(&args),
         Experiment::Sweep(args) => sweep::run(&args),
         Experiment::Merge(args) => sweep::merge(&args),
+        Experiment::Interior(args) => interior::run(&args),
         Experiment::Solvers(args) => solvers::run(&args),
         Experiment::Fit(args) => fit::run(&args),
     };
