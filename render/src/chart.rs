@@ -89,6 +89,39 @@ fn fmt_x(v: &f64) -> String {
     }
 }
 
+/// The series of a line chart (with point markers if asked) and the legend, on either axis kind.
+fn draw_series<'a, DB: DrawingBackend + 'a, X, Y>(
+    c: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    prepared: &[(Vec<(f64, f64)>, usize)],
+    chart: &LineChart,
+    markers: bool,
+) -> Result<(), String>
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let e = |x: &dyn std::fmt::Display| x.to_string();
+    for (k, (pts, _)) in prepared.iter().enumerate() {
+        let col = PALETTE[k % PALETTE.len()];
+        c.draw_series(LineSeries::new(pts.iter().copied(), col.stroke_width(2)))
+            .map_err(|x| e(&x))?
+            .label(&chart.series[k].label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(3)));
+        if markers {
+            c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, col.filled())))
+                .map_err(|x| e(&x))?;
+        }
+    }
+    c.configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(font(14.0))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(|x| e(&x))?;
+    Ok(())
+}
+
 fn draw_line_chart<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     chart: &LineChart,
@@ -135,6 +168,7 @@ fn draw_line_chart<DB: DrawingBackend>(
             .build_cartesian_2d(x0..x1, (lo..hi).log_scale())
             .map_err(|x| e(&x))?;
         c.configure_mesh()
+            .max_light_lines(1)
             .x_desc(&chart.x_label)
             .y_desc(&chart.y_label)
             .label_style(font(14.0))
@@ -143,24 +177,7 @@ fn draw_line_chart<DB: DrawingBackend>(
             .x_label_formatter(&fmt_x)
             .draw()
             .map_err(|x| e(&x))?;
-        for (k, (pts, _)) in prepared.iter().enumerate() {
-            let col = PALETTE[k % PALETTE.len()];
-            c.draw_series(LineSeries::new(pts.iter().copied(), col.stroke_width(2)))
-                .map_err(|x| e(&x))?
-                .label(&chart.series[k].label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(3))
-                });
-            c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, col.filled())))
-                .map_err(|x| e(&x))?;
-        }
-        c.configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(font(14.0))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(|x| e(&x))?;
+        draw_series(&mut c, &prepared, chart, true)?;
     } else {
         if y1 <= y0 {
             y1 = y0 + 1.0;
@@ -170,6 +187,7 @@ fn draw_line_chart<DB: DrawingBackend>(
             .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))
             .map_err(|x| e(&x))?;
         c.configure_mesh()
+            .max_light_lines(1)
             .x_desc(&chart.x_label)
             .y_desc(&chart.y_label)
             .label_style(font(14.0))
@@ -177,21 +195,7 @@ fn draw_line_chart<DB: DrawingBackend>(
             .x_label_formatter(&fmt_x)
             .draw()
             .map_err(|x| e(&x))?;
-        for (k, (pts, _)) in prepared.iter().enumerate() {
-            let col = PALETTE[k % PALETTE.len()];
-            c.draw_series(LineSeries::new(pts.iter().copied(), col.stroke_width(2)))
-                .map_err(|x| e(&x))?
-                .label(&chart.series[k].label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(3))
-                });
-        }
-        c.configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(font(14.0))
-            .draw()
-            .map_err(|x| e(&x))?;
+        draw_series(&mut c, &prepared, chart, false)?;
     }
     if skipped > 0 {
         note_area
