@@ -323,3 +323,111 @@ pub fn macro_patch(
         ]
     }))
 }
+
+/// Derivatives of a macro-patch's control points with respect to its six interior parameters
+/// `p = (β_0, β_1, β_2, c_0, c_1, c_2)`: `[sub-patch][net index][parameter]`.
+pub type NetDerivatives = [[[Vector3<f64>; 6]; 15]; 3];
+
+/// [`macro_patch`] together with the exact derivatives of every control point with respect to
+/// `(β_0, β_1, β_2, c_0, c_1, c_2)`.
+///
+/// Each step of the construction is differentiated as written (module docs): with
+/// `A_i = E_a + E_b − 2V_i`, `∂J¹_i/∂β_i = A_i`; the Chiyokura–Kimura coefficients are
+/// `k = β k̂`, `h = β ĥ` (the cross vector `I¹ − V = ¾ β A` scales with β, `Ĉ` does not), so
+/// `∂C¹/∂β_a = ⅓{c k̂_0 Ĉ_0 + k̂_0 Ĉ_1 + 2ĥ_0 (E² − E¹)}`, `∂C¹/∂β_b = ⅓{c k̂_1 Ĉ_0 + ĥ_1 (E¹ − V_a)}`,
+/// `∂C¹/∂c = ⅓ (k_0 + k_1) Ĉ_0`, and likewise for `C²`; then the product and quotient rules
+/// through `J²`, `S`, `I²`, `I³` and `N` (whose `R_i` has the term `(S − J²_i)/β_i`).
+pub fn macro_patch_with_derivatives(
+    vertices: [&VertexData; 3],
+    edges: &[CubicBez3; 3],
+    params: &InteriorParameters,
+) -> Result<([QuarticNet; 3], NetDerivatives), SchemeError> {
+    let nets = macro_patch(vertices, edges, params)?;
+    type D = [Vector3<f64>; 6];
+    let zero: D = [Vector3::zeros(); 6];
+    let v: [Point3<f64>; 3] = std::array::from_fn(|i| vertices[i].p);
+    let n: [Vector3<f64>; 3] = std::array::from_fn(|i| vertices[i].n.normalize());
+    let prev = |i: usize| (i + 2) % 3;
+    let next = |i: usize| (i + 1) % 3;
+    let beta = params.beta;
+    let add = |a: &D, b: &D, s: f64| -> D { std::array::from_fn(|k| a[k] + b[k] * s) };
+
+    let a_vec: [Vector3<f64>; 3] =
+        std::array::from_fn(|i| (edges[i].points[1] - v[i]) + (edges[prev(i)].points[2] - v[i]));
+    let j1: [Point3<f64>; 3] = std::array::from_fn(|i| v[i] + a_vec[i] * beta[i]);
+    let i1: [Point3<f64>; 3] = std::array::from_fn(|i| mid(&v[i], &j1[i], 0.75));
+    let dj1: [D; 3] = std::array::from_fn(|i| {
+        let mut d = zero;
+        d[i] = a_vec[i];
+        d
+    });
+    let di1: [D; 3] = std::array::from_fn(|i| dj1[i].map(|x| x * 0.75));
+
+    let mut c1v = [Point3::origin(); 3];
+    let mut c2v = [Point3::origin(); 3];
+    let mut dc1 = [zero; 3];
+    let mut dc2 = [zero; 3];
+    for e in 0..3 {
+        let (a, b) = (e, next(e));
+        let [va, e1, e2, vb] = edges[e].points;
+        let (t0, t1) = (e1 - va, vb - e2);
+        let fail0 = SchemeError::NoCrossComponent { edge: e, corner: a };
+        let fail1 = SchemeError::NoCrossComponent { edge: e, corner: b };
+        let (ch0, k0, h0) = decompose(&n[a], &t0, &(i1[a] - v[a])).ok_or(fail0)?;
+        let (ch1, k1, h1) = decompose(&n[b], &t1, &(i1[b] - v[b])).ok_or(fail1)?;
+        let (kh0, hh0, kh1, hh1) = (k0 / beta[a], h0 / beta[a], k1 / beta[b], h1 / beta[b]);
+        let c = params.c[e];
+        c1v[e] =
+            e1 + (ch0 * (c * (k0 + k1)) + ch1 * k0 + (e2 - e1) * (2.0 * h0) + (e1 - va) * h1) / 3.0;
+        c2v[e] =
+            e2 + (ch0 * k1 + ch1 * (c * (k0 + k1)) + (vb - e2) * h0 + (e2 - e1) * (2.0 * h1)) / 3.0;
+        dc1[e][a] += (ch0 * (c * kh0) + ch1 * kh0 + (e2 - e1) * (2.0 * hh0)) / 3.0;
+        dc1[e][b] += (ch0 * (c * kh1) + (e1 - va) * hh1) / 3.0;
+        dc1[e][3 + e] = ch0 * ((k0 + k1) / 3.0);
+        dc2[e][a] += (ch1 * (c * kh0) + (vb - e2) * hh0) / 3.0;
+        dc2[e][b] += (ch0 * kh1 + ch1 * (c * kh1) + (e2 - e1) * (2.0 * hh1)) / 3.0;
+        dc2[e][3 + e] = ch1 * ((k0 + k1) / 3.0);
+    }
+
+    // J² = J¹ + (β/2) G, G = 4(C_L + C_R − 2I¹) − 3(J¹ − V).
+    let mut j2 = [Point3::origin(); 3];
+    let mut dj2 = [zero; 3];
+    for i in 0..3 {
+        let (cl, cr) = (c1v[i], c2v[prev(i)]);
+        let g = ((cl - i1[i]) + (cr - i1[i])) * 4.0 - (j1[i] - v[i]) * 3.0;
+        j2[i] = j1[i] + g * (beta[i] / 2.0);
+        let dg: D = std::array::from_fn(|k| {
+            (dc1[i][k] + dc2[prev(i)][k] - di1[i][k] * 2.0) * 4.0 - dj1[i][k] * 3.0
+        });
+        dj2[i] = add(&dj1[i], &dg, beta[i] / 2.0);
+        dj2[i][i] += g / 2.0;
+    }
+    let s = Point3::from((j2[0].coords + j2[1].coords + j2[2].coords) / 3.0);
+    let ds: D = std::array::from_fn(|k| (dj2[0][k] + dj2[1][k] + dj2[2][k]) / 3.0);
+    let di2: [D; 3] =
+        std::array::from_fn(|i| std::array::from_fn(|k| (dj1[i][k] + dj2[i][k]) * 0.5));
+    let di3: [D; 3] =
+        std::array::from_fn(|i| std::array::from_fn(|k| dj2[i][k] * 0.75 + ds[k] * 0.25));
+    // R_i = 2I² + [(S − J²)/β + 6(J² − J¹)]/4.
+    let dr: [D; 3] = std::array::from_fn(|i| {
+        let mut d: D = std::array::from_fn(|k| {
+            di2[i][k] * 2.0 + ((ds[k] - dj2[i][k]) / beta[i] + (dj2[i][k] - dj1[i][k]) * 6.0) / 4.0
+        });
+        d[i] -= (s - j2[i]) / (4.0 * beta[i] * beta[i]);
+        d
+    });
+    let dn: [D; 3] = std::array::from_fn(|e| {
+        std::array::from_fn(|k| (dr[e][k] + dr[next(e)][k] - dr[prev(e)][k]) / 2.0)
+    });
+    let derivs: NetDerivatives = std::array::from_fn(|e| {
+        let (a, b) = (e, next(e));
+        [
+            zero, zero, zero, zero, zero, //
+            di1[a], dc1[e], dc2[e], di1[b], //
+            di2[a], dn[e], di2[b], //
+            di3[a], di3[b], //
+            ds,
+        ]
+    });
+    Ok((nets, derivs))
+}

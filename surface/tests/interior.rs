@@ -54,3 +54,53 @@ fn corner_measures_ignore_beta_and_c() {
         }
     }
 }
+
+#[test]
+fn net_derivatives_match_finite_differences() {
+    use surface::shirman_sequin::macro_patch_with_derivatives;
+    /// Central differences with h = 1e-6 on control points of order one: error ~1e-10.
+    const FD_TOL: f64 = 1e-6;
+    let data = dataset_by_name("ring", None).unwrap();
+    let m = method_by_name("optimized", &MethodOptions::default()).unwrap();
+    let f0 = fit(&data.mesh, m.as_ref(), &|_| InteriorParameters::default()).unwrap();
+    for fi in [0usize, 7, 100, 201] {
+        let face = data.mesh.faces()[fi];
+        let verts = face.map(|i| &data.mesh.vertices()[i].data);
+        // The face's edge curves, oriented along the face.
+        let curves: [curves::CubicBez3; 3] = std::array::from_fn(|l| {
+            let ei = data.mesh.edge_index(fi, l).unwrap();
+            let c = f0.curves[ei];
+            if data.mesh.edges()[ei].vertices[0] == face[l] {
+                c
+            } else {
+                c.reversed()
+            }
+        });
+        let p0 = [0.3, 0.45, 0.6, 0.8, 1.3, 2.0];
+        let params = |p: &[f64; 6]| InteriorParameters {
+            beta: [p[0], p[1], p[2]],
+            c: [p[3], p[4], p[5]],
+        };
+        let (nets, d) = macro_patch_with_derivatives(verts, &curves, &params(&p0)).unwrap();
+        let plain = surface::macro_patch(verts, &curves, &params(&p0)).unwrap();
+        assert_eq!(nets, plain);
+        let h = 1e-6;
+        for k in 0..6 {
+            let (mut pp, mut pm) = (p0, p0);
+            pp[k] += h;
+            pm[k] -= h;
+            let np = surface::macro_patch(verts, &curves, &params(&pp)).unwrap();
+            let nm = surface::macro_patch(verts, &curves, &params(&pm)).unwrap();
+            for e in 0..3 {
+                for idx in 0..15 {
+                    let fd = (np[e][idx] - nm[e][idx]) / (2.0 * h);
+                    assert!(
+                        (fd - d[e][idx][k]).norm() < FD_TOL,
+                        "face {fi} patch {e} point {idx} param {k}: {fd} vs {}",
+                        d[e][idx][k]
+                    );
+                }
+            }
+        }
+    }
+}
