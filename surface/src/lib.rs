@@ -15,6 +15,8 @@
 //!   patches per triangle, G1 by construction (derivation in the module docs);
 //! * [`fit`](mod@fit) — a whole mesh: one curve per edge (shared), one macro-patch per face;
 //! * [`metrics`] — errors of a tessellation against the true surface;
+//! * [`fairing`] — thin-plate and membrane energies of a macro-patch in β and c, for optimizing
+//!   the interior parameters;
 //! * [`interior`] — Section 4's corner measures (interior-boundary curvature, twists);
 //! * [`g1`] — the testbed's `G1`: measured normal continuity and interpolation;
 //! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
@@ -26,6 +28,7 @@
 
 pub mod beztri;
 pub mod datasets;
+pub mod fairing;
 pub mod fit;
 pub mod g1;
 pub mod interior;

@@ -104,3 +104,71 @@ fn net_derivatives_match_finite_differences() {
         }
     }
 }
+
+#[test]
+fn energies_closed_forms_and_gradients() {
+    use nalgebra::{SVector, Vector2};
+    use solver::{check_jacobian_with, CheckOptions, LeastSquaresProblem};
+    use surface::fairing::{gram_check_area, Energy, MacroPatchEnergy};
+    // ∫|∇(x, y, 0)|² dA = 2 · area.
+    let tri = [
+        Vector2::new(0.0, 0.0),
+        Vector2::new(2.0, 0.0),
+        Vector2::new(0.5, 1.5),
+    ];
+    assert!((gram_check_area(tri).unwrap() - 2.0 * 1.5).abs() < 1e-12);
+    // Planar data: the Shirman–Séquin defaults reproduce the plane linearly, so bending is 0.
+    let flat = |p: [f64; 3]| {
+        curves::VertexData::new(
+            nalgebra::Point3::from(p),
+            nalgebra::Vector3::z(),
+            nalgebra::Matrix3::zeros(),
+        )
+    };
+    let v = [
+        flat([0.0, 0.0, 0.0]),
+        flat([1.0, 0.0, 0.0]),
+        flat([0.2, 0.9, 0.0]),
+    ];
+    let m = method_by_name("chord", &MethodOptions::default()).unwrap();
+    let edges: [curves::CubicBez3; 3] = std::array::from_fn(|e| {
+        let p = curves::BoundaryProblem::new((e, (e + 1) % 3), &v[e], &v[(e + 1) % 3]).unwrap();
+        p.curve(m.construct(&p.unit).alpha)
+    });
+    let tp = MacroPatchEnergy::new(Energy::ThinPlate, v, edges).unwrap();
+    let x0 = SVector::<f64, 6>::new(1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0, 1.0, 1.0, 1.0);
+    assert!(tp.objective(&x0) < 1e-20, "{}", tp.objective(&x0));
+    // Curved data: both energies' Jacobians against finite differences.
+    let data = dataset_by_name("ring", None).unwrap();
+    let f0 = fit(&data.mesh, m.as_ref(), &|_| InteriorParameters::default()).unwrap();
+    for fi in [3usize, 77, 150] {
+        let face = data.mesh.faces()[fi];
+        let verts = face.map(|i| data.mesh.vertices()[i].data);
+        let curves: [curves::CubicBez3; 3] = std::array::from_fn(|l| {
+            let ei = data.mesh.edge_index(fi, l).unwrap();
+            let c = f0.curves[ei];
+            if data.mesh.edges()[ei].vertices[0] == face[l] {
+                c
+            } else {
+                c.reversed()
+            }
+        });
+        for energy in [Energy::Membrane, Energy::ThinPlate] {
+            let p = MacroPatchEnergy::new(energy, verts, curves).unwrap();
+            for x in [x0, SVector::<f64, 6>::new(0.2, 0.5, 0.7, 0.6, 1.8, 3.0)] {
+                let c = check_jacobian_with(
+                    |x| p.residuals(x),
+                    |x| p.jacobian(x),
+                    &x,
+                    &p.lower_bounds(),
+                    // Residuals are of order 1–10, so central differences carry absolute noise
+                    // near 1e-9: entries below 1e-3 are compared absolutely against that floor.
+                    &CheckOptions { floor: 1e-3 },
+                );
+                // A wrong term gives errors of order one.
+                assert!(c.max_error() < 1e-5, "{energy:?} face {fi}: {c}");
+                assert!(p.objective(&x) > 0.0);
+            }
+        }
+    }
+}
