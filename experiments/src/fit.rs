@@ -14,7 +14,8 @@ use std::time::Instant;
 use curves::{method_by_name, DbhsPick, MethodOptions};
 use serde_json::json;
 use solver::SolverKind;
-use surface::{fit, measure_g1, InteriorParameters, Mesh};
+use surface::fairing::{choose_interior, InteriorChoice, InteriorStats};
+use surface::{fit, measure_g1, Fit, InteriorParameters, Mesh};
 
 use crate::datasets::load;
 use crate::error::ExperimentError;
@@ -44,6 +45,10 @@ pub struct FitArgs {
     /// Jensen's c on every edge (1: Chiyokura–Kimura).
     #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_C)]
     c: f64,
+    /// Interior parameters: `default` (the --beta and --c values), or per triangle the β and c
+    /// minimizing the macro-patch's `thin-plate` or `membrane` energy.
+    #[arg(long, default_value_t = InteriorChoice::Default)]
+    interior: InteriorChoice,
     /// Where to write the patches (JSON Lines); none are written when absent.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -93,7 +98,20 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t1 = Instant::now();
     let fitted = fit(&mesh, method.as_ref(), &|_| params)
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.data)))?;
+    let (fitted, stats) = refit_interior(&mesh, method.as_ref(), fitted, args.interior)
+        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.data)))?;
     let t_fit = t1.elapsed().as_secs_f64();
+    if args.interior != InteriorChoice::Default {
+        eprintln!(
+            "  interior {}: {} faces, {} converged, {} kept at defaults, energy {:.4e} → {:.4e}",
+            args.interior,
+            stats.faces,
+            stats.converged,
+            stats.kept_default,
+            stats.energy_default,
+            stats.energy_chosen
+        );
+    }
     let t2 = Instant::now();
     let g1 = measure_g1(&mesh, &fitted, 9);
     let t_g1 = t2.elapsed().as_secs_f64();
@@ -156,4 +174,20 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         t_g1
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// Refits `mesh` with interior parameters chosen by `choice` from the curves of a first fit
+/// (the curves do not depend on β and c, so they are reused).
+pub fn refit_interior(
+    mesh: &Mesh,
+    method: &dyn curves::CurveMethod,
+    first: Fit,
+    choice: InteriorChoice,
+) -> Result<(Fit, InteriorStats), surface::FitError> {
+    let (params, stats) = choose_interior(mesh, &first, choice);
+    if choice == InteriorChoice::Default {
+        return Ok((first, stats));
+    }
+    let refit = fit(mesh, method, &|f| params[f])?;
+    Ok((refit, stats))
 }

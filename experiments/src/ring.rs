@@ -48,6 +48,10 @@ pub struct RingArgs {
     /// Which dBHS solution to take (closest, longest-short, or an index).
     #[arg(long, default_value_t = DbhsPick::Closest)]
     dbhs_pick: DbhsPick,
+    /// Interior parameters of the fitted surfaces: default (β = 1/3, c = 1), thin-plate or
+    /// membrane (per-triangle minimizers).
+    #[arg(long, default_value_t = surface::fairing::InteriorChoice::Default)]
+    interior: surface::fairing::InteriorChoice,
     /// Output directory.
     #[arg(long, default_value = "results/ring")]
     out: PathBuf,
@@ -227,6 +231,8 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
             method_by_name(name, &options).map_err(|e| ExperimentError::Usage(e.to_string()))?;
         let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
             .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
+        let (f, _) = crate::fit::refit_interior(mesh, m.as_ref(), f, args.interior)
+            .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
         let fit_time = t.elapsed().as_secs_f64();
         let g1 = measure_g1(mesh, &f, 9);
         let cs = curve_stats(&problems, &f);
@@ -347,7 +353,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         },
         "settings": {
             "sampling": args.sampling, "solver": args.solver.name(), "dbhs_pick": args.dbhs_pick.to_string(),
-            "beta": surface::shirman_sequin::DEFAULT_BETA, "c": surface::shirman_sequin::DEFAULT_C,
+            "interior": args.interior.to_string(),
             "optimized_weights": [defaults.weights.tangent, defaults.weights.curvature],
             "optimized_alpha_min": defaults.alpha_min,
         },
@@ -524,11 +530,12 @@ fn markdown(
     let _ = writeln!(md, "# The ring study\n");
     let _ = writeln!(
         md,
-        "Written by `cargo run --release -p experiments -- ring --resolution {} --sampling {} --solver {} --dbhs-pick {} --out {}`.\n",
+        "Written by `cargo run --release -p experiments -- ring --resolution {} --sampling {} --solver {} --dbhs-pick {} --interior {} --out {}`.\n",
         args.resolution,
         args.sampling,
         args.solver,
         args.dbhs_pick,
+        args.interior,
         args.out.display()
     );
     let _ = writeln!(
@@ -536,7 +543,7 @@ fn markdown(
         "Data: a torus with R = 1, r = 0.4 sampled {} × {} with exact positions, normals and shape tensors \
          ({} vertices, {} edges, {} faces). Surfaces tessellated at s = {} segments per patch edge and \
          measured at every tessellation vertex against the torus. Interior parameters: β = 1/3, c = 1 \
-         (the Shirman–Séquin defaults). Optimized curves: weights (1, 1), α ≥ 0.05, solver {}.\n",
+         (the Shirman–Séquin defaults) unless `--interior` says otherwise. Optimized curves: weights (1, 1), α ≥ 0.05, solver {}.\n",
         args.resolution,
         (args.resolution / 2).max(3),
         report["data"]["vertices"],

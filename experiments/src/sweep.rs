@@ -105,6 +105,9 @@ pub struct SweepArgs {
     /// `merge`).
     #[arg(long)]
     shard: Option<Shard>,
+    /// Interior parameters of every task: default, thin-plate or membrane.
+    #[arg(long, default_value_t = surface::fairing::InteriorChoice::Default)]
+    interior: surface::fairing::InteriorChoice,
     /// Output directory.
     #[arg(long, default_value = "results/sweep")]
     out: PathBuf,
@@ -118,7 +121,10 @@ pub struct MergeArgs {
     out: PathBuf,
 }
 
-fn run_task(t: &Task) -> Result<Value, ExperimentError> {
+fn run_task(
+    t: &Task,
+    interior: surface::fairing::InteriorChoice,
+) -> Result<Value, ExperimentError> {
     let start = Instant::now();
     let data = surface::dataset_by_name(t.dataset, None)
         .map_err(|e| ExperimentError::Usage(e.to_string()))?;
@@ -140,6 +146,8 @@ fn run_task(t: &Task) -> Result<Value, ExperimentError> {
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
     let t_fit = Instant::now();
     let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
+        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
+    let (f, _) = crate::fit::refit_interior(mesh, m.as_ref(), f, interior)
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
     let fit_time = t_fit.elapsed().as_secs_f64();
     let g1 = measure_g1(mesh, &f, 9);
@@ -181,7 +189,8 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         if tty {
             eprint!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
         }
-        let mut v = run_task(t)?;
+        let mut v = run_task(t, args.interior)?;
+        v["interior"] = json!(args.interior.to_string());
         v["index"] = json!(k);
         results.push(v);
     }

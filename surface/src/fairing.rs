@@ -260,3 +260,133 @@ pub fn gram_check_area(corners: [Vector2<f64>; 3]) -> Option<f64> {
             .sum(),
     )
 }
+
+/// How the interior parameters of every face are set.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum InteriorChoice {
+    /// The Shirman–Séquin defaults β = 1/3, c = 1.
+    #[default]
+    Default,
+    /// β and c minimizing each macro-patch's thin-plate energy.
+    ThinPlate,
+    /// β and c minimizing each macro-patch's membrane energy.
+    Membrane,
+}
+
+impl std::str::FromStr for InteriorChoice {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "default" => Ok(InteriorChoice::Default),
+            "thin-plate" => Ok(InteriorChoice::ThinPlate),
+            "membrane" => Ok(InteriorChoice::Membrane),
+            _ => Err(format!(
+                "unknown interior setting `{s}` (expected default, thin-plate or membrane)"
+            )),
+        }
+    }
+}
+
+impl std::fmt::Display for InteriorChoice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            InteriorChoice::Default => "default",
+            InteriorChoice::ThinPlate => "thin-plate",
+            InteriorChoice::Membrane => "membrane",
+        })
+    }
+}
+
+/// What the per-face optimization did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct InteriorStats {
+    /// Faces optimized.
+    pub faces: usize,
+    /// Faces whose solver reported convergence.
+    pub converged: usize,
+    /// Faces kept at the defaults (degenerate domain, or the solver refused).
+    pub kept_default: usize,
+    /// Sum over faces of the energy at the defaults (`‖r‖²`).
+    pub energy_default: f64,
+    /// Sum over faces of the energy at the chosen parameters.
+    pub energy_chosen: f64,
+    /// Iterations summed over faces.
+    pub iterations: usize,
+}
+
+/// Interior parameters for every face of `mesh` given the boundary curves of `fit` (which must
+/// be a fit of `mesh`): the defaults, or per face the minimizer of an energy, by the exact-penalty
+/// adapter (β ≥ 0.05, c ≥ 0.1; start at the defaults).
+pub fn choose_interior(
+    mesh: &crate::mesh::Mesh,
+    fit: &crate::fit::Fit,
+    choice: InteriorChoice,
+) -> (Vec<InteriorParameters>, InteriorStats) {
+    use rayon::prelude::*;
+    let energy = match choice {
+        InteriorChoice::Default => {
+            return (
+                vec![InteriorParameters::default(); mesh.num_faces()],
+                InteriorStats {
+                    faces: mesh.num_faces(),
+                    ..InteriorStats::default()
+                },
+            )
+        }
+        InteriorChoice::ThinPlate => Energy::ThinPlate,
+        InteriorChoice::Membrane => Energy::Membrane,
+    };
+    let options = solver::SolveOptions {
+        record_history: false,
+        max_iterations: 100,
+        ..solver::SolveOptions::default()
+    };
+    let x0 = SVector::<f64, 6>::new(1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0, 1.0, 1.0, 1.0);
+    let per_face: Vec<(InteriorParameters, bool, bool, f64, f64, usize)> = (0..mesh.num_faces())
+        .into_par_iter()
+        .map(|f| {
+            let kept = (InteriorParameters::default(), false, true, 0.0, 0.0, 0);
+            let Ok(face) = mesh.face(f) else { return kept };
+            let mut edges = [CubicBez3::new([nalgebra::Point3::origin(); 4]); 3];
+            for (l, slot) in edges.iter_mut().enumerate() {
+                let Ok(ei) = mesh.edge_index(f, l) else {
+                    return kept;
+                };
+                let c = fit.curves[ei];
+                *slot = if mesh.edges()[ei].vertices[0] == face[l] {
+                    c
+                } else {
+                    c.reversed()
+                };
+            }
+            let verts = face.map(|i| mesh.vertices()[i].data);
+            let Some(problem) = MacroPatchEnergy::new(energy, verts, edges) else {
+                return kept;
+            };
+            let e0 = problem.objective(&x0);
+            match solver::solve_exact_penalty(&problem, x0, &options) {
+                Ok(s) if problem.objective(&s.x) <= e0 => (
+                    MacroPatchEnergy::params(&s.x),
+                    s.report.converged(),
+                    false,
+                    e0,
+                    problem.objective(&s.x),
+                    s.report.iterations,
+                ),
+                _ => (InteriorParameters::default(), false, true, e0, e0, 0),
+            }
+        })
+        .collect();
+    let mut stats = InteriorStats {
+        faces: per_face.len(),
+        ..InteriorStats::default()
+    };
+    for p in &per_face {
+        stats.converged += usize::from(p.1);
+        stats.kept_default += usize::from(p.2);
+        stats.energy_default += p.3;
+        stats.energy_chosen += p.4;
+        stats.iterations += p.5;
+    }
+    (per_face.into_iter().map(|p| p.0).collect(), stats)
+}
