@@ -98,3 +98,135 @@ pub fn corner_measures(nets: &[QuarticNet; 3], vertices: [&VertexData; 3]) -> [C
         }
     })
 }
+
+/// Section 4's two objectives for one macro-patch as a least-squares problem in
+/// `(β_0, β_1, β_2, c_0, c_1, c_2)`: residuals 0–2 are `κ_boundary − κn(t)` at the three
+/// corners, residuals 3–8 the normalized twists minus `t_uᵀ S t_v` (start then end sub-patch of
+/// each corner). The Jacobian is the chain rule through the measures' formulas (module docs)
+/// applied to the exact net derivatives, not an assumption that it vanishes: that it does
+/// vanish is then a measured fact (tests, `experiments -- interior`).
+///
+/// The objectives live beside the construction they differentiate rather than in `cost/`,
+/// which cannot see the surface crate.
+#[derive(Clone, Debug)]
+pub struct CornerObjectives {
+    vertices: [VertexData; 3],
+    edges: [curves::CubicBez3; 3],
+}
+
+type Grad = [f64; 6];
+
+impl CornerObjectives {
+    /// The objectives of one face (vertex data, edge curves oriented along the face).
+    pub fn new(vertices: [VertexData; 3], edges: [curves::CubicBez3; 3]) -> Self {
+        CornerObjectives { vertices, edges }
+    }
+
+    fn params(x: &nalgebra::SVector<f64, 6>) -> crate::shirman_sequin::InteriorParameters {
+        crate::shirman_sequin::InteriorParameters {
+            beta: [x[0], x[1], x[2]],
+            c: [x[3], x[4], x[5]],
+        }
+    }
+
+    /// Residuals and their gradients.
+    fn eval(&self, x: &nalgebra::SVector<f64, 6>) -> Option<([f64; 9], [Grad; 9])> {
+        let v = [&self.vertices[0], &self.vertices[1], &self.vertices[2]];
+        let (nets, d) =
+            crate::shirman_sequin::macro_patch_with_derivatives(v, &self.edges, &Self::params(x))
+                .ok()?;
+        let at = |e: usize, i: usize, j: usize, k: usize| {
+            let idx = crate::beztri::index(4, i, j, k);
+            (nets[e][idx].coords, d[e][idx])
+        };
+        // κ = ⟨n, B⟩/|A|² − tᵀ S t, t = A/|A|, for first and second derivatives A, B.
+        let curvature = |vd: &VertexData,
+                         a: (Vector3<f64>, [Vector3<f64>; 6]),
+                         b: (Vector3<f64>, [Vector3<f64>; 6])| {
+            let n = vd.n.normalize();
+            let aa = a.0.norm_squared();
+            let t = a.0 / aa.sqrt();
+            let val = n.dot(&b.0) / aa - t.dot(&(vd.shape * t));
+            let g: Grad = std::array::from_fn(|k| {
+                let da = a.1[k];
+                let dt = (da - t * t.dot(&da)) / aa.sqrt();
+                n.dot(&b.1[k]) / aa
+                    - 2.0 * n.dot(&b.0) * a.0.dot(&da) / (aa * aa)
+                    - 2.0 * t.dot(&(vd.shape * dt))
+            });
+            (val, g)
+        };
+        // τ = ⟨n, W⟩/(|U||V|) − t_uᵀ S t_v.
+        type J = (Vector3<f64>, [Vector3<f64>; 6]);
+        let twist = |vd: &VertexData, u: J, w: J, tw: J| {
+            let n = vd.n.normalize();
+            let (lu, lv) = (u.0.norm(), w.0.norm());
+            let (tu, tv) = (u.0 / lu, w.0 / lv);
+            let val = n.dot(&tw.0) / (lu * lv) - tu.dot(&(vd.shape * tv));
+            let g: Grad = std::array::from_fn(|k| {
+                let dlu = tu.dot(&u.1[k]);
+                let dlv = tv.dot(&w.1[k]);
+                let dtu = (u.1[k] - tu * dlu) / lu;
+                let dtv = (w.1[k] - tv * dlv) / lv;
+                n.dot(&tw.1[k]) / (lu * lv)
+                    - n.dot(&tw.0) * (dlu * lv + lu * dlv) / (lu * lv).powi(2)
+                    - dtu.dot(&(vd.shape * tv))
+                    - tu.dot(&(vd.shape * dtv))
+            });
+            (val, g)
+        };
+        let lin = |parts: &[(f64, J)]| -> J {
+            let v = parts.iter().map(|(w, p)| p.0 * *w).sum();
+            let d = std::array::from_fn(|k| parts.iter().map(|(w, p)| p.1[k] * *w).sum());
+            (v, d)
+        };
+        let mut r = [0.0; 9];
+        let mut g = [[0.0; 6]; 9];
+        for i in 0..3 {
+            let vd = &self.vertices[i];
+            let s = i;
+            let e = (i + 2) % 3;
+            let (b0, b1, b2) = (at(s, 4, 0, 0), at(s, 3, 0, 1), at(s, 2, 0, 2));
+            let d1 = lin(&[(4.0, b1), (-4.0, b0)]);
+            let d2 = lin(&[(12.0, b2), (-24.0, b1), (12.0, b0)]);
+            (r[i], g[i]) = curvature(vd, d1, d2);
+            let u = lin(&[(4.0, at(s, 3, 1, 0)), (-4.0, b0)]);
+            let w = lin(&[
+                (12.0, at(s, 2, 1, 1)),
+                (-12.0, at(s, 3, 1, 0)),
+                (-12.0, b1),
+                (12.0, b0),
+            ]);
+            (r[3 + 2 * i], g[3 + 2 * i]) = twist(vd, u, d1, w);
+            let c0 = at(e, 0, 4, 0);
+            let ue = lin(&[(4.0, at(e, 1, 3, 0)), (-4.0, c0)]);
+            let ve = lin(&[(4.0, at(e, 0, 3, 1)), (-4.0, c0)]);
+            let we = lin(&[
+                (12.0, at(e, 1, 2, 1)),
+                (-12.0, at(e, 1, 3, 0)),
+                (-12.0, at(e, 0, 3, 1)),
+                (12.0, c0),
+            ]);
+            (r[4 + 2 * i], g[4 + 2 * i]) = twist(vd, ue, ve, we);
+        }
+        Some((r, g))
+    }
+}
+
+impl solver::LeastSquaresProblem<6, 9> for CornerObjectives {
+    fn residuals(&self, x: &nalgebra::SVector<f64, 6>) -> nalgebra::SVector<f64, 9> {
+        self.eval(x)
+            .map(|(r, _)| nalgebra::SVector::from(r))
+            .unwrap_or_else(|| nalgebra::SVector::from_element(f64::NAN))
+    }
+
+    fn jacobian(&self, x: &nalgebra::SVector<f64, 6>) -> nalgebra::SMatrix<f64, 9, 6> {
+        self.eval(x)
+            .map(|(_, g)| nalgebra::SMatrix::from_fn(|i, k| g[i][k]))
+            .unwrap_or_else(|| nalgebra::SMatrix::from_element(f64::NAN))
+    }
+
+    fn lower_bounds(&self) -> nalgebra::SVector<f64, 6> {
+        nalgebra::SVector::from(crate::fairing::LOWER)
+    }
+}
