@@ -346,19 +346,9 @@ pub fn choose_interior(
         .into_par_iter()
         .map(|f| {
             let kept = (InteriorParameters::default(), false, true, 0.0, 0.0, 0);
-            let Ok(face) = mesh.face(f) else { return kept };
-            let mut edges = [CubicBez3::new([nalgebra::Point3::origin(); 4]); 3];
-            for (l, slot) in edges.iter_mut().enumerate() {
-                let Ok(ei) = mesh.edge_index(f, l) else {
-                    return kept;
-                };
-                let c = fit.curves[ei];
-                *slot = if mesh.edges()[ei].vertices[0] == face[l] {
-                    c
-                } else {
-                    c.reversed()
-                };
-            }
+            let (Ok(face), Ok(edges)) = (mesh.face(f), fit.face_curves(mesh, f)) else {
+                return kept;
+            };
             let verts = face.map(|i| mesh.vertices()[i].data);
             let Some(problem) = MacroPatchEnergy::new(energy, verts, edges) else {
                 return kept;

@@ -65,7 +65,37 @@ pub struct Fit {
     pub patches: Vec<QuarticNet>,
 }
 
+/// The three edge curves of face `f`, each oriented from the face's corner `l` to `l + 1`
+/// (`curves` holds one curve per mesh edge, running along `edge.vertices`).
+pub fn face_curves(
+    mesh: &Mesh,
+    curves: &[CubicBez3],
+    f: usize,
+) -> Result<[CubicBez3; 3], crate::mesh::MeshError> {
+    let face = mesh.face(f)?;
+    let mut out = [CubicBez3::new([nalgebra::Point3::origin(); 4]); 3];
+    for (l, slot) in out.iter_mut().enumerate() {
+        let ei = mesh.edge_index(f, l)?;
+        let c = curves[ei];
+        *slot = if mesh.edges()[ei].vertices[0] == face[l] {
+            c
+        } else {
+            c.reversed()
+        };
+    }
+    Ok(out)
+}
+
 impl Fit {
+    /// The edge curves of face `f` oriented along the face (see [`face_curves`]).
+    pub fn face_curves(
+        &self,
+        mesh: &Mesh,
+        f: usize,
+    ) -> Result<[CubicBez3; 3], crate::mesh::MeshError> {
+        face_curves(mesh, &self.curves, f)
+    }
+
     /// Patch `i` (`3f + e`) as a [`BezierTriangle`].
     pub fn patch(&self, i: usize) -> Option<BezierTriangle> {
         self.patches
@@ -151,18 +181,7 @@ pub fn fit_into(
         .enumerate()
         .try_for_each(|(f, out)| -> Result<(), FitError> {
             let face = mesh.face(f).map_err(|e| FitError::Mesh(e.to_string()))?;
-            let mut edges = [CubicBez3::new([nalgebra::Point3::origin(); 4]); 3];
-            for (l, slot) in edges.iter_mut().enumerate() {
-                let ei = mesh
-                    .edge_index(f, l)
-                    .map_err(|e| FitError::Mesh(e.to_string()))?;
-                let c = curves[ei];
-                *slot = if mesh.edges()[ei].vertices[0] == face[l] {
-                    c
-                } else {
-                    c.reversed()
-                };
-            }
+            let edges = face_curves(mesh, curves, f).map_err(|e| FitError::Mesh(e.to_string()))?;
             let corners = [
                 &verts[face[0]].data,
                 &verts[face[1]].data,

@@ -44,7 +44,7 @@ pub use datasets::{
     dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,
     DATASET_NAMES,
 };
-pub use fit::{fit, fit_into, Fit, FitError};
+pub use fit::{face_curves, fit, fit_into, Fit, FitError};
 pub use g1::{measure as measure_g1, Boundary, G1Report};
 pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
 pub use metrics::{compare as compare_with_truth, SurfaceErrors};

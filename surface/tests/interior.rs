@@ -67,15 +67,7 @@ fn net_derivatives_match_finite_differences() {
         let face = data.mesh.faces()[fi];
         let verts = face.map(|i| &data.mesh.vertices()[i].data);
         // The face's edge curves, oriented along the face.
-        let curves: [curves::CubicBez3; 3] = std::array::from_fn(|l| {
-            let ei = data.mesh.edge_index(fi, l).unwrap();
-            let c = f0.curves[ei];
-            if data.mesh.edges()[ei].vertices[0] == face[l] {
-                c
-            } else {
-                c.reversed()
-            }
-        });
+        let curves = f0.face_curves(&data.mesh, fi).unwrap();
         let p0 = [0.3, 0.45, 0.6, 0.8, 1.3, 2.0];
         let params = |p: &[f64; 6]| InteriorParameters {
             beta: [p[0], p[1], p[2]],
@@ -144,15 +136,7 @@ fn energies_closed_forms_and_gradients() {
     for fi in [3usize, 77, 150] {
         let face = data.mesh.faces()[fi];
         let verts = face.map(|i| data.mesh.vertices()[i].data);
-        let curves: [curves::CubicBez3; 3] = std::array::from_fn(|l| {
-            let ei = data.mesh.edge_index(fi, l).unwrap();
-            let c = f0.curves[ei];
-            if data.mesh.edges()[ei].vertices[0] == face[l] {
-                c
-            } else {
-                c.reversed()
-            }
-        });
+        let curves = f0.face_curves(&data.mesh, fi).unwrap();
         for energy in [Energy::Membrane, Energy::ThinPlate] {
             let p = MacroPatchEnergy::new(energy, verts, curves).unwrap();
             for x in [x0, SVector::<f64, 6>::new(0.2, 0.5, 0.7, 0.6, 1.8, 3.0)] {
@@ -195,15 +179,7 @@ fn corner_objectives_jacobian_matches_finite_differences_and_vanishes() {
             let fi = (rnd() * data.mesh.num_faces() as f64) as usize;
             let face = data.mesh.faces()[fi];
             let verts = face.map(|i| data.mesh.vertices()[i].data);
-            let curves: [curves::CubicBez3; 3] = std::array::from_fn(|l| {
-                let ei = data.mesh.edge_index(fi, l).unwrap();
-                let c = f0.curves[ei];
-                if data.mesh.edges()[ei].vertices[0] == face[l] {
-                    c
-                } else {
-                    c.reversed()
-                }
-            });
+            let curves = f0.face_curves(&data.mesh, fi).unwrap();
             let p = CornerObjectives::new(verts, curves);
             let x = SVector::<f64, 6>::new(
                 0.1 + 0.9 * rnd(),
