@@ -13,6 +13,7 @@ mod output;
 mod ring;
 mod ring_render;
 mod solvers;
+mod stats;
 mod sweep;
 
 use std::process::ExitCode;

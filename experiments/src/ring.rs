@@ -25,6 +25,7 @@ use surface::{
 
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, write_result};
+use crate::stats::median;
 
 /// The constructions compared, in the order of the seeds' Figure 5.
 const METHODS: [&str; 3] = ["chord", "dbhs", "optimized"];
@@ -84,15 +85,6 @@ pub struct CurveStats {
     pub fallbacks: usize,
     /// Edges whose optimization did not converge.
     pub unconverged: usize,
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.retain(|x| x.is_finite());
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 /// Curve measures of a fit's edge curves, from the edges' unit problems.

@@ -89,6 +89,17 @@ fn bbox(views: &[SurfaceView<'_>]) -> (Point3<f64>, Point3<f64>) {
     (lo, hi)
 }
 
+/// The Gaussian-curvature colour limit shared by pictures and PLY colours: the true ring's
+/// largest |K|.
+fn gaussian_limit(views: &[SurfaceView<'_>]) -> f64 {
+    views
+        .iter()
+        .find(|v| v.name == "true")
+        .map(|v| v.tess.gaussian.iter().fold(0.0f64, |m, k| m.max(k.abs())))
+        .unwrap_or(1.0)
+        .max(1e-12)
+}
+
 /// Renders the three composites; returns their description for the report.
 pub fn render_all(out: &Path, views: &[SurfaceView<'_>]) -> Result<Value, ExperimentError> {
     let (lo, hi) = bbox(views);
@@ -96,12 +107,7 @@ pub fn render_all(out: &Path, views: &[SurfaceView<'_>]) -> Result<Value, Experi
     // |K|, and twice the median over the fitted surfaces of their largest distance (so the
     // typical fitted surface uses the lower half of the scale; lumps and flat triangles
     // saturate).
-    let k_limit = views
-        .iter()
-        .find(|v| v.name == "true")
-        .map(|v| v.tess.gaussian.iter().fold(0.0f64, |m, k| m.max(k.abs())))
-        .unwrap_or(1.0)
-        .max(1e-12);
+    let k_limit = gaussian_limit(views);
     let mut maxima: Vec<f64> = views
         .iter()
         .filter(|v| !matches!(v.name, "true" | "flat"))
@@ -165,12 +171,7 @@ pub fn render_all(out: &Path, views: &[SurfaceView<'_>]) -> Result<Value, Experi
 /// PLY (binary, KColor colours, K as quality) of every surface, and OBJ of the optimized one
 /// (committed results stay a few MB).
 pub fn write_meshes(out: &Path, views: &[SurfaceView<'_>]) -> Result<(), ExperimentError> {
-    let k_limit = views
-        .iter()
-        .find(|v| v.name == "true")
-        .map(|v| v.tess.gaussian.iter().fold(0.0f64, |m, k| m.max(k.abs())))
-        .unwrap_or(1.0)
-        .max(1e-12);
+    let k_limit = gaussian_limit(views);
     for v in views {
         let t = v.tess;
         let colors: Vec<[u8; 3]> = t

@@ -22,6 +22,7 @@ use solver::{solve, ConvergenceTest, SolveOptions, SolveReport, SolverKind, Term
 use crate::datasets::edge_problems;
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, write_result};
+use crate::stats::median;
 
 /// Two adapters "agree" on a problem when their optima differ by at most this in α (max norm):
 /// the standard for well-conditioned problems.
@@ -106,19 +107,6 @@ fn solve_one(
             time_seconds: best,
         })
         .map_err(|e| format!("{kind}: {e}"))
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
 }
 
 fn max_diff(a: [f64; 2], b: [f64; 2]) -> f64 {

@@ -731,7 +731,7 @@ mod tests {
             v(0.5, -1.0, 0.0),
             v(0.5, 0.0, 1.0),
         ];
-        let err = Mesh::new(verts, vec![[0, 1, 2], [1, 0, 3], [1, 0, 4]]).unwrap_err();
+        let err = Mesh::new(verts.clone(), vec![[0, 1, 2], [1, 0, 3], [1, 0, 4]]).unwrap_err();
         // The third face on edge 0–1 is reported, whatever its direction.
         assert_eq!(
             err,
@@ -740,13 +740,6 @@ mod tests {
                 faces: vec![0, 1, 2]
             }
         );
-        let verts = vec![
-            v(0.0, 0.0, 0.0),
-            v(1.0, 0.0, 0.0),
-            v(0.5, 1.0, 0.0),
-            v(0.5, -1.0, 0.0),
-            v(0.5, 0.0, 1.0),
-        ];
         let err = Mesh::new(verts, vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]]).unwrap_err();
         assert_eq!(
             err,
