@@ -1,0 +1,153 @@
+//! [`RawMesh`]: a polygon mesh exactly as a file gave it, before any validation or repair.
+//!
+//! Readers fill it and writers read it; turning it into a validated triangle mesh (and repairing
+//! what a file got wrong) is the `surface` crate's job, so every reader stays a pure parser.
+
+use std::collections::BTreeMap;
+
+use nalgebra::{Matrix3, Point3, Vector3};
+
+/// Named per-vertex scalar properties a reader found and did not interpret (PLY `quality`,
+/// `red`, `u`, …), each with one value per vertex, in file order; writers put them back where
+/// their format can carry them.
+pub type VertexProperties = BTreeMap<String, Vec<f64>>;
+
+/// Faces as polygons of any size, stored flat: polygon `f` has the corners
+/// `indices[offsets[f]..offsets[f + 1]]` (vertex indices, 0-based), counter-clockwise seen from
+/// the side its normal points to. `offsets` starts with 0 and has one more entry than there are
+/// polygons. Flat storage keeps a million faces in two allocations.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Polygons {
+    indices: Vec<usize>,
+    offsets: Vec<usize>,
+}
+
+impl Default for Polygons {
+    fn default() -> Self {
+        Polygons {
+            indices: Vec::new(),
+            offsets: vec![0],
+        }
+    }
+}
+
+impl Polygons {
+    /// No polygons.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Room for `faces` polygons with `corners` corners in all.
+    pub fn with_capacity(faces: usize, corners: usize) -> Self {
+        let mut offsets = Vec::with_capacity(faces + 1);
+        offsets.push(0);
+        Polygons {
+            indices: Vec::with_capacity(corners),
+            offsets,
+        }
+    }
+
+    /// Triangles as polygons.
+    pub fn from_triangles(tris: &[[usize; 3]]) -> Self {
+        let mut p = Self::with_capacity(tris.len(), 3 * tris.len());
+        for t in tris {
+            p.push(t);
+        }
+        p
+    }
+
+    /// Appends one polygon.
+    pub fn push(&mut self, corners: &[usize]) {
+        self.indices.extend_from_slice(corners);
+        self.offsets.push(self.indices.len());
+    }
+
+    /// Number of polygons.
+    pub fn len(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// True when there are no polygons.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The corners of polygon `f` (empty when `f` is out of range).
+    pub fn get(&self, f: usize) -> &[usize] {
+        match (self.offsets.get(f), self.offsets.get(f + 1)) {
+            (Some(&a), Some(&b)) => &self.indices[a..b],
+            _ => &[],
+        }
+    }
+
+    /// The polygons in order.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = &[usize]> + '_ {
+        self.offsets.windows(2).map(|w| &self.indices[w[0]..w[1]])
+    }
+
+    /// True when every polygon is a triangle.
+    pub fn all_triangles(&self) -> bool {
+        self.offsets.windows(2).all(|w| w[1] - w[0] == 3)
+    }
+
+    /// Total number of corners.
+    pub fn corner_count(&self) -> usize {
+        self.indices.len()
+    }
+}
+
+/// A mesh as read from a file: positions, whatever per-vertex data the file had, polygons, and
+/// notes about what the reader did (a fan triangulation, a welded STL, ignored statements).
+///
+/// Invariants a reader guarantees: every optional per-vertex array has one entry per position;
+/// every face index is `< positions.len()` (a reader reports an out-of-range index as an error
+/// naming the line or element, it never stores it); every number is finite unless a note says
+/// otherwise (readers refuse NaN and infinities with an error). Nothing else is guaranteed:
+/// faces may be degenerate, repeated, non-manifold or inconsistently oriented, and vertices may
+/// be unused. `surface` validates and repairs.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RawMesh {
+    /// Vertex positions.
+    pub positions: Vec<Point3<f64>>,
+    /// Per-vertex normals as the file gave them (not necessarily unit), if it gave them for
+    /// every vertex.
+    pub normals: Option<Vec<Vector3<f64>>>,
+    /// Per-vertex shape tensors `S` (`κn(d) = dᵀ S d`, positive where the surface bends towards
+    /// the normal), if the file gave them (the testbed format's `shape` field).
+    pub shapes: Option<Vec<Matrix3<f64>>>,
+    /// Per-vertex colours, linear 0–1 RGB, if the file had them.
+    pub colors: Option<Vec<[f32; 3]>>,
+    /// Per-vertex names (the testbed format names its points), if the file had them.
+    pub vertex_names: Option<Vec<String>>,
+    /// Other per-vertex properties, kept.
+    pub properties: VertexProperties,
+    /// The faces.
+    pub polygons: Polygons,
+    /// Per-face names (the testbed format names its faces), if the file had them.
+    pub face_names: Option<Vec<String>>,
+    /// Per-mesh numeric fields a reader kept (the testbed format's extra top-level fields).
+    pub mesh_fields: BTreeMap<String, Vec<f64>>,
+    /// What the reader did that a user should know (one line each).
+    pub notes: Vec<String>,
+}
+
+impl RawMesh {
+    /// A mesh of positions and triangles only.
+    pub fn from_triangles(positions: Vec<Point3<f64>>, tris: &[[usize; 3]]) -> Self {
+        RawMesh {
+            positions,
+            polygons: Polygons::from_triangles(tris),
+            ..RawMesh::default()
+        }
+    }
+
+    /// Number of vertices.
+    pub fn num_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of polygons.
+    pub fn num_faces(&self) -> usize {
+        self.polygons.len()
+    }
+}
