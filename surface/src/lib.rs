@@ -35,6 +35,7 @@ pub mod interior;
 pub mod mesh;
 pub mod metrics;
 pub mod obj;
+pub mod repair;
 pub mod shirman_sequin;
 pub mod tessellate;
 pub mod testbed_format;

@@ -204,6 +204,17 @@ pub struct Mesh {
     pub extra: ExtraFields,
 }
 
+/// The zero-area test of [`Mesh::new`]: doubled area at most [`DEGENERATE_FACE_SINE`] times
+/// the product of the two longest edges. Coordinates are finite (checked before), so no NaN
+/// reaches the comparison; a face with a NaN area (overflow) counts as degenerate.
+fn is_degenerate([a, b, c]: [Point3<f64>; 3]) -> bool {
+    let (e1, e2, e3) = (b - a, c - a, c - b);
+    let mut lengths = [e1.norm(), e2.norm(), e3.norm()];
+    lengths.sort_by(f64::total_cmp);
+    let area2 = e1.cross(&e2).norm();
+    !(area2 > DEGENERATE_FACE_SINE * lengths[1] * lengths[2])
+}
+
 fn check_vertex(i: usize, v: &Vertex) -> Result<(), MeshError> {
     let bad = |what| Err(MeshError::NonFinite { vertex: i, what });
     if !v.data.p.iter().all(|c| c.is_finite()) {
@@ -221,6 +232,33 @@ fn check_vertex(i: usize, v: &Vertex) -> Result<(), MeshError> {
 impl Mesh {
     /// Builds and validates a mesh (see the module docs for what is rejected).
     pub fn new(vertices: Vec<Vertex>, faces: Vec<[usize; 3]>) -> Result<Self, MeshError> {
+        Self::build(vertices, faces, false)
+    }
+
+    /// [`Mesh::new`], but faces of (relatively) zero area are accepted: the repair of user files
+    /// ([`crate::repair`]) keeps them so that the mesh has no hole, and the fit gives them a
+    /// stated fallback patch. Everything else is validated as in [`Mesh::new`].
+    pub fn new_allowing_degenerate(
+        vertices: Vec<Vertex>,
+        faces: Vec<[usize; 3]>,
+    ) -> Result<Self, MeshError> {
+        Self::build(vertices, faces, true)
+    }
+
+    /// True when face `f` has (relatively) zero area: its doubled area is at most
+    /// [`DEGENERATE_FACE_SINE`] times the product of its two longest edges (false for a face
+    /// that does not exist).
+    pub fn is_degenerate_face(&self, f: usize) -> bool {
+        self.faces
+            .get(f)
+            .is_some_and(|face| is_degenerate(face.map(|i| self.vertices[i].data.p)))
+    }
+
+    fn build(
+        vertices: Vec<Vertex>,
+        faces: Vec<[usize; 3]>,
+        allow_degenerate: bool,
+    ) -> Result<Self, MeshError> {
         let count = vertices.len();
         for (i, v) in vertices.iter().enumerate() {
             check_vertex(i, v)?;
@@ -244,13 +282,7 @@ impl Mesh {
                     });
                 }
             }
-            let [a, b, c] = face.map(|i| vertices[i].data.p);
-            let (e1, e2, e3) = (b - a, c - a, c - b);
-            let mut lengths = [e1.norm(), e2.norm(), e3.norm()];
-            lengths.sort_by(f64::total_cmp);
-            let area2 = e1.cross(&e2).norm();
-            // Positions are finite (checked above), so no NaN reaches this comparison.
-            if area2 <= DEGENERATE_FACE_SINE * lengths[1] * lengths[2] {
+            if !allow_degenerate && is_degenerate(face.map(|i| vertices[i].data.p)) {
                 return Err(MeshError::ZeroArea {
                     face: f,
                     vertices: *face,

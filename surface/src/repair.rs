@@ -1,0 +1,714 @@
+//! From a file's [`RawMesh`] to a validated [`Mesh`], repairing what real files get wrong by
+//! stated rules, each counted in a [`RepairReport`]: one bad face never sinks a mesh.
+//!
+//! # The rules, in the order they are applied
+//!
+//! 1. **Polygons** with more than three corners are split into a fan around their first corner
+//!    (right for convex and star-shaped polygons, which is what exporters write), or refused
+//!    ([`PolygonRule::Refuse`]) with the polygon's index.
+//! 2. **Faces repeating a vertex** (`[a, a, b]`) are skipped: they have no interior to fit.
+//! 3. **Duplicate faces** (the same three vertices, in either orientation) are skipped but the
+//!    first.
+//! 4. **Orientation** is made consistent within each component by a breadth-first walk across
+//!    edges with exactly two faces (a face is reversed when it runs along a shared edge in the
+//!    same direction as its neighbour). Each component then keeps the orientation of the
+//!    majority of its faces as given, and is reversed as a whole when (a) the file gave normals
+//!    and the faces' area normals disagree with them on the whole (`Σ_f A_f n̂_f · (n_a + n_b +
+//!    n_c) < 0`: "winding against normals"), or (b) without normals, when it is closed and
+//!    its signed volume is negative (inward-facing). A surface that cannot be oriented (a
+//!    Möbius band) keeps one edge unshared: the walk's conflicting edge.
+//! 5. **Non-manifold edges** (three or more faces): the first face running each way along the
+//!    edge stay joined, the others are detached from that edge.
+//! 6. **Non-manifold vertices** (the faces around a vertex forming several fans, joined only
+//!    through the vertex, or separated by a detached edge of rule 4 or 5) are split: each fan
+//!    beyond the first gets its own copy of the vertex, with the same data.
+//! 7. **Unused vertices** (in no face) are dropped.
+//! 8. **Zero-area faces** (collinear corners, [`crate::mesh::DEGENERATE_FACE_SINE`]) are kept, so
+//!    the mesh has no hole there; they are listed, and the fit gives them a fallback patch.
+//! 9. Should the mesh still not validate (a configuration the rules above do not foresee), the
+//!    face named by the validation error is dropped and listed, at most
+//!    [`MAX_DROPPED_FACES`] times.
+//!
+//! Several components and open boundaries are kept as they are (counted).
+//!
+//! Normals given by the file are normalized; if any is zero or not finite, all are discarded
+//! (a note says so) and the caller estimates them. Shape tensors given by the file (the testbed
+//! format) are kept and make the curvature known.
+
+use meshio::RawMesh;
+use nalgebra::{Matrix3, Vector3};
+
+use crate::mesh::{ExtraFields, Mesh, MeshError, Vertex};
+
+/// Rule 9's bound: a mesh that still fails validation after this many faces were dropped is
+/// refused (each drop costs a full validation, so the bound keeps the work linear in practice).
+pub const MAX_DROPPED_FACES: usize = 64;
+
+/// What to do with faces of more than three corners.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PolygonRule {
+    /// Split into a fan around the first corner (counted in the report).
+    #[default]
+    Fan,
+    /// Refuse the mesh, naming the first polygon.
+    Refuse,
+}
+
+/// Options of [`repair`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RepairOptions {
+    /// Faces of more than three corners.
+    pub polygons: PolygonRule,
+}
+
+/// Why a raw mesh could not be made into a mesh at all.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum RepairError {
+    /// A polygon with more than three corners, with [`PolygonRule::Refuse`].
+    #[error("face {face} has {corners} corners and polygons are refused (triangulate the mesh first, or allow fan triangulation)")]
+    Polygon {
+        /// The face (polygon) index in the file.
+        face: usize,
+        /// Its number of corners.
+        corners: usize,
+    },
+    /// No face is left to build a mesh from.
+    #[error("nothing to fit: {0}")]
+    Empty(String),
+    /// The mesh did not validate even after dropping [`MAX_DROPPED_FACES`] faces.
+    #[error("the mesh is still invalid after dropping {dropped} faces: {source}")]
+    Invalid {
+        /// Faces dropped before giving up.
+        dropped: usize,
+        /// The last validation error.
+        source: MeshError,
+    },
+}
+
+/// Why a component was reversed as a whole (rule 4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reversal {
+    /// Its winding disagreed with the normals the file gave.
+    AgainstNormals,
+    /// It is closed and its signed volume was negative (the faces faced inward).
+    Inward,
+}
+
+/// What [`repair`] did, rule by rule. Face indices are those of the file (polygon index), vertex
+/// indices those of the file, unless a field says otherwise.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RepairReport {
+    /// Polygons of more than three corners split into fans (rule 1).
+    pub fanned_polygons: usize,
+    /// Faces skipped for repeating a vertex (rule 2).
+    pub repeated_vertex_faces: Vec<usize>,
+    /// Faces skipped as duplicates of an earlier face (rule 3).
+    pub duplicate_faces: Vec<usize>,
+    /// Faces reversed to agree with their neighbours (rule 4, before whole-component reversals).
+    pub reoriented_faces: usize,
+    /// Components reversed as a whole, with the reason (component numbers in order of first face).
+    pub reversed_components: Vec<(usize, Reversal)>,
+    /// Edges (file vertex pairs) along which a face was detached (rules 4 and 5).
+    pub detached_edges: Vec<[usize; 2]>,
+    /// Vertices (file index) split into several copies, with the number of extra copies (rule 6).
+    pub split_vertices: Vec<(usize, usize)>,
+    /// Vertices in no face, dropped (rule 7).
+    pub unused_vertices: usize,
+    /// Faces of zero area kept (rule 8), as **mesh** face indices.
+    pub degenerate_faces: Vec<usize>,
+    /// Faces dropped because the mesh still did not validate (rule 9), file indices.
+    pub dropped_faces: Vec<usize>,
+    /// Connected components of the result.
+    pub components: usize,
+    /// Boundary edges of the result (0 for closed meshes).
+    pub boundary_edges: usize,
+    /// Things a user should know that are not counted above (discarded normals, …).
+    pub notes: Vec<String>,
+}
+
+impl RepairReport {
+    /// True when the file's faces were used exactly as given (no face skipped, reversed,
+    /// detached, split or dropped; polygons and unused vertices aside).
+    pub fn is_clean(&self) -> bool {
+        self.repeated_vertex_faces.is_empty()
+            && self.duplicate_faces.is_empty()
+            && self.reoriented_faces == 0
+            && self.reversed_components.is_empty()
+            && self.detached_edges.is_empty()
+            && self.split_vertices.is_empty()
+            && self.dropped_faces.is_empty()
+    }
+
+    /// One line per rule that did something, for a terminal.
+    pub fn summary_lines(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let list = |v: &[usize]| {
+            let mut s: Vec<String> = v.iter().take(8).map(|x| x.to_string()).collect();
+            if v.len() > 8 {
+                s.push(format!("… ({} in all)", v.len()));
+            }
+            s.join(", ")
+        };
+        if self.fanned_polygons > 0 {
+            out.push(format!(
+                "{} polygons split into triangle fans",
+                self.fanned_polygons
+            ));
+        }
+        if !self.repeated_vertex_faces.is_empty() {
+            out.push(format!(
+                "skipped {} faces repeating a vertex: {}",
+                self.repeated_vertex_faces.len(),
+                list(&self.repeated_vertex_faces)
+            ));
+        }
+        if !self.duplicate_faces.is_empty() {
+            out.push(format!(
+                "skipped {} duplicate faces: {}",
+                self.duplicate_faces.len(),
+                list(&self.duplicate_faces)
+            ));
+        }
+        if self.reoriented_faces > 0 {
+            out.push(format!(
+                "reversed {} faces to agree with their neighbours",
+                self.reoriented_faces
+            ));
+        }
+        for (c, why) in &self.reversed_components {
+            out.push(format!(
+                "reversed component {c}: {}",
+                match why {
+                    Reversal::AgainstNormals => "its winding disagreed with the file's normals",
+                    Reversal::Inward => "it is closed and faced inward",
+                }
+            ));
+        }
+        if !self.detached_edges.is_empty() {
+            let e: Vec<String> = self
+                .detached_edges
+                .iter()
+                .take(8)
+                .map(|[a, b]| format!("{a}–{b}"))
+                .collect();
+            out.push(format!(
+                "detached faces along {} non-manifold or non-orientable edges: {}{}",
+                self.detached_edges.len(),
+                e.join(", "),
+                if self.detached_edges.len() > 8 {
+                    ", …"
+                } else {
+                    ""
+                }
+            ));
+        }
+        if !self.split_vertices.is_empty() {
+            let v: Vec<usize> = self.split_vertices.iter().map(|(v, _)| *v).collect();
+            out.push(format!(
+                "split {} non-manifold vertices: {}",
+                v.len(),
+                list(&v)
+            ));
+        }
+        if self.unused_vertices > 0 {
+            out.push(format!("dropped {} unused vertices", self.unused_vertices));
+        }
+        if !self.degenerate_faces.is_empty() {
+            out.push(format!(
+                "{} zero-area faces kept (fitted by the fallback): mesh faces {}",
+                self.degenerate_faces.len(),
+                list(&self.degenerate_faces)
+            ));
+        }
+        if !self.dropped_faces.is_empty() {
+            out.push(format!(
+                "dropped {} faces that still did not validate: {}",
+                self.dropped_faces.len(),
+                list(&self.dropped_faces)
+            ));
+        }
+        out.extend(self.notes.iter().cloned());
+        out
+    }
+}
+
+/// A repaired mesh with the maps back to the file.
+#[derive(Clone, Debug)]
+pub struct Repaired {
+    /// The mesh. Its vertices carry the file's normals (unit) when [`Repaired::normals_given`],
+    /// zero vectors otherwise, and the file's shape tensors when it had them.
+    pub mesh: Mesh,
+    /// True when every vertex's normal came from the file.
+    pub normals_given: bool,
+    /// For each mesh face, the file's face (polygon) it came from.
+    pub face_source: Vec<usize>,
+    /// For each mesh vertex, the file's vertex it came from (copies of a split vertex repeat it).
+    pub vertex_source: Vec<usize>,
+    /// What was done.
+    pub report: RepairReport,
+}
+
+/// Union–find with path halving, for components and fans.
+struct Dsu(Vec<usize>);
+
+impl Dsu {
+    fn new(n: usize) -> Self {
+        Dsu((0..n).collect())
+    }
+    fn find(&mut self, mut x: usize) -> usize {
+        while self.0[x] != x {
+            self.0[x] = self.0[self.0[x]];
+            x = self.0[x];
+        }
+        x
+    }
+    fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            // The smaller root wins, so labels are stable (first face of a component).
+            let (lo, hi) = (ra.min(rb), ra.max(rb));
+            self.0[hi] = lo;
+        }
+    }
+}
+
+/// Half-edges grouped by undirected edge: `(key, face, local edge)` sorted by key.
+fn sorted_half_edges(faces: &[[usize; 3]]) -> Vec<((usize, usize), usize, usize)> {
+    let mut hs: Vec<((usize, usize), usize, usize)> = Vec::with_capacity(3 * faces.len());
+    for (f, t) in faces.iter().enumerate() {
+        for l in 0..3 {
+            let (a, b) = (t[l], t[(l + 1) % 3]);
+            hs.push(((a.min(b), a.max(b)), f, l));
+        }
+    }
+    hs.sort_unstable();
+    hs
+}
+
+/// Groups of equal keys in a sorted half-edge list, as index ranges.
+fn groups(hs: &[((usize, usize), usize, usize)]) -> Vec<std::ops::Range<usize>> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    for i in 1..=hs.len() {
+        if i == hs.len() || hs[i].0 != hs[start].0 {
+            out.push(start..i);
+            start = i;
+        }
+    }
+    out
+}
+
+fn flip(t: &mut [usize; 3]) {
+    t.swap(1, 2);
+}
+
+/// Builds a mesh from a file's raw mesh by the rules of the module docs.
+pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, RepairError> {
+    let mut report = RepairReport::default();
+    let nv = raw.positions.len();
+
+    // Rules 1–3: triangles, without repeated vertices or duplicates.
+    let mut faces: Vec<[usize; 3]> = Vec::with_capacity(raw.polygons.corner_count() / 3 + 1);
+    let mut source: Vec<usize> = Vec::with_capacity(faces.capacity());
+    for (pi, poly) in raw.polygons.iter().enumerate() {
+        if poly.len() < 3 || poly.iter().any(|&v| v >= nv) {
+            // Readers guarantee neither happens; a hand-built RawMesh might.
+            report.repeated_vertex_faces.push(pi);
+            continue;
+        }
+        if poly.len() > 3 {
+            if options.polygons == PolygonRule::Refuse {
+                return Err(RepairError::Polygon {
+                    face: pi,
+                    corners: poly.len(),
+                });
+            }
+            report.fanned_polygons += 1;
+        }
+        let mut repeated = false;
+        for k in 1..poly.len() - 1 {
+            let t = [poly[0], poly[k], poly[k + 1]];
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                repeated = true;
+                continue;
+            }
+            faces.push(t);
+            source.push(pi);
+        }
+        if repeated {
+            report.repeated_vertex_faces.push(pi);
+        }
+    }
+    {
+        let mut keys: Vec<([usize; 3], usize)> = faces
+            .iter()
+            .enumerate()
+            .map(|(f, t)| {
+                let mut k = *t;
+                k.sort_unstable();
+                (k, f)
+            })
+            .collect();
+        keys.sort_unstable();
+        let mut dup = vec![false; faces.len()];
+        for w in keys.windows(2) {
+            if w[0].0 == w[1].0 {
+                dup[w[1].1] = true;
+            }
+        }
+        if dup.iter().any(|d| *d) {
+            let mut k = 0;
+            faces.retain(|_| {
+                k += 1;
+                !dup[k - 1]
+            });
+            let mut k = 0;
+            source.retain(|s| {
+                k += 1;
+                if dup[k - 1] {
+                    report.duplicate_faces.push(*s);
+                }
+                !dup[k - 1]
+            });
+            report.duplicate_faces.dedup();
+        }
+    }
+    if faces.is_empty() {
+        return Err(RepairError::Empty(format!(
+            "{} faces in the file, none with three distinct vertices",
+            raw.polygons.len()
+        )));
+    }
+
+    // Rule 4: consistent orientation by a walk across two-face edges.
+    let hs = sorted_half_edges(&faces);
+    let edge_groups = groups(&hs);
+    // Neighbours across two-face edges: (neighbour, same direction as given?).
+    let mut adj: Vec<Vec<(usize, bool)>> = vec![Vec::new(); faces.len()];
+    for g in &edge_groups {
+        if g.len() == 2 {
+            let (_, f, l) = hs[g.start];
+            let (_, h, m) = hs[g.start + 1];
+            if f == h {
+                continue;
+            }
+            let same = faces[f][l] == faces[h][m];
+            adj[f].push((h, same));
+            adj[h].push((f, same));
+        }
+    }
+    let mut flipped: Vec<Option<bool>> = vec![None; faces.len()];
+    let mut component = vec![0usize; faces.len()];
+    let mut conflicts: Vec<(usize, usize)> = Vec::new();
+    let mut n_components = 0;
+    let mut queue = std::collections::VecDeque::new();
+    for seed in 0..faces.len() {
+        if flipped[seed].is_some() {
+            continue;
+        }
+        flipped[seed] = Some(false);
+        component[seed] = n_components;
+        queue.push_back(seed);
+        while let Some(f) = queue.pop_front() {
+            let ff = flipped[f].unwrap_or(false);
+            for &(h, same) in &adj[f] {
+                // Consistent when, after flips, the two run the edge in opposite directions.
+                let want = ff ^ same;
+                match flipped[h] {
+                    None => {
+                        flipped[h] = Some(want);
+                        component[h] = n_components;
+                        queue.push_back(h);
+                    }
+                    Some(got) if got != want && f < h => conflicts.push((f, h)),
+                    Some(_) => {}
+                }
+            }
+        }
+        n_components += 1;
+    }
+    // Majority orientation per component, then the whole-component rules.
+    let mut votes = vec![(0usize, 0usize); n_components];
+    for (f, fl) in flipped.iter().enumerate() {
+        if fl.unwrap_or(false) {
+            votes[component[f]].1 += 1;
+        } else {
+            votes[component[f]].0 += 1;
+        }
+    }
+    let majority_flip: Vec<bool> = votes.iter().map(|(keep, fl)| fl > keep).collect();
+    let mut oriented: Vec<[usize; 3]> = faces.clone();
+    for (f, t) in oriented.iter_mut().enumerate() {
+        if flipped[f].unwrap_or(false) ^ majority_flip[component[f]] {
+            flip(t);
+            report.reoriented_faces += 1;
+        }
+    }
+    let given_normals: Option<Vec<Vector3<f64>>> = match &raw.normals {
+        Some(ns) if ns.len() == nv => {
+            let unit: Vec<Vector3<f64>> = ns
+                .iter()
+                .map(|n| {
+                    let len = n.norm();
+                    if len > 0.0 && len.is_finite() {
+                        n / len
+                    } else {
+                        Vector3::zeros()
+                    }
+                })
+                .collect();
+            let bad = unit.iter().filter(|n| n.norm_squared() == 0.0).count();
+            if bad > 0 {
+                report.notes.push(format!(
+                    "{bad} of the file's normals are zero or not finite: all normals discarded (to be estimated)"
+                ));
+                None
+            } else {
+                Some(unit)
+            }
+        }
+        Some(_) => {
+            report
+                .notes
+                .push("the file's normals do not match its vertices: discarded".into());
+            None
+        }
+        None => None,
+    };
+    {
+        let mut agreement = vec![0.0f64; n_components];
+        let mut volume = vec![0.0f64; n_components];
+        let mut closed = vec![true; n_components];
+        for (f, t) in oriented.iter().enumerate() {
+            let [a, b, c] = t.map(|i| raw.positions[i]);
+            let an = (b - a).cross(&(c - a));
+            if let Some(ns) = &given_normals {
+                agreement[component[f]] += an.dot(&(ns[t[0]] + ns[t[1]] + ns[t[2]]));
+            }
+            volume[component[f]] += a.coords.dot(&b.coords.cross(&c.coords));
+        }
+        for g in &edge_groups {
+            if g.len() != 2 {
+                let (_, f, _) = hs[g.start];
+                closed[component[f]] = false;
+            }
+        }
+        let mut reverse = vec![false; n_components];
+        for c in 0..n_components {
+            if given_normals.is_some() {
+                if agreement[c] < 0.0 {
+                    reverse[c] = true;
+                    report
+                        .reversed_components
+                        .push((c, Reversal::AgainstNormals));
+                }
+            } else if closed[c] && volume[c] < 0.0 {
+                reverse[c] = true;
+                report.reversed_components.push((c, Reversal::Inward));
+            }
+        }
+        for (f, t) in oriented.iter_mut().enumerate() {
+            if reverse[component[f]] {
+                flip(t);
+            }
+        }
+    }
+
+    // Rules 4–6: which faces are joined across which edges, then fans around each vertex.
+    let hs2 = sorted_half_edges(&oriented);
+    let mut pairs: Vec<((usize, usize), (usize, usize))> = Vec::new();
+    {
+        let conflict_set: std::collections::HashSet<(usize, usize)> =
+            conflicts.iter().copied().collect();
+        for g in groups(&hs2) {
+            let members = &hs2[g];
+            // First face running each way along the edge (in the current orientation).
+            let (key, _, _) = members[0];
+            let mut fwd: Option<(usize, usize)> = None;
+            let mut bwd: Option<(usize, usize)> = None;
+            for &(_, f, l) in members {
+                let forward = oriented[f][l] == key.0;
+                let slot = if forward { &mut fwd } else { &mut bwd };
+                if slot.is_none() {
+                    *slot = Some((f, l));
+                }
+            }
+            let mut detached = members.len() > 2;
+            match (fwd, bwd) {
+                (Some((f, l)), Some((h, m))) => {
+                    if conflict_set.contains(&(f.min(h), f.max(h))) {
+                        detached = true;
+                    } else {
+                        pairs.push(((f, l), (h, m)));
+                    }
+                }
+                // Two faces the same way: the walk's conflict of a non-orientable surface.
+                _ => detached |= members.len() == 2,
+            }
+            if detached {
+                report.detached_edges.push([key.0, key.1]);
+            }
+        }
+    }
+    // Fans: union corners (f, corner) around each vertex across joined edges. Edge l of f runs
+    // a → b and edge m of h runs b → a: vertex a is corner l of f and corner m + 1 of h, vertex
+    // b is corner l + 1 of f and corner m of h.
+    let mut dsu = Dsu::new(3 * oriented.len());
+    for ((f, l), (h, m)) in pairs {
+        dsu.union(3 * f + l, 3 * h + (m + 1) % 3);
+        dsu.union(3 * f + (l + 1) % 3, 3 * h + m);
+    }
+    // The first fan of each vertex keeps it; others get copies (file index kept in the source).
+    let mut vertex_source: Vec<usize> = (0..nv).collect();
+    let mut fan_vertex: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    let mut first_fan: Vec<Option<usize>> = vec![None; nv];
+    let mut extra_copies: std::collections::BTreeMap<usize, usize> = Default::default();
+    let mut tris = oriented;
+    for f in 0..tris.len() {
+        for c in 0..3 {
+            let v = tris[f][c];
+            let fan = dsu.find(3 * f + c);
+            match first_fan[v] {
+                None => first_fan[v] = Some(fan),
+                Some(first) if first == fan => {}
+                Some(_) => {
+                    let copy = *fan_vertex.entry(fan).or_insert_with(|| {
+                        vertex_source.push(v);
+                        *extra_copies.entry(v).or_insert(0) += 1;
+                        vertex_source.len() - 1
+                    });
+                    tris[f][c] = copy;
+                }
+            }
+        }
+    }
+    report.split_vertices = extra_copies.into_iter().collect();
+
+    // Rule 7: drop unused vertices, renumber.
+    let mut used = vec![false; vertex_source.len()];
+    for t in &tris {
+        for &v in t {
+            used[v] = true;
+        }
+    }
+    let mut renumber = vec![usize::MAX; vertex_source.len()];
+    let mut kept_source = Vec::with_capacity(vertex_source.len());
+    for (v, &u) in used.iter().enumerate() {
+        if u {
+            renumber[v] = kept_source.len();
+            kept_source.push(vertex_source[v]);
+        }
+    }
+    report.unused_vertices = (0..nv).filter(|&v| !used[v]).count();
+    for t in &mut tris {
+        *t = t.map(|v| renumber[v]);
+    }
+    let vertex_source = kept_source;
+
+    let vertices: Vec<Vertex> = vertex_source
+        .iter()
+        .map(|&s| {
+            let p = raw.positions[s];
+            let n = given_normals
+                .as_ref()
+                .map_or_else(Vector3::zeros, |ns| ns[s]);
+            let mut v = match &raw.shapes {
+                Some(shapes) if shapes.len() == nv => {
+                    Vertex::new(curves::VertexData::new(p, n, shapes[s]))
+                }
+                _ => Vertex::without_curvature(p, n),
+            };
+            if v.curvature_known {
+                v.data.shape = symmetric(&v.data.shape);
+            }
+            if let Some(name) = raw.vertex_names.as_ref().and_then(|n| n.get(s)) {
+                v.name = Some(name.clone());
+            }
+            if !raw.properties.is_empty() {
+                let mut extra = ExtraFields::new();
+                for (k, vals) in &raw.properties {
+                    if let Some(x) = vals.get(s) {
+                        extra.insert(k.clone(), vec![*x]);
+                    }
+                }
+                v.extra = extra;
+            }
+            v
+        })
+        .collect();
+
+    // Rule 9: validate; drop what still fails, boundedly.
+    let mut face_source = source;
+    let mesh = loop {
+        match Mesh::new_allowing_degenerate(vertices.clone(), tris.clone()) {
+            Ok(m) => break m,
+            Err(e) => {
+                let culprit = match &e {
+                    MeshError::NonManifoldEdge { faces, .. } => faces.last().copied(),
+                    MeshError::InconsistentOrientation { faces, .. } => Some(faces[1]),
+                    MeshError::NonManifoldVertex { vertex } => {
+                        tris.iter().rposition(|t| t.contains(vertex))
+                    }
+                    MeshError::RepeatedVertex { face, .. }
+                    | MeshError::ZeroArea { face, .. }
+                    | MeshError::MissingVertex { face, .. } => Some(*face),
+                    _ => None,
+                };
+                match culprit {
+                    Some(f) if report.dropped_faces.len() < MAX_DROPPED_FACES && f < tris.len() => {
+                        report.dropped_faces.push(face_source[f]);
+                        tris.remove(f);
+                        face_source.remove(f);
+                        if tris.is_empty() {
+                            return Err(RepairError::Empty("every face had to be dropped".into()));
+                        }
+                    }
+                    _ => {
+                        return Err(RepairError::Invalid {
+                            dropped: report.dropped_faces.len(),
+                            source: e,
+                        })
+                    }
+                }
+                // Vertices left unused by a drop stay: an isolated vertex is harmless to a
+                // mesh, and the numbering stays that of `vertex_source`.
+            }
+        }
+    };
+    let mut mesh = mesh;
+    if let Some(names) = &raw.face_names {
+        let n: Vec<String> = face_source
+            .iter()
+            .map(|&s| names.get(s).cloned().unwrap_or_default())
+            .collect();
+        mesh = mesh.with_face_names(n);
+    }
+    mesh.extra = raw.mesh_fields.clone();
+    report.degenerate_faces = (0..mesh.num_faces())
+        .filter(|&f| mesh.is_degenerate_face(f))
+        .collect();
+    report.boundary_edges = mesh.edges().iter().filter(|e| e.is_boundary()).count();
+    report.components = count_components(&mesh);
+    Ok(Repaired {
+        normals_given: given_normals.is_some(),
+        mesh,
+        face_source,
+        vertex_source,
+        report,
+    })
+}
+
+fn symmetric(s: &Matrix3<f64>) -> Matrix3<f64> {
+    (s + s.transpose()) * 0.5
+}
+
+/// Connected components of a mesh's faces (across shared edges).
+pub fn count_components(mesh: &Mesh) -> usize {
+    let mut dsu = Dsu::new(mesh.num_faces());
+    for e in mesh.edges() {
+        if let Some((g, _)) = e.second {
+            dsu.union(e.first.0, g);
+        }
+    }
+    (0..mesh.num_faces()).filter(|&f| dsu.find(f) == f).count()
+}
