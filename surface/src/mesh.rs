@@ -212,7 +212,8 @@ fn is_degenerate([a, b, c]: [Point3<f64>; 3]) -> bool {
     let mut lengths = [e1.norm(), e2.norm(), e3.norm()];
     lengths.sort_by(f64::total_cmp);
     let area2 = e1.cross(&e2).norm();
-    !(area2 > DEGENERATE_FACE_SINE * lengths[1] * lengths[2])
+    let limit = DEGENERATE_FACE_SINE * lengths[1] * lengths[2];
+    area2.partial_cmp(&limit) != Some(std::cmp::Ordering::Greater)
 }
 
 fn check_vertex(i: usize, v: &Vertex) -> Result<(), MeshError> {

@@ -564,9 +564,9 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     let mut first_fan: Vec<Option<usize>> = vec![None; nv];
     let mut extra_copies: std::collections::BTreeMap<usize, usize> = Default::default();
     let mut tris = oriented;
-    for f in 0..tris.len() {
-        for c in 0..3 {
-            let v = tris[f][c];
+    for (f, tri) in tris.iter_mut().enumerate() {
+        for (c, slot) in tri.iter_mut().enumerate() {
+            let v = *slot;
             let fan = dsu.find(3 * f + c);
             match first_fan[v] {
                 None => first_fan[v] = Some(fan),
@@ -577,7 +577,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
                         *extra_copies.entry(v).or_insert(0) += 1;
                         vertex_source.len() - 1
                     });
-                    tris[f][c] = copy;
+                    *slot = copy;
                 }
             }
         }
