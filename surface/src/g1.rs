@@ -6,6 +6,11 @@
 //! occurred. The angle is `atan2(|n₁ × n₂|, n₁ · n₂)`, accurate near zero where `acos` is not.
 //! Interpolation is measured at the same time: patch corners against vertex positions and
 //! normals.
+//!
+//! Faces fitted with the fallback patch ([`crate::fit::Fit::face_fallbacks`]) promise only C0:
+//! their interior boundaries and every exterior edge touching them are measured separately
+//! (`fallback_*`), so the regular figures stay what the scheme guarantees; their corner normals
+//! are left out of the interpolation error.
 
 use nalgebra::Vector3;
 
@@ -34,11 +39,11 @@ pub enum Boundary {
 /// The result of a G1 measurement.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct G1Report {
-    /// Largest normal angle (radians) along interior boundaries.
+    /// Largest normal angle (radians) along interior boundaries of regular faces.
     pub interior_max: f64,
     /// Where it occurred.
     pub interior_at: Option<(Boundary, f64)>,
-    /// Largest normal angle (radians) along exterior edges between faces.
+    /// Largest normal angle (radians) along exterior edges between two regular faces.
     pub exterior_max: f64,
     /// Where it occurred (boundary and curve parameter).
     pub exterior_at: Option<(Boundary, f64)>,
@@ -48,6 +53,12 @@ pub struct G1Report {
     pub normal_error: f64,
     /// Samples where a patch normal was undefined (degenerate derivatives), skipped.
     pub undefined_normals: usize,
+    /// Largest normal angle (radians) along interior boundaries of fallback faces.
+    pub fallback_interior_max: f64,
+    /// Largest normal angle (radians) along exterior edges touching a fallback face.
+    pub fallback_exterior_max: f64,
+    /// Exterior edges touching a fallback face (shared by two faces).
+    pub fallback_edges: usize,
 }
 
 impl G1Report {
@@ -106,7 +117,11 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
         position_error: 0.0,
         normal_error: 0.0,
         undefined_normals: 0,
+        fallback_interior_max: 0.0,
+        fallback_exterior_max: 0.0,
+        fallback_edges: 0,
     };
+    let fallback = fit.fallback_mask(mesh.num_faces());
     let ts: Vec<f64> = (0..samples)
         .map(|s| s as f64 / (samples - 1) as f64)
         .collect();
@@ -117,6 +132,9 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
             let rt = &fit.patches[3 * f + (i + 2) % 3];
             for &t in &ts {
                 match (normal(l, 1.0 - t, 0.0), normal(rt, 0.0, 1.0 - t)) {
+                    (Some(a), Some(b)) if fallback[f] => {
+                        r.fallback_interior_max = r.fallback_interior_max.max(angle(&a, &b));
+                    }
                     (Some(a), Some(b)) => {
                         let d = angle(&a, &b);
                         if d > r.interior_max || r.interior_at.is_none() {
@@ -130,6 +148,9 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
             // Interpolation at the corner V_i of sub-patch i.
             let v = &mesh.vertices()[vi].data;
             r.position_error = r.position_error.max((corner(l, 0) - v.p).norm());
+            if fallback[f] {
+                continue;
+            }
             match normal(l, 1.0, 0.0) {
                 Some(n) => r.normal_error = r.normal_error.max(angle(&n, &v.n.normalize())),
                 None => r.undefined_normals += 1,
@@ -142,9 +163,14 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
         };
         let pf = &fit.patches[3 * f + lf];
         let pg = &fit.patches[3 * g + lg];
+        let touches_fallback = fallback[f] || fallback[g];
+        r.fallback_edges += usize::from(touches_fallback);
         for &t in &ts {
             // Face f's edge runs from its corner lf (u = 1) to lf+1 (v = 1); g's runs backwards.
             match (normal(pf, 1.0 - t, t), normal(pg, t, 1.0 - t)) {
+                (Some(a), Some(b)) if touches_fallback => {
+                    r.fallback_exterior_max = r.fallback_exterior_max.max(angle(&a, &b));
+                }
                 (Some(a), Some(b)) => {
                     let d = angle(&a, &b);
                     if d > r.exterior_max || r.exterior_at.is_none() {

@@ -29,6 +29,7 @@
 pub mod beztri;
 pub mod datasets;
 pub mod fairing;
+pub mod fallback;
 pub mod fit;
 pub mod g1;
 pub mod interior;
@@ -45,7 +46,9 @@ pub use datasets::{
     dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,
     DATASET_NAMES,
 };
-pub use fit::{face_curves, fit, fit_into, Fit, FitError};
+pub use fit::{
+    face_curves, fit, fit_into, DegenerateEdge, FaceFallback, FaceFallbackReason, Fit, FitError,
+};
 pub use g1::{measure as measure_g1, Boundary, G1Report};
 pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
 pub use metrics::{compare as compare_with_truth, SurfaceErrors};
