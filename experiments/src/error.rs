@@ -24,6 +24,17 @@ pub enum ExperimentError {
     /// A figure could not be drawn or written.
     #[error(transparent)]
     Render(#[from] render::RenderError),
+    /// A mesh file could not be read.
+    #[error(transparent)]
+    MeshIo(meshio::MeshIoError),
+    /// A mesh file was read but could not be made into a mesh to fit.
+    #[error("{}: {source}", path.display())]
+    Prepare {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: estimate::PrepareError,
+    },
     /// A command-line setting names something that does not exist.
     #[error("{0}")]
     Usage(String),

@@ -7,7 +7,7 @@
 //! defect, the interpolation error, the curve statistics and the time of each stage.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -17,19 +17,19 @@ use solver::SolverKind;
 use surface::fairing::{choose_interior, InteriorChoice, InteriorStats};
 use surface::{fit, measure_g1, Fit, InteriorParameters, Mesh};
 
-use crate::datasets::load;
 use crate::error::ExperimentError;
+use crate::input::{load, InputArgs};
 use crate::output::write_result;
+
+/// How many fallback faces and degenerate edges the terminal summary lists by name.
+const FALLBACKS_LISTED: usize = 10;
 
 /// Options of the `fit` experiment.
 #[derive(clap::Args, Debug)]
 pub struct FitArgs {
-    /// A data set (ring, sphere, capsule, octa) or a mesh file (`.m` testbed format, `.obj`).
-    #[arg(long, default_value = "ring")]
-    data: String,
-    /// Resolution of a named data set (its default when absent).
-    #[arg(long)]
-    resolution: Option<usize>,
+    /// The input mesh and how to complete it.
+    #[command(flatten)]
+    input: InputArgs,
     /// Boundary-curve construction: chord, dbhs or optimized.
     #[arg(long, default_value = "chord")]
     curves: String,
@@ -53,36 +53,24 @@ pub struct FitArgs {
     #[arg(long)]
     out: Option<PathBuf>,
     /// Tessellate the patches at this many segments per patch edge (the testbed's `Tess -s`)
-    /// and write the welded triangle mesh with normals as OBJ to `--mesh-out`.
+    /// and write the welded triangle mesh to `--mesh-out`.
     #[arg(long, default_value_t = 4)]
     tess: usize,
-    /// Where to write the tessellation (OBJ); none is made when absent.
+    /// Where to write the tessellation, in the format its extension names (.obj, .ply, .off,
+    /// .stl, .glb, .m): positions and normals; PLY and glTF also get vertex colours by Gaussian
+    /// curvature (the testbed's KColor), PLY the curvatures as properties `gaussian`, `mean`.
     #[arg(long)]
     mesh_out: Option<PathBuf>,
-}
-
-fn read_mesh(arg: &str, resolution: Option<usize>) -> Result<Mesh, ExperimentError> {
-    let path = Path::new(arg);
-    let usage = |e: String| ExperimentError::Usage(e);
-    match path.extension().and_then(|e| e.to_str()) {
-        Some("m") => surface::read_testbed_file(path).map_err(|e| usage(e.to_string())),
-        Some("obj") => surface::read_obj_file(path).map_err(|e| usage(e.to_string())),
-        _ => {
-            if resolution.is_some() {
-                surface::dataset_by_name(arg, resolution)
-                    .map(|d| d.mesh)
-                    .map_err(|e| usage(e.to_string()))
-            } else {
-                load(arg).map(|d| d.mesh)
-            }
-        }
-    }
 }
 
 /// Runs the experiment.
 pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t0 = Instant::now();
-    let mesh = read_mesh(&args.data, args.resolution)?;
+    let loaded = load(&args.input)?;
+    for note in &loaded.notes {
+        eprintln!("  {note}");
+    }
+    let mesh = loaded.mesh;
     let t_read = t0.elapsed().as_secs_f64();
     let options = MethodOptions {
         dbhs_pick: args.dbhs_pick,
@@ -97,9 +85,9 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     };
     let t1 = Instant::now();
     let fitted = fit(&mesh, method.as_ref(), &|_| params)
-        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.data)))?;
+        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
     let (fitted, stats) = refit_interior(&mesh, method.as_ref(), fitted, args.interior)
-        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.data)))?;
+        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
     let t_fit = t1.elapsed().as_secs_f64();
     if args.interior != InteriorChoice::Default {
         eprintln!(
@@ -130,12 +118,18 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         let t3 = Instant::now();
         let tess = surface::tessellate(&fitted.bezier_patches(), args.tess)
             .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;
-        let mut bytes = Vec::new();
-        tess.write_obj(&mut bytes)
-            .map_err(|source| ExperimentError::Write {
-                path: path.clone(),
-                source,
+        crate::output::refuse_overwriting_input(path, &args.input.data)?;
+        let format = meshio::format_for_path(path)
+            .filter(|f| f.can_write())
+            .ok_or_else(|| {
+                ExperimentError::Usage(format!(
+                    "--mesh-out {}: unsupported output format",
+                    path.display()
+                ))
             })?;
+        let raw = tessellation_to_raw(&tess);
+        let bytes = meshio::write_bytes(&raw, format, &meshio::WriteOptions::new())
+            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", path.display())))?;
         write_result(Some(path), &bytes)?;
         eprintln!(
             "  tessellation: s = {}, {} vertices, {} triangles, {} seam welds, in {:.3} s → {}",
@@ -150,7 +144,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let faces = mesh.num_faces();
     eprintln!(
         "fit: {} ({} vertices, {} edges, {} faces), curves {}, β = {}, c = {}",
-        args.data,
+        args.input.data,
         mesh.num_vertices(),
         mesh.num_edges(),
         faces,
@@ -162,6 +156,30 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         "  G1 defect: interior {:.3e} rad, exterior {:.3e} rad; interpolation: position {:.3e}, normal {:.3e} rad",
         g1.interior_max, g1.exterior_max, g1.position_error, g1.normal_error
     );
+    if !fitted.face_fallbacks.is_empty() {
+        eprintln!(
+            "  fallback: {} faces fitted C0 ({} edges touch them; G1 defect there: interior {:.3e} rad, exterior {:.3e} rad)",
+            fitted.face_fallbacks.len(),
+            g1.fallback_edges,
+            g1.fallback_interior_max,
+            g1.fallback_exterior_max
+        );
+        for fb in fitted.face_fallbacks.iter().take(FALLBACKS_LISTED) {
+            eprintln!("    face {}: {}", fb.face, fb.reason);
+        }
+        if fitted.face_fallbacks.len() > FALLBACKS_LISTED {
+            eprintln!("    … ({} in all)", fitted.face_fallbacks.len());
+        }
+    }
+    if !fitted.degenerate_edges.is_empty() {
+        eprintln!(
+            "  degenerate edges: {} fitted with straight cubics",
+            fitted.degenerate_edges.len()
+        );
+        for d in fitted.degenerate_edges.iter().take(FALLBACKS_LISTED) {
+            eprintln!("    edge {}: {}", d.edge, d.error);
+        }
+    }
     eprintln!(
         "  curves: {} fallbacks to chord, {} unconverged optimizations, {} flipped tangents",
         fitted.fallbacks, fitted.unconverged, fitted.flipped_tangents
@@ -190,4 +208,28 @@ pub fn refit_interior(
     }
     let refit = fit(mesh, method, &|f| params[f])?;
     Ok((refit, stats))
+}
+
+/// A tessellation as a raw mesh for the writers: positions, normals, colours by Gaussian
+/// curvature (diverging map, limit the 95th percentile of |K| so a few spikes do not wash the
+/// picture out) and the curvatures as properties `gaussian`, `mean`.
+pub fn tessellation_to_raw(tess: &surface::Tessellation) -> meshio::RawMesh {
+    let mut raw = meshio::RawMesh::from_triangles(tess.positions.clone(), &tess.faces);
+    raw.normals = Some(tess.normals.clone());
+    let mut abs: Vec<f64> = tess.gaussian.iter().map(|k| k.abs()).filter(|k| k.is_finite()).collect();
+    abs.sort_by(f64::total_cmp);
+    let limit = abs
+        .get(abs.len().saturating_sub(1) * 95 / 100)
+        .copied()
+        .filter(|l| *l > 0.0)
+        .unwrap_or(1.0);
+    raw.colors = Some(
+        tess.gaussian
+            .iter()
+            .map(|k| render::colors::diverging(*k, limit))
+            .collect(),
+    );
+    raw.properties.insert("gaussian".into(), tess.gaussian.clone());
+    raw.properties.insert("mean".into(), tess.mean.clone());
+    raw
 }

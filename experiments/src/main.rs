@@ -4,10 +4,13 @@
 //! experiments and each one's `--help` its options and defaults. Experiments write their results
 //! atomically (temporary file, then rename) so an interrupted run never leaves half a file.
 
+mod convert;
 mod curve;
 mod datasets;
 mod error;
+mod estimation;
 mod fit;
+mod input;
 mod interior;
 mod output;
 mod ring;
@@ -50,6 +53,13 @@ enum Experiment {
     /// Fit a data set or mesh file with the modified Shirman–Séquin scheme; write the patches as
     /// JSON Lines and report G1 defect, interpolation error and speed.
     Fit(fit::FitArgs),
+    /// Read a mesh in any supported format, repair it, estimate what it lacks (normals, shape
+    /// tensors) and write it in the format of the output's extension.
+    Convert(convert::ConvertArgs),
+    /// Every normal and curvature estimator against the exact data of the analytic surfaces at
+    /// several resolutions, regular and irregular: errors, convergence orders, libigl's golden
+    /// numbers, and the ring study rebuilt from estimated data.
+    Estimation(estimation::EstimationArgs),
 }
 
 fn main() -> ExitCode {
@@ -62,6 +72,8 @@ fn main() -> ExitCode {
         Experiment::Interior(args) => interior::run(&args),
         Experiment::Solvers(args) => solvers::run(&args),
         Experiment::Fit(args) => fit::run(&args),
+        Experiment::Convert(args) => convert::run(&args),
+        Experiment::Estimation(args) => estimation::run(&args),
     };
     match result {
         Ok(code) => code,

@@ -34,3 +34,18 @@ pub fn ensure_dir(dir: &Path) -> Result<(), ExperimentError> {
         source,
     })
 }
+
+/// Refuses to write `out` when it is the input file `input` (the same file, by any path): a
+/// conversion or fit would otherwise destroy its own input.
+pub fn refuse_overwriting_input(out: &Path, input: &str) -> Result<(), ExperimentError> {
+    let (Ok(a), Ok(b)) = (std::fs::canonicalize(out), std::fs::canonicalize(input)) else {
+        return Ok(());
+    };
+    if a == b {
+        return Err(ExperimentError::Usage(format!(
+            "{}: the output is the input file; choose another output path",
+            out.display()
+        )));
+    }
+    Ok(())
+}

@@ -712,3 +712,52 @@ pub fn count_components(mesh: &Mesh) -> usize {
     }
     (0..mesh.num_faces()).filter(|&f| dsu.find(f) == f).count()
 }
+
+/// A mesh back to a file's raw form, for writers: positions, unit normals (when `with_normals`),
+/// shape tensors (when every vertex's curvature is known), vertex and face names, extra fields
+/// with one value per vertex as properties, the mesh's own fields.
+pub fn mesh_to_raw(mesh: &Mesh, with_normals: bool) -> RawMesh {
+    let vs = mesh.vertices();
+    let mut raw = RawMesh::from_triangles(vs.iter().map(|v| v.data.p).collect(), mesh.faces());
+    if with_normals {
+        raw.normals = Some(vs.iter().map(|v| v.data.n).collect());
+    }
+    if !vs.is_empty() && vs.iter().all(|v| v.curvature_known) {
+        raw.shapes = Some(vs.iter().map(|v| v.data.shape).collect());
+    }
+    if vs.iter().any(|v| v.name.is_some()) {
+        raw.vertex_names = Some(
+            vs.iter()
+                .enumerate()
+                .map(|(i, v)| v.name.clone().unwrap_or_else(|| format!("v{i}")))
+                .collect(),
+        );
+    }
+    if (0..mesh.num_faces()).any(|f| mesh.face_name(f).is_some()) {
+        raw.face_names = Some(
+            (0..mesh.num_faces())
+                .map(|f| {
+                    mesh.face_name(f)
+                        .map_or_else(|| format!("f{f}"), str::to_string)
+                })
+                .collect(),
+        );
+    }
+    // A property is written only when every vertex has it with exactly one value.
+    if let Some(first) = vs.first() {
+        for key in first.extra.keys() {
+            let values: Option<Vec<f64>> = vs
+                .iter()
+                .map(|v| match v.extra.get(key).map(Vec::as_slice) {
+                    Some([x]) => Some(*x),
+                    _ => None,
+                })
+                .collect();
+            if let Some(values) = values {
+                raw.properties.insert(key.clone(), values);
+            }
+        }
+    }
+    raw.mesh_fields = mesh.extra.clone();
+    raw
+}

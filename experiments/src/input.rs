@@ -1,0 +1,79 @@
+//! The `--data` option shared by the experiments that take a mesh: a named analytic data set, or
+//! a mesh file of any supported format, repaired and completed by an estimator
+//! ([`estimate::prepare`]).
+
+use std::path::Path;
+use std::sync::Arc;
+
+use estimate::{EstimateChoice, Prepared};
+use surface::{AnalyticSurface, Mesh};
+
+use crate::error::ExperimentError;
+
+/// Options naming the input mesh and how to complete it.
+#[derive(clap::Args, Debug, Clone)]
+pub struct InputArgs {
+    /// A data set (ring, sphere, capsule, octa) or a mesh file (.m, .obj, .ply, .stl, .off; the
+    /// format by extension, checked against the content).
+    #[arg(long, default_value = "ring")]
+    pub data: String,
+    /// Resolution of a named data set (its default when absent).
+    #[arg(long)]
+    pub resolution: Option<usize>,
+    /// How to estimate what a mesh file lacks (normals, shape tensors): an estimator's name
+    /// (jet, jet2, jet3, jet4, quadric, rusinkiewicz) or `none` (use the file's data only;
+    /// curvature-based curves then need a file with shape tensors).
+    #[arg(long, default_value = "jet")]
+    pub estimate: String,
+    /// Estimate normals even where the file gives them (by default the file's normals are kept
+    /// and only the curvature is estimated, in their tangent planes).
+    #[arg(long)]
+    pub replace_normals: bool,
+}
+
+/// A loaded input mesh.
+pub struct Loaded {
+    /// The mesh, every vertex with a normal and (unless `--estimate none`) a shape tensor.
+    pub mesh: Mesh,
+    /// The exact surface, for a named data set.
+    pub truth: Option<Arc<dyn AnalyticSurface>>,
+    /// What was done to a file (repairs, estimation, notes), one line each.
+    pub notes: Vec<String>,
+    /// The repair and estimation record of a file (`None` for a data set).
+    pub prepared: Option<Prepared>,
+}
+
+/// Loads `--data`: an existing file is read as a mesh; otherwise the name is a data set.
+pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
+    let path = Path::new(&args.data);
+    if path.is_file() || surface::dataset_by_name(&args.data, None).is_err() && path.extension().is_some() {
+        let raw = meshio::read_file(path).map_err(ExperimentError::MeshIo)?;
+        let choice = EstimateChoice::parse(&args.estimate)
+            .map_err(|e| ExperimentError::Usage(format!("--estimate: {e}")))?;
+        let prepared = estimate::prepare(&raw, choice, args.replace_normals)
+            .map_err(|source| ExperimentError::Prepare {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        let mut notes: Vec<String> = raw.notes.clone();
+        notes.extend(prepared.summary_lines());
+        return Ok(Loaded {
+            mesh: prepared.mesh.clone(),
+            truth: None,
+            notes,
+            prepared: Some(prepared),
+        });
+    }
+    let data = surface::dataset_by_name(&args.data, args.resolution).map_err(|e| {
+        ExperimentError::Usage(format!(
+            "{e}; or give a mesh file ({})",
+            meshio::readable_extensions()
+        ))
+    })?;
+    Ok(Loaded {
+        mesh: data.mesh,
+        truth: Some(data.surface),
+        notes: Vec::new(),
+        prepared: None,
+    })
+}
