@@ -13,6 +13,7 @@ mod fit;
 mod input;
 mod interior;
 mod output;
+mod realmesh;
 mod ring;
 mod ring_render;
 mod solvers;
@@ -60,6 +61,9 @@ enum Experiment {
     /// several resolutions, regular and irregular: errors, convergence orders, libigl's golden
     /// numbers, and the ring study rebuilt from estimated data.
     Estimation(estimation::EstimationArgs),
+    /// The committed real-world meshes read, repaired, completed by estimation and fitted with
+    /// every curve construction; pictures of the optimized-curve surfaces.
+    Realmesh(realmesh::RealMeshArgs),
 }
 
 fn main() -> ExitCode {
@@ -74,6 +78,7 @@ fn main() -> ExitCode {
         Experiment::Fit(args) => fit::run(&args),
         Experiment::Convert(args) => convert::run(&args),
         Experiment::Estimation(args) => estimation::run(&args),
+        Experiment::Realmesh(args) => realmesh::run(&args),
     };
     match result {
         Ok(code) => code,
