@@ -15,6 +15,8 @@ pub enum Location {
         element: String,
         /// Its 0-based index.
         index: usize,
+        /// The property of the record being read, when the error is about one value.
+        property: Option<String>,
     },
     /// A byte offset (0-based) in a binary format.
     Byte(u64),
@@ -26,7 +28,16 @@ impl fmt::Display for Location {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Location::Line(n) => write!(f, "line {n}"),
-            Location::Element { element, index } => write!(f, "element {element} {index}"),
+            Location::Element {
+                element,
+                index,
+                property: None,
+            } => write!(f, "element {element} {index}"),
+            Location::Element {
+                element,
+                index,
+                property: Some(p),
+            } => write!(f, "element {element} {index}, property {p}"),
             Location::Byte(o) => write!(f, "byte {o}"),
             Location::Header => write!(f, "header"),
         }
@@ -72,6 +83,26 @@ impl ReadError {
             Location::Element {
                 element: element.to_string(),
                 index,
+                property: None,
+            },
+            message,
+        )
+    }
+
+    /// An error at `property` of record `index` of `element`.
+    pub fn property(
+        format: &'static str,
+        element: &str,
+        index: usize,
+        property: &str,
+        message: impl Into<String>,
+    ) -> Self {
+        Self::new(
+            format,
+            Location::Element {
+                element: element.to_string(),
+                index,
+                property: Some(property.to_string()),
             },
             message,
         )

@@ -165,12 +165,14 @@ fn read_obj(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                     match n {
                         3 | 4 => {}
                         6 => colors.push([r as f32, g as f32, b as f32]),
-                        _ => return Err(err(
-                            ln,
-                            format!(
+                        _ => {
+                            return Err(err(
+                                ln,
+                                format!(
                                 "`v` has {n} values, expected 3, 4 (x y z w) or 6 (x y z r g b)"
                             ),
-                        )),
+                            ))
+                        }
                     }
                     positions.push(Point3::new(x, y, z));
                 }

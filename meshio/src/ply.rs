@@ -419,7 +419,10 @@ fn read_ply(bytes: &[u8]) -> Result<RawMesh, ReadError> {
     let mut skipped: Vec<String> = Vec::new();
     for el in &elements {
         let cap = el.count.min(body.left() / el.min_record_bytes(enc));
-        let at = |i: usize, m: String| ReadError::element(NAME, &el.name, i, m);
+        let at = |i: usize, prop: Option<&str>, m: String| match prop {
+            Some(p) => ReadError::property(NAME, &el.name, i, p, m),
+            None => ReadError::element(NAME, &el.name, i, m),
+        };
         if el.name == "vertex" && !seen_vertex {
             seen_vertex = true;
             read_vertices(&mut body, el, cap, &mut mesh, &at)?;
@@ -441,16 +444,15 @@ fn read_ply(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                     match need {
                         Some(need) if need <= body.left() => body.pos += need,
                         _ => {
-                            let i = if size == 0 { 0 } else { body.left() / size };
-                            return Err(at(i, EOF.to_string()));
+                            let i = body.left().checked_div(size).unwrap_or(0);
+                            return Err(at(i, None, EOF.to_string()));
                         }
                     }
                 }
                 _ => {
                     for i in 0..el.count {
                         for p in &el.props {
-                            body.skip(p.kind)
-                                .map_err(|m| at(i, format!("property {}: {m}", p.name)))?;
+                            body.skip(p.kind).map_err(|m| at(i, Some(&p.name), m))?;
                         }
                     }
                 }
@@ -470,7 +472,7 @@ fn read_vertices(
     el: &Element,
     cap: usize,
     mesh: &mut RawMesh,
-    at: &dyn Fn(usize, String) -> ReadError,
+    at: &dyn Fn(usize, Option<&str>, String) -> ReadError,
 ) -> Result<(), ReadError> {
     let find = |n: &str| {
         el.props
@@ -524,15 +526,12 @@ fn read_vertices(
         let mut col = [0.0f32; 3];
         for ((slot, kind, scale), p) in slots.iter().zip(&el.props) {
             let Kind::Scalar(s) = *kind else {
-                body.skip(*kind)
-                    .map_err(|m| at(i, format!("property {}: {m}", p.name)))?;
+                body.skip(*kind).map_err(|m| at(i, Some(&p.name), m))?;
                 continue;
             };
-            let v = body
-                .value(s)
-                .map_err(|m| at(i, format!("property {}: {m}", p.name)))?;
+            let v = body.value(s).map_err(|m| at(i, Some(&p.name), m))?;
             if !v.is_finite() {
-                return Err(at(i, format!("property {}: {v} is not finite", p.name)));
+                return Err(at(i, Some(&p.name), format!("{v} is not finite")));
             }
             match *slot {
                 Slot::Coord(k) => {
@@ -585,7 +584,7 @@ fn read_faces(
     cap: usize,
     nv: usize,
     mesh: &mut RawMesh,
-    at: &dyn Fn(usize, String) -> ReadError,
+    at: &dyn Fn(usize, Option<&str>, String) -> ReadError,
 ) -> Result<(), ReadError> {
     let Some(list) = el.props.iter().position(|p| {
         (p.name == "vertex_indices" || p.name == "vertex_index")
@@ -601,7 +600,7 @@ fn read_faces(
     let mut other = 0;
     for i in 0..el.count {
         for (k, p) in el.props.iter().enumerate() {
-            let ctx = |m: String| at(i, format!("property {}: {m}", p.name));
+            let ctx = |m: String| at(i, Some(&p.name), m);
             match p.kind {
                 Kind::List { count, item } if k == list => {
                     if item.is_float() {
