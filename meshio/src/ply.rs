@@ -613,7 +613,7 @@ fn read_faces(
                     if n < 3 {
                         return Err(ctx(format!("face has {n} corners, at least 3 needed")));
                     }
-                    if n.saturating_mul(item.size()) > body.left() {
+                    if body.enc != Encoding::Ascii && n.saturating_mul(item.size()) > body.left() {
                         return Err(ctx(EOF.to_string()));
                     }
                     corners.clear();
