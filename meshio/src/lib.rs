@@ -5,7 +5,39 @@
 //! Validation and repair (non-manifold edges, orientation, degenerate faces) happen in the
 //! `surface` crate, so a reader's only job is to read exactly what the file says, or to say
 //! exactly where it cannot.
+//!
+//! Formats ([`FORMATS`]):
+//!
+//! | name | extensions | read | write | module |
+//! | --- | --- | --- | --- | --- |
+//! | `ply` | `.ply` | ascii, binary little and big endian | binary little endian (ascii option) | [`ply`] |
+//! | `obj` | `.obj` | yes | yes | [`obj`] |
+//! | `stl` | `.stl` | ascii and binary | binary (ascii option) | [`stl`] |
+//! | `off` | `.off` | `OFF`, `COFF`, `NOFF`, `CNOFF` | `OFF`/`NOFF`/`COFF`/`CNOFF` | [`off`] |
+//! | `testbed` | `.m` | yes | yes | [`testbed`] |
+//! | `glb` | `.glb` | no | glTF 2.0 binary | [`glb`] |
+//!
+//! Readers never panic, whatever the bytes: they return a [`ReadError`] naming the format, the
+//! place ([`Location`]: line, element record, byte, header) and the problem. They refuse NaN and
+//! infinite numbers and out-of-range face indices, keep polygons as polygons (no
+//! triangulation), and do not check topology. Memory stays within a small multiple of the input
+//! size: no reader reserves room from a header count before checking it against the bytes
+//! left.
 
+pub mod error;
+pub mod format;
+pub mod glb;
+pub mod obj;
+pub mod off;
+pub mod ply;
 pub mod raw;
+pub mod stl;
+pub mod testbed;
+mod util;
 
+pub use error::{Location, MeshIoError, ReadError, WriteError};
+pub use format::{
+    format_by_name, format_for_path, read_bytes, read_file, readable_extensions, sniff_format,
+    write_bytes, MeshFormat, WriteOptions, FORMATS,
+};
 pub use raw::{Polygons, RawMesh, VertexProperties};

@@ -1,0 +1,786 @@
+//! PLY (Stanford polygon format): ascii, binary little endian and binary big endian.
+//!
+//! # Reading
+//!
+//! The header may hold `comment` and `obj_info` lines (skipped) and any elements. Scalar types:
+//! `char uchar short ushort int uint float double` and `int8 uint8 int16 uint16 int32 uint32
+//! float32 float64`.
+//!
+//! * Element `vertex` (required): `x y z` (required) → positions; `nx ny nz` (all three) →
+//!   normals; `red green blue` (all three) → colours, integer types divided by the type's
+//!   maximum (`uchar`: 255), float types kept as they are; every other scalar property (also
+//!   `alpha`, texture coordinates, `quality`, …) → [`RawMesh::properties`] as `f64`. List
+//!   properties of vertices are skipped (with a note).
+//! * Element `face`: the list property `vertex_indices` (or `vertex_index`), any integer count
+//!   and index types → polygons as they are; other face properties are skipped.
+//! * Other elements (`edge`, `material`, …) are parsed and skipped (with a note), lists
+//!   included.
+//!
+//! Refused, naming the element and record (`element vertex 17, property y: …`): a truncated
+//! body, a number that does not parse or is not finite, a list count that is negative, faces
+//! with fewer than 3 corners and indices out of range; header errors name the header line.
+//! Binary bodies are read without allocating per record, and nothing is reserved from a header
+//! count before checking it against the bytes left.
+//!
+//! # Writing
+//!
+//! Binary little endian by default ([`WriteOptions::ascii`] for text): `x y z` as `float`
+//! (`double` with [`WriteOptions::double_precision`]), `nx ny nz` as `float`, colours as
+//! `red green blue` `uchar`, [`RawMesh::properties`] as `float`, faces as
+//! `list uchar int vertex_indices` (`list int int` when a polygon has more than 255 corners).
+//! Shapes and names are not written (PLY has no standard place for them).
+
+use std::fmt::Write as _;
+
+use nalgebra::{Point3, Vector3};
+
+use crate::error::{ReadError, WriteError};
+use crate::format::{MeshFormat, WriteOptions};
+use crate::raw::{Polygons, RawMesh};
+use crate::util::{color_byte, show, validate_for_write};
+
+const NAME: &str = "ply";
+
+/// The PLY format (`.ply`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Ply;
+
+impl MeshFormat for Ply {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn extensions(&self) -> &'static [&'static str] {
+        &["ply"]
+    }
+
+    fn sniff(&self, bytes: &[u8]) -> bool {
+        bytes.starts_with(b"ply\n") || bytes.starts_with(b"ply\r\n")
+    }
+
+    fn read(&self, bytes: &[u8]) -> Result<RawMesh, ReadError> {
+        read_ply(bytes)
+    }
+
+    fn write(&self, mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
+        write_ply(mesh, options)
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    fn parse(name: &[u8]) -> Option<Scalar> {
+        Some(match name {
+            b"char" | b"int8" => Scalar::I8,
+            b"uchar" | b"uint8" => Scalar::U8,
+            b"short" | b"int16" => Scalar::I16,
+            b"ushort" | b"uint16" => Scalar::U16,
+            b"int" | b"int32" => Scalar::I32,
+            b"uint" | b"uint32" => Scalar::U32,
+            b"float" | b"float32" => Scalar::F32,
+            b"double" | b"float64" => Scalar::F64,
+            _ => return None,
+        })
+    }
+
+    fn size(self) -> usize {
+        match self {
+            Scalar::I8 | Scalar::U8 => 1,
+            Scalar::I16 | Scalar::U16 => 2,
+            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
+            Scalar::F64 => 8,
+        }
+    }
+
+    fn is_float(self) -> bool {
+        matches!(self, Scalar::F32 | Scalar::F64)
+    }
+
+    /// Range of an integer type.
+    fn range(self) -> (f64, f64) {
+        match self {
+            Scalar::I8 => (i8::MIN.into(), i8::MAX.into()),
+            Scalar::U8 => (0.0, u8::MAX.into()),
+            Scalar::I16 => (i16::MIN.into(), i16::MAX.into()),
+            Scalar::U16 => (0.0, u16::MAX.into()),
+            Scalar::I32 => (i32::MIN.into(), i32::MAX.into()),
+            Scalar::U32 => (0.0, u32::MAX.into()),
+            Scalar::F32 | Scalar::F64 => (f64::MIN, f64::MAX),
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    Scalar(Scalar),
+    List { count: Scalar, item: Scalar },
+}
+
+#[derive(Clone, Debug)]
+struct Property {
+    name: String,
+    kind: Kind,
+}
+
+#[derive(Clone, Debug)]
+struct Element {
+    name: String,
+    count: usize,
+    props: Vec<Property>,
+}
+
+impl Element {
+    /// Fewest bytes one record can take in `enc`.
+    fn min_record_bytes(&self, enc: Encoding) -> usize {
+        let binary: usize = self
+            .props
+            .iter()
+            .map(|p| match p.kind {
+                Kind::Scalar(s) => s.size(),
+                Kind::List { count, .. } => count.size(),
+            })
+            .sum();
+        match enc {
+            Encoding::Ascii => 2 * self.props.len(),
+            _ => binary,
+        }
+        .max(1)
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Encoding {
+    Ascii,
+    Little,
+    Big,
+}
+
+fn header_err(line: usize, message: impl std::fmt::Display) -> ReadError {
+    ReadError::header(NAME, format!("line {line}: {message}"))
+}
+
+/// Parses the header; returns the encoding, the elements and the offset of the body.
+fn parse_header(bytes: &[u8]) -> Result<(Encoding, Vec<Element>, usize), ReadError> {
+    let mut pos = 0;
+    let mut ln = 0;
+    let mut encoding = None;
+    let mut elements: Vec<Element> = Vec::new();
+    loop {
+        ln += 1;
+        let rest = bytes.get(pos..).unwrap_or(&[]);
+        let Some(end) = rest.iter().position(|&b| b == b'\n') else {
+            return Err(header_err(ln, "the header has no `end_header` line"));
+        };
+        let raw_line = rest.get(..end).unwrap_or(&[]);
+        pos += end + 1;
+        let line = raw_line.strip_suffix(b"\r").unwrap_or(raw_line);
+        let mut toks = line
+            .split(|b| *b == b' ' || *b == b'\t')
+            .filter(|t| !t.is_empty());
+        let first = toks.next().unwrap_or(&[]);
+        if ln == 1 {
+            if first != b"ply" {
+                return Err(header_err(1, "a PLY file starts with `ply`"));
+            }
+            continue;
+        }
+        match first {
+            b"end_header" => break,
+            b"comment" | b"obj_info" | b"" => {}
+            b"format" => {
+                let enc = match toks.next() {
+                    Some(b"ascii") => Encoding::Ascii,
+                    Some(b"binary_little_endian") => Encoding::Little,
+                    Some(b"binary_big_endian") => Encoding::Big,
+                    other => {
+                        return Err(header_err(
+                            ln,
+                            format!("unknown format `{}`", show(other.unwrap_or(&[]))),
+                        ))
+                    }
+                };
+                match toks.next() {
+                    Some(b"1.0") | Some(b"1") => {}
+                    other => {
+                        return Err(header_err(
+                            ln,
+                            format!("unsupported version `{}`", show(other.unwrap_or(&[]))),
+                        ))
+                    }
+                }
+                encoding = Some(enc);
+            }
+            b"element" => {
+                let (Some(name), Some(count)) = (toks.next(), toks.next()) else {
+                    return Err(header_err(ln, "expected `element NAME COUNT`"));
+                };
+                let count = crate::util::parse_usize(count).map_err(|m| header_err(ln, m))?;
+                elements.push(Element {
+                    name: String::from_utf8_lossy(name).into_owned(),
+                    count,
+                    props: Vec::new(),
+                });
+            }
+            b"property" => {
+                let Some(el) = elements.last_mut() else {
+                    return Err(header_err(ln, "`property` before any `element`"));
+                };
+                let ty = toks.next().unwrap_or(&[]);
+                let kind =
+                    if ty == b"list" {
+                        let c = toks.next().unwrap_or(&[]);
+                        let i = toks.next().unwrap_or(&[]);
+                        let (Some(count), Some(item)) = (Scalar::parse(c), Scalar::parse(i)) else {
+                            return Err(header_err(
+                                ln,
+                                format!("unknown list types `{}` `{}`", show(c), show(i)),
+                            ));
+                        };
+                        if count.is_float() {
+                            return Err(header_err(ln, "a list count must have an integer type"));
+                        }
+                        Kind::List { count, item }
+                    } else {
+                        Kind::Scalar(Scalar::parse(ty).ok_or_else(|| {
+                            header_err(ln, format!("unknown type `{}`", show(ty)))
+                        })?)
+                    };
+                let Some(name) = toks.next() else {
+                    return Err(header_err(ln, "property without a name"));
+                };
+                el.props.push(Property {
+                    name: String::from_utf8_lossy(name).into_owned(),
+                    kind,
+                });
+            }
+            other => {
+                return Err(header_err(
+                    ln,
+                    format!("unknown header keyword `{}`", show(other)),
+                ))
+            }
+        }
+    }
+    let encoding = encoding.ok_or_else(|| ReadError::header(NAME, "no `format` line"))?;
+    Ok((encoding, elements, pos))
+}
+
+/// The body, read value by value.
+struct Body<'a> {
+    data: &'a [u8],
+    pos: usize,
+    enc: Encoding,
+}
+
+const EOF: &str = "unexpected end of file";
+
+impl Body<'_> {
+    fn left(&self) -> usize {
+        self.data.len().saturating_sub(self.pos)
+    }
+
+    #[inline]
+    fn take<const N: usize>(&mut self) -> Result<[u8; N], String> {
+        let b = self
+            .data
+            .get(self.pos..self.pos.saturating_add(N))
+            .and_then(|s| <[u8; N]>::try_from(s).ok())
+            .ok_or_else(|| EOF.to_string())?;
+        self.pos += N;
+        Ok(b)
+    }
+
+    /// One value of type `s` (integers exactly, as `f64`). Floats may be non-finite here.
+    #[inline]
+    fn value(&mut self, s: Scalar) -> Result<f64, String> {
+        macro_rules! bin {
+            ($t:ty, $n:literal) => {{
+                let b = self.take::<$n>()?;
+                if self.enc == Encoding::Little {
+                    <$t>::from_le_bytes(b) as f64
+                } else {
+                    <$t>::from_be_bytes(b) as f64
+                }
+            }};
+        }
+        Ok(match (self.enc, s) {
+            (Encoding::Ascii, _) => return self.ascii_value(s),
+            (_, Scalar::I8) => bin!(i8, 1),
+            (_, Scalar::U8) => bin!(u8, 1),
+            (_, Scalar::I16) => bin!(i16, 2),
+            (_, Scalar::U16) => bin!(u16, 2),
+            (_, Scalar::I32) => bin!(i32, 4),
+            (_, Scalar::U32) => bin!(u32, 4),
+            (_, Scalar::F32) => bin!(f32, 4),
+            (_, Scalar::F64) => bin!(f64, 8),
+        })
+    }
+
+    fn ascii_value(&mut self, s: Scalar) -> Result<f64, String> {
+        let rest = self.data.get(self.pos..).unwrap_or(&[]);
+        let start = rest
+            .iter()
+            .position(|b| !b.is_ascii_whitespace())
+            .ok_or_else(|| EOF.to_string())?;
+        let tok = rest.get(start..).unwrap_or(&[]);
+        let len = tok
+            .iter()
+            .position(|b| b.is_ascii_whitespace())
+            .unwrap_or(tok.len());
+        let tok = tok.get(..len).unwrap_or(&[]);
+        self.pos += start + len;
+        let text = std::str::from_utf8(tok).ok();
+        if s.is_float() {
+            text.and_then(|t| t.parse::<f64>().ok())
+                .ok_or_else(|| format!("`{}` is not a number", show(tok)))
+        } else {
+            let v = text
+                .and_then(|t| t.parse::<i64>().ok())
+                .ok_or_else(|| format!("`{}` is not an integer", show(tok)))?;
+            let (lo, hi) = s.range();
+            let v = v as f64;
+            if v < lo || v > hi {
+                return Err(format!("{v} is out of range for its type"));
+            }
+            Ok(v)
+        }
+    }
+
+    /// Skips a property.
+    fn skip(&mut self, kind: Kind) -> Result<(), String> {
+        match kind {
+            Kind::Scalar(s) => self.skip_values(s, 1),
+            Kind::List { count, item } => {
+                let n = self.count(count)?;
+                self.skip_values(item, n)
+            }
+        }
+    }
+
+    fn skip_values(&mut self, s: Scalar, n: usize) -> Result<(), String> {
+        if self.enc == Encoding::Ascii {
+            for _ in 0..n {
+                self.ascii_value(s)?;
+            }
+            Ok(())
+        } else {
+            let bytes = n.checked_mul(s.size()).ok_or_else(|| EOF.to_string())?;
+            if bytes > self.left() {
+                return Err(EOF.to_string());
+            }
+            self.pos += bytes;
+            Ok(())
+        }
+    }
+
+    fn count(&mut self, s: Scalar) -> Result<usize, String> {
+        let c = self.value(s)?;
+        if c < 0.0 {
+            return Err(format!("negative list count {c}"));
+        }
+        Ok(c as usize)
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Slot {
+    Coord(usize),
+    Normal(usize),
+    Color(usize),
+    Prop(usize),
+    Skip,
+}
+
+fn read_ply(bytes: &[u8]) -> Result<RawMesh, ReadError> {
+    let (enc, elements, body_start) = parse_header(bytes)?;
+    let Some(vertex_el) = elements.iter().find(|e| e.name == "vertex") else {
+        return Err(ReadError::header(NAME, "no `vertex` element"));
+    };
+    let nv = vertex_el.count;
+    let mut body = Body {
+        data: bytes,
+        pos: body_start,
+        enc,
+    };
+    let mut mesh = RawMesh::default();
+    let mut seen_vertex = false;
+    let mut seen_face = false;
+    let mut skipped: Vec<String> = Vec::new();
+    for el in &elements {
+        let cap = el.count.min(body.left() / el.min_record_bytes(enc));
+        let at = |i: usize, prop: Option<&str>, m: String| match prop {
+            Some(p) => ReadError::property(NAME, &el.name, i, p, m),
+            None => ReadError::element(NAME, &el.name, i, m),
+        };
+        if el.name == "vertex" && !seen_vertex {
+            seen_vertex = true;
+            read_vertices(&mut body, el, cap, &mut mesh, &at)?;
+        } else if el.name == "face" && !seen_face {
+            seen_face = true;
+            read_faces(&mut body, el, cap, nv, &mut mesh, &at)?;
+        } else {
+            let all_scalar_size: Option<usize> = el
+                .props
+                .iter()
+                .map(|p| match p.kind {
+                    Kind::Scalar(s) => Some(s.size()),
+                    Kind::List { .. } => None,
+                })
+                .sum();
+            match (enc, all_scalar_size) {
+                (Encoding::Little | Encoding::Big, Some(size)) => {
+                    let need = el.count.checked_mul(size);
+                    match need {
+                        Some(need) if need <= body.left() => body.pos += need,
+                        _ => {
+                            let i = body.left().checked_div(size).unwrap_or(0);
+                            return Err(at(i, None, EOF.to_string()));
+                        }
+                    }
+                }
+                _ => {
+                    for i in 0..el.count {
+                        for p in &el.props {
+                            body.skip(p.kind).map_err(|m| at(i, Some(&p.name), m))?;
+                        }
+                    }
+                }
+            }
+            skipped.push(format!("{} ({})", el.name, el.count));
+        }
+    }
+    if !skipped.is_empty() {
+        mesh.notes
+            .push(format!("skipped elements: {}", skipped.join(", ")));
+    }
+    Ok(mesh)
+}
+
+fn read_vertices(
+    body: &mut Body<'_>,
+    el: &Element,
+    cap: usize,
+    mesh: &mut RawMesh,
+    at: &dyn Fn(usize, Option<&str>, String) -> ReadError,
+) -> Result<(), ReadError> {
+    let find = |n: &str| {
+        el.props
+            .iter()
+            .position(|p| p.name == n && matches!(p.kind, Kind::Scalar(_)))
+    };
+    let (Some(_), Some(_), Some(_)) = (find("x"), find("y"), find("z")) else {
+        return Err(ReadError::header(
+            NAME,
+            "element vertex needs scalar properties x, y and z",
+        ));
+    };
+    let has_normals = find("nx").is_some() && find("ny").is_some() && find("nz").is_some();
+    let has_colors = find("red").is_some() && find("green").is_some() && find("blue").is_some();
+    let mut prop_names: Vec<String> = Vec::new();
+    let mut skipped_lists = Vec::new();
+    let slots: Vec<(Slot, Kind, f64)> = el
+        .props
+        .iter()
+        .map(|p| {
+            let Kind::Scalar(s) = p.kind else {
+                skipped_lists.push(p.name.clone());
+                return (Slot::Skip, p.kind, 1.0);
+            };
+            let scale = if s.is_float() { 1.0 } else { s.range().1 };
+            let slot = match p.name.as_str() {
+                "x" => Slot::Coord(0),
+                "y" => Slot::Coord(1),
+                "z" => Slot::Coord(2),
+                "nx" if has_normals => Slot::Normal(0),
+                "ny" if has_normals => Slot::Normal(1),
+                "nz" if has_normals => Slot::Normal(2),
+                "red" if has_colors => Slot::Color(0),
+                "green" if has_colors => Slot::Color(1),
+                "blue" if has_colors => Slot::Color(2),
+                _ => {
+                    prop_names.push(p.name.clone());
+                    Slot::Prop(prop_names.len() - 1)
+                }
+            };
+            (slot, p.kind, scale)
+        })
+        .collect();
+    let mut positions = Vec::with_capacity(cap);
+    let mut normals = Vec::with_capacity(if has_normals { cap } else { 0 });
+    let mut colors = Vec::with_capacity(if has_colors { cap } else { 0 });
+    let mut props: Vec<Vec<f64>> = prop_names.iter().map(|_| Vec::with_capacity(cap)).collect();
+    for i in 0..el.count {
+        let mut c = [0.0f64; 3];
+        let mut n = [0.0f64; 3];
+        let mut col = [0.0f32; 3];
+        for ((slot, kind, scale), p) in slots.iter().zip(&el.props) {
+            let Kind::Scalar(s) = *kind else {
+                body.skip(*kind).map_err(|m| at(i, Some(&p.name), m))?;
+                continue;
+            };
+            let v = body.value(s).map_err(|m| at(i, Some(&p.name), m))?;
+            if !v.is_finite() {
+                return Err(at(i, Some(&p.name), format!("{v} is not finite")));
+            }
+            match *slot {
+                Slot::Coord(k) => {
+                    if let Some(x) = c.get_mut(k) {
+                        *x = v;
+                    }
+                }
+                Slot::Normal(k) => {
+                    if let Some(x) = n.get_mut(k) {
+                        *x = v;
+                    }
+                }
+                Slot::Color(k) => {
+                    if let Some(x) = col.get_mut(k) {
+                        *x = (v / scale) as f32;
+                    }
+                }
+                Slot::Prop(k) => {
+                    if let Some(x) = props.get_mut(k) {
+                        x.push(v);
+                    }
+                }
+                Slot::Skip => {}
+            }
+        }
+        positions.push(Point3::from(c));
+        if has_normals {
+            normals.push(Vector3::from(n));
+        }
+        if has_colors {
+            colors.push(col);
+        }
+    }
+    mesh.positions = positions;
+    mesh.normals = has_normals.then_some(normals);
+    mesh.colors = has_colors.then_some(colors);
+    mesh.properties = prop_names.into_iter().zip(props).collect();
+    if !skipped_lists.is_empty() {
+        mesh.notes.push(format!(
+            "skipped vertex list properties: {}",
+            skipped_lists.join(", ")
+        ));
+    }
+    Ok(())
+}
+
+fn read_faces(
+    body: &mut Body<'_>,
+    el: &Element,
+    cap: usize,
+    nv: usize,
+    mesh: &mut RawMesh,
+    at: &dyn Fn(usize, Option<&str>, String) -> ReadError,
+) -> Result<(), ReadError> {
+    let Some(list) = el.props.iter().position(|p| {
+        (p.name == "vertex_indices" || p.name == "vertex_index")
+            && matches!(p.kind, Kind::List { .. })
+    }) else {
+        return Err(ReadError::header(
+            NAME,
+            "element face needs a list property vertex_indices (or vertex_index)",
+        ));
+    };
+    let mut polys = Polygons::with_capacity(cap, cap.saturating_mul(3));
+    let mut corners: Vec<usize> = Vec::new();
+    let mut other = 0;
+    for i in 0..el.count {
+        for (k, p) in el.props.iter().enumerate() {
+            let ctx = |m: String| at(i, Some(&p.name), m);
+            match p.kind {
+                Kind::List { count, item } if k == list => {
+                    if item.is_float() {
+                        return Err(ReadError::header(
+                            NAME,
+                            format!("face property {} has a float index type", p.name),
+                        ));
+                    }
+                    let n = body.count(count).map_err(ctx)?;
+                    if n < 3 {
+                        return Err(ctx(format!("face has {n} corners, at least 3 needed")));
+                    }
+                    if body.enc != Encoding::Ascii && n.saturating_mul(item.size()) > body.left() {
+                        return Err(ctx(EOF.to_string()));
+                    }
+                    corners.clear();
+                    for _ in 0..n {
+                        let v = body.value(item).map_err(ctx)?;
+                        if v < 0.0 || v >= nv as f64 {
+                            return Err(ctx(format!(
+                                "vertex index {v} is out of range ({nv} vertices)"
+                            )));
+                        }
+                        corners.push(v as usize);
+                    }
+                    polys.push(&corners);
+                }
+                kind => {
+                    if i == 0 {
+                        other += 1;
+                    }
+                    body.skip(kind).map_err(ctx)?;
+                }
+            }
+        }
+    }
+    mesh.polygons = polys;
+    if other > 0 {
+        mesh.notes
+            .push(format!("skipped {other} other face properties"));
+    }
+    Ok(())
+}
+
+const RESERVED: &[&str] = &["x", "y", "z", "nx", "ny", "nz", "red", "green", "blue"];
+
+fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
+    validate_for_write(mesh, NAME)?;
+    for k in mesh.properties.keys() {
+        if k.is_empty() || k.bytes().any(|b| b.is_ascii_whitespace() || !b.is_ascii()) {
+            return Err(WriteError::invalid(
+                NAME,
+                format!("property name `{k}` is not a PLY name (ASCII without spaces)"),
+            ));
+        }
+        if RESERVED.contains(&k.as_str()) {
+            return Err(WriteError::invalid(
+                NAME,
+                format!("property `{k}` would clash with a standard vertex property"),
+            ));
+        }
+    }
+    if mesh.positions.len() > i32::MAX as usize {
+        return Err(WriteError::invalid(
+            NAME,
+            "more vertices than int indices hold",
+        ));
+    }
+    let big_faces = mesh.polygons.iter().any(|p| p.len() > 255);
+    let ascii = options.ascii;
+    let pos_ty = if options.double_precision {
+        "double"
+    } else {
+        "float"
+    };
+    let mut h = String::new();
+    h.push_str("ply\n");
+    h.push_str(if ascii {
+        "format ascii 1.0\n"
+    } else {
+        "format binary_little_endian 1.0\n"
+    });
+    h.push_str("comment written by meshio\n");
+    let _ = writeln!(h, "element vertex {}", mesh.positions.len());
+    for c in ["x", "y", "z"] {
+        let _ = writeln!(h, "property {pos_ty} {c}");
+    }
+    if mesh.normals.is_some() {
+        h.push_str("property float nx\nproperty float ny\nproperty float nz\n");
+    }
+    if mesh.colors.is_some() {
+        h.push_str("property uchar red\nproperty uchar green\nproperty uchar blue\n");
+    }
+    for k in mesh.properties.keys() {
+        let _ = writeln!(h, "property float {k}");
+    }
+    let _ = writeln!(h, "element face {}", mesh.polygons.len());
+    h.push_str(if big_faces {
+        "property list int int vertex_indices\n"
+    } else {
+        "property list uchar int vertex_indices\n"
+    });
+    h.push_str("end_header\n");
+    let props: Vec<&Vec<f64>> = mesh.properties.values().collect();
+    let vbytes = if options.double_precision { 24 } else { 12 }
+        + if mesh.normals.is_some() { 12 } else { 0 }
+        + if mesh.colors.is_some() { 3 } else { 0 }
+        + 4 * props.len();
+    let mut out = Vec::with_capacity(
+        h.len()
+            + vbytes * mesh.positions.len()
+            + 4 * mesh.polygons.corner_count()
+            + mesh.polygons.len(),
+    );
+    out.extend_from_slice(h.as_bytes());
+    if ascii {
+        let mut s = String::new();
+        for (i, p) in mesh.positions.iter().enumerate() {
+            if options.double_precision {
+                let _ = write!(s, "{:?} {:?} {:?}", p.x, p.y, p.z);
+            } else {
+                let _ = write!(s, "{:?} {:?} {:?}", p.x as f32, p.y as f32, p.z as f32);
+            }
+            if let Some(n) = mesh.normals.as_ref().and_then(|n| n.get(i)) {
+                let _ = write!(s, " {:?} {:?} {:?}", n.x as f32, n.y as f32, n.z as f32);
+            }
+            if let Some(c) = mesh.colors.as_ref().and_then(|c| c.get(i)) {
+                let _ = write!(
+                    s,
+                    " {} {} {}",
+                    color_byte(c[0]),
+                    color_byte(c[1]),
+                    color_byte(c[2])
+                );
+            }
+            for vs in &props {
+                let _ = write!(s, " {:?}", vs.get(i).copied().unwrap_or(0.0) as f32);
+            }
+            s.push('\n');
+        }
+        for poly in mesh.polygons.iter() {
+            let _ = write!(s, "{}", poly.len());
+            for &i in poly {
+                let _ = write!(s, " {i}");
+            }
+            s.push('\n');
+        }
+        out.extend_from_slice(s.as_bytes());
+    } else {
+        for (i, p) in mesh.positions.iter().enumerate() {
+            for x in [p.x, p.y, p.z] {
+                if options.double_precision {
+                    out.extend_from_slice(&x.to_le_bytes());
+                } else {
+                    out.extend_from_slice(&(x as f32).to_le_bytes());
+                }
+            }
+            if let Some(n) = mesh.normals.as_ref().and_then(|n| n.get(i)) {
+                for x in [n.x, n.y, n.z] {
+                    out.extend_from_slice(&(x as f32).to_le_bytes());
+                }
+            }
+            if let Some(c) = mesh.colors.as_ref().and_then(|c| c.get(i)) {
+                out.extend_from_slice(&[color_byte(c[0]), color_byte(c[1]), color_byte(c[2])]);
+            }
+            for vs in &props {
+                let x = vs.get(i).copied().unwrap_or(0.0) as f32;
+                out.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+        for poly in mesh.polygons.iter() {
+            if big_faces {
+                out.extend_from_slice(&(poly.len() as i32).to_le_bytes());
+            } else {
+                out.push(poly.len() as u8);
+            }
+            for &i in poly {
+                out.extend_from_slice(&(i as i32).to_le_bytes());
+            }
+        }
+    }
+    Ok(out)
+}

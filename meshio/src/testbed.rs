@@ -1,0 +1,771 @@
+//! The testbed's mesh format (`.m`): the "semi-dstruct" input of Lounsbery et al. (1990).
+//!
+//! ```text
+//! % The mesh description for an octahedron.
+//! px = (Point . (pos . [1,0,0]) (norm . [1,0,0]));
+//! ...
+//! PPP = [px,py,pz];
+//! ...
+//! mesh = {PPP,PMP,MPP,MMP,PPM,PMM,MPM,MMM};
+//! ```
+//!
+//! # Reading
+//!
+//! Whitespace (line breaks included) is free between tokens; `%` starts a comment running to
+//! the end of the line. Statements end with `;`:
+//!
+//! * **point** `NAME = (Point . FIELD*);` with `FIELD = (KEY . VALUE)`, `VALUE` a number or a
+//!   (possibly nested, at most [`MAX_NESTING_DEPTH`] deep) array of numbers, flattened.
+//!   `pos` (3 numbers, required) → positions; `norm` (3 numbers) → normals, normalized (a zero
+//!   normal is an error); `shape` (9 numbers, row by row, the shape tensor `S` with
+//!   `κn(d) = dᵀ S d`) → shapes, checked symmetric within [`SHAPE_SYMMETRY_TOLERANCE`] and then
+//!   symmetrized. `norm` and `shape` must be given for every point or for none. Any other
+//!   field → [`RawMesh::properties`]: a field of one number keeps its key, a field of `k > 1`
+//!   numbers becomes the properties `KEY[0]` … `KEY[k-1]`; every point must have the field with
+//!   the same number of values. The point's name → [`RawMesh::vertex_names`].
+//! * **face** `NAME = [V1, V2, …];` naming 3 or more points (kept as a polygon).
+//! * **mesh** `mesh = {F1, F2, …};` exactly once: the faces of the mesh, in this order, named
+//!   in [`RawMesh::face_names`]. Faces not listed are not part of the mesh (a note counts
+//!   them).
+//! * **mesh field** `NAME = NUMBER;` or `NAME = [numbers…];` → [`RawMesh::mesh_fields`].
+//!
+//! Names may be used before they are defined, and must be unique. Refused, naming the line:
+//! syntax errors, unknown or duplicate names, strings as field values, non-finite numbers,
+//! fields with the wrong number of values, partial `norm`/`shape`/property fields (naming the
+//! point), faces with fewer than 3 corners, nesting deeper than [`MAX_NESTING_DEPTH`].
+//!
+//! # Writing
+//!
+//! The same format: one point statement per vertex (`pos`, `norm` when present, `shape` when
+//! present, then the properties, `KEY[i]` properties regrouped into one array field), one face
+//! statement per polygon, the `mesh` statement, mesh fields. Names are the mesh's, or `v0…`,
+//! `f0…` when absent; they must be identifiers, unique, and not `mesh`. Numbers are written in
+//! Rust's shortest round-trip form, so reading back gives identical values.
+
+use std::collections::{BTreeMap, HashMap, HashSet};
+use std::fmt::Write as _;
+
+use nalgebra::{Matrix3, Point3, Vector3};
+
+use crate::error::{ReadError, WriteError};
+use crate::format::{MeshFormat, WriteOptions};
+use crate::raw::{Polygons, RawMesh};
+use crate::util::{show, validate_for_write};
+
+const NAME: &str = "testbed";
+
+/// How far from symmetric (largest `|S_ij − S_ji|`, relative to the largest entry) a `shape`
+/// field may be: hand-typed or printed tensors carry rounding, anything larger is a mistake.
+pub const SHAPE_SYMMETRY_TOLERANCE: f64 = 1e-9;
+
+/// Deepest nesting of arrays in a field value (`[[1,2],[3,4]]` is 2 deep). Real files use 2;
+/// the cap keeps the recursive parser's stack bounded on hostile input.
+pub const MAX_NESTING_DEPTH: usize = 16;
+
+/// The testbed format (`.m`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Testbed;
+
+impl MeshFormat for Testbed {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn extensions(&self) -> &'static [&'static str] {
+        &["m"]
+    }
+
+    fn sniff(&self, bytes: &[u8]) -> bool {
+        let mut lx = Lexer::new(bytes);
+        matches!(
+            (lx.next(), lx.next(), lx.next()),
+            (
+                Ok((Tok::Ident(_), _)),
+                Ok((Tok::Punct(b'='), _)),
+                Ok((Tok::Punct(b'(' | b'[' | b'{') | Tok::Num(_), _))
+            )
+        )
+    }
+
+    fn read(&self, bytes: &[u8]) -> Result<RawMesh, ReadError> {
+        read_testbed(bytes)
+    }
+
+    fn write(&self, mesh: &RawMesh, _: &WriteOptions) -> Result<Vec<u8>, WriteError> {
+        write_testbed(mesh)
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Tok<'a> {
+    Ident(&'a [u8]),
+    Num(f64),
+    Str,
+    Punct(u8),
+    Eof,
+}
+
+impl Tok<'_> {
+    fn describe(&self) -> String {
+        match self {
+            Tok::Ident(s) => format!("`{}`", show(s)),
+            Tok::Num(x) => format!("number {x}"),
+            Tok::Str => "a string".to_string(),
+            Tok::Punct(c) => format!("`{}`", char::from(*c)),
+            Tok::Eof => "end of file".to_string(),
+        }
+    }
+}
+
+fn err(line: usize, m: impl Into<String>) -> ReadError {
+    ReadError::line(NAME, line, m)
+}
+
+/// A streaming lexer (no token list: memory stays proportional to what the mesh keeps).
+struct Lexer<'a> {
+    b: &'a [u8],
+    i: usize,
+    line: usize,
+}
+
+fn is_ident(c: u8) -> bool {
+    c.is_ascii_alphanumeric() || c == b'_' || c >= 0x80
+}
+
+impl<'a> Lexer<'a> {
+    fn new(b: &'a [u8]) -> Self {
+        Lexer { b, i: 0, line: 1 }
+    }
+
+    fn at(&self, k: usize) -> Option<u8> {
+        self.b.get(k).copied()
+    }
+
+    /// The next token and its line.
+    fn next(&mut self) -> Result<(Tok<'a>, usize), ReadError> {
+        loop {
+            match self.at(self.i) {
+                None => return Ok((Tok::Eof, self.line)),
+                Some(b'\n') => {
+                    self.line += 1;
+                    self.i += 1;
+                }
+                Some(c) if c.is_ascii_whitespace() => self.i += 1,
+                Some(b'%') => {
+                    while self.at(self.i).is_some_and(|c| c != b'\n') {
+                        self.i += 1;
+                    }
+                }
+                Some(_) => break,
+            }
+        }
+        let line = self.line;
+        let start = self.i;
+        let c = self.at(start).unwrap_or(0);
+        let next = self.at(start + 1);
+        let digitish = |d: Option<u8>| d.is_some_and(|d| d.is_ascii_digit() || d == b'.');
+        if c.is_ascii_digit()
+            || ((c == b'-' || c == b'+') && digitish(next))
+            || (c == b'.' && next.is_some_and(|d| d.is_ascii_digit()))
+        {
+            self.i += 1;
+            while let Some(d) = self.at(self.i) {
+                let prev = self.at(self.i - 1);
+                let exp_sign = (d == b'-' || d == b'+') && matches!(prev, Some(b'e' | b'E'));
+                if d.is_ascii_digit() || d == b'.' || d == b'e' || d == b'E' || exp_sign {
+                    self.i += 1;
+                } else {
+                    break;
+                }
+            }
+            let tok = self.b.get(start..self.i).unwrap_or(&[]);
+            let x = crate::util::parse_f64(tok).map_err(|m| err(line, m))?;
+            Ok((Tok::Num(x), line))
+        } else if is_ident(c) {
+            while self.at(self.i).is_some_and(is_ident) {
+                self.i += 1;
+            }
+            Ok((Tok::Ident(self.b.get(start..self.i).unwrap_or(&[])), line))
+        } else if c == b'"' {
+            self.i += 1;
+            loop {
+                match self.at(self.i) {
+                    None => return Err(err(line, "unterminated string")),
+                    Some(b'"') => break,
+                    Some(b'\n') => self.line += 1,
+                    Some(_) => {}
+                }
+                self.i += 1;
+            }
+            self.i += 1;
+            Ok((Tok::Str, line))
+        } else if b"=().[]{},;".contains(&c) {
+            self.i += 1;
+            Ok((Tok::Punct(c), line))
+        } else {
+            Err(err(
+                line,
+                format!("unexpected character `{}`", char::from(c).escape_default()),
+            ))
+        }
+    }
+}
+
+struct Parser<'a> {
+    lx: Lexer<'a>,
+    tok: Tok<'a>,
+    line: usize,
+}
+
+impl<'a> Parser<'a> {
+    fn new(b: &'a [u8]) -> Result<Self, ReadError> {
+        let mut lx = Lexer::new(b);
+        let (tok, line) = lx.next()?;
+        Ok(Parser { lx, tok, line })
+    }
+
+    fn bump(&mut self) -> Result<Tok<'a>, ReadError> {
+        let (t, l) = self.lx.next()?;
+        self.line = l;
+        Ok(std::mem::replace(&mut self.tok, t))
+    }
+
+    fn fail<T>(&self, expected: &str) -> Result<T, ReadError> {
+        Err(err(
+            self.line,
+            format!("expected {expected}, found {}", self.tok.describe()),
+        ))
+    }
+
+    fn punct(&mut self, c: u8, expected: &str) -> Result<(), ReadError> {
+        if self.tok == Tok::Punct(c) {
+            self.bump()?;
+            Ok(())
+        } else {
+            self.fail(expected)
+        }
+    }
+
+    fn eat(&mut self, c: u8) -> Result<bool, ReadError> {
+        let hit = self.tok == Tok::Punct(c);
+        if hit {
+            self.bump()?;
+        }
+        Ok(hit)
+    }
+
+    fn ident(&mut self, expected: &str) -> Result<(String, usize), ReadError> {
+        match self.tok {
+            Tok::Ident(s) => {
+                let out = (String::from_utf8_lossy(s).into_owned(), self.line);
+                self.bump()?;
+                Ok(out)
+            }
+            _ => self.fail(expected),
+        }
+    }
+
+    /// A number or a (nested) array of numbers, flattened into `out`.
+    fn numbers(&mut self, key: &str, out: &mut Vec<f64>, depth: usize) -> Result<(), ReadError> {
+        match self.tok {
+            Tok::Num(x) => {
+                out.push(x);
+                self.bump()?;
+                Ok(())
+            }
+            Tok::Punct(b'[') => {
+                if depth >= MAX_NESTING_DEPTH {
+                    return Err(err(
+                        self.line,
+                        format!("arrays in `{key}` nested deeper than {MAX_NESTING_DEPTH}"),
+                    ));
+                }
+                self.bump()?;
+                if self.eat(b']')? {
+                    return Ok(());
+                }
+                loop {
+                    self.numbers(key, out, depth + 1)?;
+                    if self.eat(b']')? {
+                        return Ok(());
+                    }
+                    self.punct(b',', &format!("`,` or `]` in the array of `{key}`"))?;
+                }
+            }
+            Tok::Str => Err(err(
+                self.line,
+                format!("field `{key}` holds a string; only numeric fields are kept"),
+            )),
+            _ => self.fail(&format!("a number or `[` for the value of `{key}`")),
+        }
+    }
+
+    fn name_list(&mut self, close: u8, what: &str) -> Result<Vec<(String, usize)>, ReadError> {
+        let mut out = Vec::new();
+        if self.eat(close)? {
+            return Ok(out);
+        }
+        loop {
+            out.push(self.ident(&format!("a {what} name"))?);
+            if self.eat(close)? {
+                return Ok(out);
+            }
+            self.punct(
+                b',',
+                &format!("`,` or `{}` in the list of {what}s", char::from(close)),
+            )?;
+        }
+    }
+}
+
+struct Point {
+    name: String,
+    line: usize,
+    pos: [f64; 3],
+    norm: Option<Vector3<f64>>,
+    shape: Option<Matrix3<f64>>,
+    fields: Vec<(String, Vec<f64>)>,
+}
+
+fn parse_point(p: &mut Parser<'_>, name: String, line: usize) -> Result<Point, ReadError> {
+    p.punct(b'(', "`(`")?;
+    let (head, hl) = p.ident("`Point`")?;
+    if head != "Point" {
+        return Err(err(
+            hl,
+            format!("expected `Point` after `(`, found `{head}`"),
+        ));
+    }
+    p.punct(b'.', "`.` after `Point`")?;
+    let mut pos = None;
+    let mut norm = None;
+    let mut shape = None;
+    let mut fields: Vec<(String, Vec<f64>)> = Vec::new();
+    while !p.eat(b')')? {
+        let fl = p.line;
+        p.punct(b'(', "`(` to open a field or `)` to close the point")?;
+        let (key, _) = p.ident("a field name")?;
+        p.punct(b'.', &format!("`.` after field name `{key}`"))?;
+        let mut v = Vec::new();
+        p.numbers(&key, &mut v, 0)?;
+        let dup = match key.as_str() {
+            "pos" | "norm" | "shape" => {
+                let want = if key == "shape" { 9 } else { 3 };
+                if v.len() != want {
+                    return Err(err(
+                        fl,
+                        format!(
+                            "`{key}` of `{name}` has {} numbers, expected {want}",
+                            v.len()
+                        ),
+                    ));
+                }
+                match key.as_str() {
+                    "pos" => pos.replace([v[0], v[1], v[2]]).is_some(),
+                    "norm" => {
+                        let n = Vector3::new(v[0], v[1], v[2]);
+                        let Some(unit) = n.try_normalize(0.0) else {
+                            return Err(err(fl, format!("point `{name}` has a zero normal")));
+                        };
+                        norm.replace(unit).is_some()
+                    }
+                    _ => {
+                        let s = Matrix3::from_row_slice(&v);
+                        let scale = s.amax().max(f64::MIN_POSITIVE);
+                        if (s - s.transpose()).amax() > SHAPE_SYMMETRY_TOLERANCE * scale {
+                            return Err(err(fl, format!("`shape` of `{name}` is not symmetric")));
+                        }
+                        shape.replace((s + s.transpose()) * 0.5).is_some()
+                    }
+                }
+            }
+            _ => {
+                let dup = fields.iter().any(|(k, _)| *k == key);
+                fields.push((key.clone(), v));
+                dup
+            }
+        };
+        if dup {
+            return Err(err(fl, format!("field `{key}` of `{name}` is given twice")));
+        }
+        p.punct(b')', &format!("`)` to close field `{key}`"))?;
+    }
+    let pos = pos.ok_or_else(|| err(line, format!("point `{name}` has no `pos` field")))?;
+    Ok(Point {
+        name,
+        line,
+        pos,
+        norm,
+        shape,
+        fields,
+    })
+}
+
+fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
+    let mut p = Parser::new(bytes)?;
+    let mut points: Vec<Point> = Vec::new();
+    let mut faces: HashMap<String, Vec<(String, usize)>> = HashMap::new();
+    let mut defined: HashMap<String, usize> = HashMap::new();
+    let mut mesh_fields: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    let mut mesh_stmt: Option<(usize, Vec<(String, usize)>)> = None;
+    while p.tok != Tok::Eof {
+        let (name, line) = p.ident("a name at the start of a statement")?;
+        p.punct(b'=', &format!("`=` after `{name}`"))?;
+        if name != "mesh" {
+            if let Some(first) = defined.get(&name) {
+                return Err(err(
+                    line,
+                    format!("`{name}` is already defined (line {first})"),
+                ));
+            }
+            defined.insert(name.clone(), line);
+        }
+        match p.tok {
+            Tok::Punct(b'(') => {
+                let point = parse_point(&mut p, name, line)?;
+                points.push(point);
+            }
+            Tok::Punct(b'[') => {
+                p.bump()?;
+                if matches!(p.tok, Tok::Ident(_)) {
+                    let names = p.name_list(b']', "vertex")?;
+                    if names.len() < 3 {
+                        return Err(err(
+                            line,
+                            format!(
+                                "face `{name}` has {} corners, at least 3 needed",
+                                names.len()
+                            ),
+                        ));
+                    }
+                    faces.insert(name, names);
+                } else {
+                    // A mesh field: re-read the array from its first element.
+                    let mut v = Vec::new();
+                    if !p.eat(b']')? {
+                        loop {
+                            p.numbers(&name, &mut v, 1)?;
+                            if p.eat(b']')? {
+                                break;
+                            }
+                            p.punct(b',', &format!("`,` or `]` in the array of `{name}`"))?;
+                        }
+                    }
+                    mesh_fields.insert(name, v);
+                }
+            }
+            Tok::Num(x) => {
+                p.bump()?;
+                mesh_fields.insert(name, vec![x]);
+            }
+            Tok::Punct(b'{') => {
+                if name != "mesh" {
+                    return Err(err(
+                        line,
+                        format!("a face list in braces must be `mesh = {{…}};`, found `{name}`"),
+                    ));
+                }
+                if let Some((first, _)) = mesh_stmt {
+                    return Err(err(
+                        line,
+                        format!("second `mesh` statement (the first is at line {first})"),
+                    ));
+                }
+                p.bump()?;
+                mesh_stmt = Some((line, p.name_list(b'}', "face")?));
+            }
+            _ => {
+                return p.fail(&format!(
+                    "`(Point . …)`, `[` (a face), `{{` (the mesh) or a number after `{name} =`"
+                ))
+            }
+        }
+        if !p.eat(b';')? {
+            return p.fail("`;` at the end of the statement");
+        }
+    }
+    let Some((_, mesh_faces)) = mesh_stmt else {
+        return Err(err(
+            p.line,
+            "no `mesh = {…};` statement: the mesh has no faces",
+        ));
+    };
+    assemble(points, &faces, mesh_faces, mesh_fields)
+}
+
+fn assemble(
+    points: Vec<Point>,
+    faces: &HashMap<String, Vec<(String, usize)>>,
+    mesh_faces: Vec<(String, usize)>,
+    mesh_fields: BTreeMap<String, Vec<f64>>,
+) -> Result<RawMesh, ReadError> {
+    let n = points.len();
+    let index: HashMap<&str, usize> = points
+        .iter()
+        .enumerate()
+        .map(|(i, pt)| (pt.name.as_str(), i))
+        .collect();
+    let mut polys = Polygons::with_capacity(mesh_faces.len(), 3 * mesh_faces.len());
+    let mut face_names = Vec::with_capacity(mesh_faces.len());
+    let mut corners = Vec::new();
+    for (fname, fline) in &mesh_faces {
+        let Some(def) = faces.get(fname) else {
+            let what = if index.contains_key(fname.as_str()) {
+                "a point, not a face"
+            } else {
+                "not defined"
+            };
+            return Err(err(
+                *fline,
+                format!("mesh refers to unknown face `{fname}` ({what})"),
+            ));
+        };
+        corners.clear();
+        for (vname, vline) in def {
+            let Some(&i) = index.get(vname.as_str()) else {
+                return Err(err(
+                    *vline,
+                    format!("face `{fname}` refers to unknown vertex `{vname}`"),
+                ));
+            };
+            corners.push(i);
+        }
+        polys.push(&corners);
+        face_names.push(fname.clone());
+    }
+    let mut notes = Vec::new();
+    let listed: HashSet<&str> = mesh_faces.iter().map(|(f, _)| f.as_str()).collect();
+    let unlisted = faces
+        .keys()
+        .filter(|f| !listed.contains(f.as_str()))
+        .count();
+    if unlisted > 0 {
+        notes.push(format!(
+            "{unlisted} faces are defined but not listed in `mesh`: not part of the mesh"
+        ));
+    }
+    // All or none: `norm`, `shape`, and each other field.
+    let all_or_none = |what: &str, has: &dyn Fn(&Point) -> bool| -> Result<bool, ReadError> {
+        let k = points.iter().filter(|pt| has(pt)).count();
+        if k == 0 || k == n {
+            return Ok(k > 0);
+        }
+        let missing = points.iter().find(|pt| !has(pt));
+        let (name, line) = missing.map_or(("?", 0), |pt| (pt.name.as_str(), pt.line));
+        Err(err(
+            line,
+            format!("point `{name}` has no `{what}` field, but {k} of the {n} points have one"),
+        ))
+    };
+    let has_norm = all_or_none("norm", &|pt| pt.norm.is_some())?;
+    let has_shape = all_or_none("shape", &|pt| pt.shape.is_some())?;
+    let mut keys: Vec<String> = Vec::new();
+    for pt in &points {
+        for (k, _) in &pt.fields {
+            if !keys.contains(k) {
+                keys.push(k.clone());
+            }
+        }
+    }
+    let mut properties = BTreeMap::new();
+    for key in &keys {
+        let len = points
+            .iter()
+            .find_map(|pt| {
+                pt.fields
+                    .iter()
+                    .find(|(k, _)| k == key)
+                    .map(|(_, v)| v.len())
+            })
+            .unwrap_or(0);
+        let mut cols: Vec<Vec<f64>> = vec![Vec::with_capacity(n); len];
+        for pt in &points {
+            let Some((_, v)) = pt.fields.iter().find(|(k, _)| k == key) else {
+                return Err(err(
+                    pt.line,
+                    format!(
+                        "point `{}` has no `{key}` field, but other points have one",
+                        pt.name
+                    ),
+                ));
+            };
+            if v.len() != len {
+                return Err(err(
+                    pt.line,
+                    format!(
+                        "field `{key}` of point `{}` has {} values, other points have {len}",
+                        pt.name,
+                        v.len()
+                    ),
+                ));
+            }
+            for (c, x) in cols.iter_mut().zip(v) {
+                c.push(*x);
+            }
+        }
+        if len == 1 {
+            properties.insert(key.clone(), cols.pop().unwrap_or_default());
+        } else {
+            for (i, c) in cols.into_iter().enumerate() {
+                properties.insert(format!("{key}[{i}]"), c);
+            }
+        }
+    }
+    let mut mesh = RawMesh {
+        positions: points.iter().map(|pt| Point3::from(pt.pos)).collect(),
+        normals: has_norm.then(|| {
+            points
+                .iter()
+                .map(|pt| pt.norm.unwrap_or_else(Vector3::zeros))
+                .collect()
+        }),
+        shapes: has_shape.then(|| {
+            points
+                .iter()
+                .map(|pt| pt.shape.unwrap_or_else(Matrix3::zeros))
+                .collect()
+        }),
+        properties,
+        polygons: polys,
+        face_names: Some(face_names),
+        mesh_fields,
+        notes,
+        ..RawMesh::default()
+    };
+    mesh.vertex_names = Some(points.into_iter().map(|pt| pt.name).collect());
+    Ok(mesh)
+}
+
+fn is_identifier(s: &str) -> bool {
+    let b = s.as_bytes();
+    b.first()
+        .is_some_and(|&c| c.is_ascii_alphabetic() || c == b'_' || c >= 0x80)
+        && b.iter().all(|&c| is_ident(c))
+}
+
+fn fmt_list(s: &mut String, v: &[f64]) {
+    s.push('[');
+    for (i, x) in v.iter().enumerate() {
+        if i > 0 {
+            s.push(',');
+        }
+        let _ = write!(s, "{x:?}");
+    }
+    s.push(']');
+}
+
+/// Splits a property name `KEY[i]` into `(KEY, i)`.
+fn indexed(name: &str) -> Option<(&str, usize)> {
+    let (key, rest) = name.split_once('[')?;
+    let i = rest.strip_suffix(']')?.parse().ok()?;
+    Some((key, i))
+}
+
+fn write_testbed(mesh: &RawMesh) -> Result<Vec<u8>, WriteError> {
+    validate_for_write(mesh, NAME)?;
+    let bad = |m: String| WriteError::invalid(NAME, m);
+    let vnames: Vec<String> = match &mesh.vertex_names {
+        Some(v) => v.clone(),
+        None => (0..mesh.positions.len()).map(|i| format!("v{i}")).collect(),
+    };
+    let fnames: Vec<String> = match &mesh.face_names {
+        Some(f) => f.clone(),
+        None => (0..mesh.polygons.len()).map(|i| format!("f{i}")).collect(),
+    };
+    let mut seen = HashSet::new();
+    for n in vnames.iter().chain(&fnames) {
+        if !is_identifier(n) || n == "mesh" {
+            return Err(bad(format!(
+                "`{n}` is not a usable name (an identifier other than `mesh`)"
+            )));
+        }
+        if !seen.insert(n.as_str()) {
+            return Err(bad(format!("the name `{n}` is used twice")));
+        }
+    }
+    for k in mesh.mesh_fields.keys() {
+        if !is_identifier(k) || k == "mesh" || seen.contains(k.as_str()) {
+            return Err(bad(format!("mesh field `{k}` is not a usable name")));
+        }
+    }
+    // Fields: KEY[i] regrouped (in index order), other keys alone.
+    let mut groups: BTreeMap<&str, Vec<(usize, &Vec<f64>)>> = BTreeMap::new();
+    for (k, v) in &mesh.properties {
+        match indexed(k) {
+            Some((key, i)) => groups.entry(key).or_default().push((i, v)),
+            None => groups.entry(k.as_str()).or_default().push((0, v)),
+        }
+    }
+    for (key, cols) in groups.iter_mut() {
+        if !is_identifier(key) || matches!(*key, "pos" | "norm" | "shape") {
+            return Err(bad(format!("property `{key}` is not a usable field name")));
+        }
+        cols.sort_by_key(|c| c.0);
+        let single = cols.len() == 1 && mesh.properties.contains_key(*key);
+        let contiguous = cols.iter().enumerate().all(|(j, (i, _))| *i == j);
+        if !single && !contiguous {
+            return Err(bad(format!(
+                "properties `{key}[…]` are not numbered 0, 1, … without gaps"
+            )));
+        }
+    }
+    let mut s = String::with_capacity(80 * mesh.positions.len() + 40 * mesh.polygons.len());
+    s.push_str("% written by meshio\n");
+    let mut vals = Vec::new();
+    for (i, p) in mesh.positions.iter().enumerate() {
+        let name = vnames.get(i).map_or("", String::as_str);
+        let _ = write!(s, "{name} = (Point . (pos . ");
+        fmt_list(&mut s, &[p.x, p.y, p.z]);
+        s.push(')');
+        if let Some(n) = mesh.normals.as_ref().and_then(|n| n.get(i)) {
+            s.push_str(" (norm . ");
+            fmt_list(&mut s, &[n.x, n.y, n.z]);
+            s.push(')');
+        }
+        if let Some(m) = mesh.shapes.as_ref().and_then(|m| m.get(i)) {
+            s.push_str(" (shape . ");
+            let rows: Vec<f64> = (0..3)
+                .flat_map(|r| (0..3).map(move |c| m[(r, c)]))
+                .collect();
+            fmt_list(&mut s, &rows);
+            s.push(')');
+        }
+        for (key, cols) in &groups {
+            vals.clear();
+            vals.extend(cols.iter().map(|(_, v)| v.get(i).copied().unwrap_or(0.0)));
+            let _ = write!(s, " ({key} . ");
+            match (vals.as_slice(), mesh.properties.contains_key(*key)) {
+                ([x], true) => {
+                    let _ = write!(s, "{x:?}");
+                }
+                _ => fmt_list(&mut s, &vals),
+            }
+            s.push(')');
+        }
+        s.push_str(");\n");
+    }
+    for (f, poly) in mesh.polygons.iter().enumerate() {
+        let _ = write!(s, "{} = [", fnames.get(f).map_or("", String::as_str));
+        for (k, &i) in poly.iter().enumerate() {
+            if k > 0 {
+                s.push_str(", ");
+            }
+            s.push_str(vnames.get(i).map_or("", String::as_str));
+        }
+        s.push_str("];\n");
+    }
+    s.push_str("mesh = {");
+    for (f, name) in fnames.iter().enumerate() {
+        if f > 0 {
+            s.push_str(", ");
+        }
+        s.push_str(name);
+    }
+    s.push_str("};\n");
+    for (k, v) in &mesh.mesh_fields {
+        let _ = write!(s, "{k} = ");
+        fmt_list(&mut s, v);
+        s.push_str(";\n");
+    }
+    Ok(s.into_bytes())
+}

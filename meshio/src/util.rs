@@ -1,0 +1,172 @@
+//! Helpers shared by the readers and writers.
+
+use crate::error::WriteError;
+use crate::raw::RawMesh;
+
+/// Lines of a text file, 1-based, without the line break (`\n` or `\r\n`).
+pub(crate) fn lines(bytes: &[u8]) -> impl Iterator<Item = (usize, &[u8])> {
+    bytes.split(|&b| b == b'\n').enumerate().map(|(i, l)| {
+        let l = l.strip_suffix(b"\r").unwrap_or(l);
+        (i + 1, l)
+    })
+}
+
+/// The whitespace-separated tokens of a line.
+pub(crate) fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
+    line.split(|b| b.is_ascii_whitespace())
+        .filter(|t| !t.is_empty())
+}
+
+/// A token for an error message (lossy, at most 40 characters).
+pub(crate) fn show(tok: &[u8]) -> String {
+    let s = String::from_utf8_lossy(tok);
+    if s.chars().count() > 40 {
+        format!("{}…", s.chars().take(40).collect::<String>())
+    } else {
+        s.into_owned()
+    }
+}
+
+/// A finite number, or what is wrong with the token.
+pub(crate) fn parse_f64(tok: &[u8]) -> Result<f64, String> {
+    let x: f64 = std::str::from_utf8(tok)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .ok_or_else(|| format!("`{}` is not a number", show(tok)))?;
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(format!("`{}` is not a finite number", show(tok)))
+    }
+}
+
+/// A non-negative integer, or what is wrong with the token.
+pub(crate) fn parse_usize(tok: &[u8]) -> Result<usize, String> {
+    std::str::from_utf8(tok)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .ok_or_else(|| format!("`{}` is not a non-negative integer", show(tok)))
+}
+
+/// The start of `bytes` after whitespace and whole-line comments starting with `comment`.
+pub(crate) fn skip_space_and_comments(mut bytes: &[u8], comment: u8) -> &[u8] {
+    loop {
+        let start = bytes
+            .iter()
+            .position(|b| !b.is_ascii_whitespace())
+            .unwrap_or(bytes.len());
+        bytes = bytes.get(start..).unwrap_or(&[]);
+        if bytes.first() == Some(&comment) {
+            let end = bytes
+                .iter()
+                .position(|&b| b == b'\n')
+                .unwrap_or(bytes.len());
+            bytes = bytes.get(end..).unwrap_or(&[]);
+        } else {
+            return bytes;
+        }
+    }
+}
+
+/// Checks what every writer relies on: per-vertex arrays of the right length, finite numbers,
+/// face indices in range, no face with fewer than 3 corners.
+pub(crate) fn validate_for_write(mesh: &RawMesh, format: &'static str) -> Result<(), WriteError> {
+    let n = mesh.positions.len();
+    let check_len = |what: &str, len: Option<usize>| match len {
+        Some(l) if l != n => Err(WriteError::invalid(
+            format,
+            format!("{what} has {l} entries for {n} vertices"),
+        )),
+        _ => Ok(()),
+    };
+    check_len("normals", mesh.normals.as_ref().map(Vec::len))?;
+    check_len("shapes", mesh.shapes.as_ref().map(Vec::len))?;
+    check_len("colors", mesh.colors.as_ref().map(Vec::len))?;
+    check_len("vertex_names", mesh.vertex_names.as_ref().map(Vec::len))?;
+    for (k, v) in &mesh.properties {
+        check_len(&format!("property `{k}`"), Some(v.len()))?;
+    }
+    if let Some(names) = &mesh.face_names {
+        if names.len() != mesh.polygons.len() {
+            return Err(WriteError::invalid(
+                format,
+                format!(
+                    "face_names has {} entries for {} faces",
+                    names.len(),
+                    mesh.polygons.len()
+                ),
+            ));
+        }
+    }
+    let nonfinite = |what: &str, i: usize| {
+        Err(WriteError::invalid(
+            format,
+            format!("{what} of vertex {i} is not finite"),
+        ))
+    };
+    for (i, p) in mesh.positions.iter().enumerate() {
+        if !p.coords.iter().all(|x| x.is_finite()) {
+            return nonfinite("position", i);
+        }
+    }
+    if let Some(ns) = &mesh.normals {
+        for (i, v) in ns.iter().enumerate() {
+            if !v.iter().all(|x| x.is_finite()) {
+                return nonfinite("normal", i);
+            }
+        }
+    }
+    if let Some(ss) = &mesh.shapes {
+        for (i, s) in ss.iter().enumerate() {
+            if !s.iter().all(|x| x.is_finite()) {
+                return nonfinite("shape", i);
+            }
+        }
+    }
+    if let Some(cs) = &mesh.colors {
+        for (i, c) in cs.iter().enumerate() {
+            if !c.iter().all(|x| x.is_finite()) {
+                return nonfinite("colour", i);
+            }
+        }
+    }
+    for (k, vs) in &mesh.properties {
+        if let Some(i) = vs.iter().position(|x| !x.is_finite()) {
+            return nonfinite(&format!("property `{k}`"), i);
+        }
+    }
+    for (f, poly) in mesh.polygons.iter().enumerate() {
+        if poly.len() < 3 {
+            return Err(WriteError::invalid(
+                format,
+                format!("face {f} has {} corners (at least 3 needed)", poly.len()),
+            ));
+        }
+        if let Some(&i) = poly.iter().find(|&&i| i >= n) {
+            return Err(WriteError::invalid(
+                format,
+                format!("face {f} refers to vertex {i}, but there are {n} vertices"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The triangles of a fan around the polygon's first corner.
+pub(crate) fn fan(poly: &[usize]) -> impl Iterator<Item = [usize; 3]> + '_ {
+    let first = poly.first().copied().unwrap_or(0);
+    poly.windows(2).skip(1).map(move |w| [first, w[0], w[1]])
+}
+
+/// Number of triangles of all fans.
+pub(crate) fn fan_count(mesh: &RawMesh) -> usize {
+    mesh.polygons
+        .iter()
+        .map(|p| p.len().saturating_sub(2))
+        .sum()
+}
+
+/// A colour component 0–1 as a byte (rounded, clamped).
+pub(crate) fn color_byte(c: f32) -> u8 {
+    (c.clamp(0.0, 1.0) * 255.0).round() as u8
+}
