@@ -1,0 +1,415 @@
+//! Shared machinery of the fitting estimators ([`crate::jet`], [`crate::quadric`]): tangent
+//! frames, least-squares fits of bivariate polynomial heights by Householder QR with column
+//! pivoting, and the normal and shape tensor of a height field at the origin.
+//!
+//! # Height field → normal and shape tensor
+//!
+//! In an orthonormal frame `(t1, t2, n0)` at the vertex, a surface `X(x, y) = o + x t1 + y t2 +
+//! f(x, y) n0` with `f_x = p`, `f_y = q`, `f_xx = r`, `f_xy = s`, `f_yy = t` at the origin has
+//! (do Carmo, *Differential Geometry of Curves and Surfaces*, §3-3, Monge patch):
+//!
+//! * tangents `X_x = t1 + p n0`, `X_y = t2 + q n0`, unit normal `N = (n0 − p t1 − q t2)/W`,
+//!   `W = √(1 + p² + q²)` (on the side of `n0`);
+//! * first fundamental form `I = [[1 + p², pq], [pq, 1 + q²]]`;
+//! * second fundamental form `II = [[r, s], [s, t]]/W` (`X_xx · N` etc.; positive where the
+//!   surface bends towards `N`, the workspace's sign).
+//!
+//! With `J = [X_x X_y]` (3×2), the world tensor `S = J I⁻¹ II I⁻¹ Jᵀ` is symmetric, has `S N = 0`
+//! (as `Jᵀ N = 0`) and satisfies `Jᵀ S J = II`, i.e. `(J a)ᵀ S (J a) = aᵀ II a` for every tangent
+//! vector `J a`: it is the Weingarten map `I⁻¹ II` written as a bilinear form in world
+//! coordinates. Its eigenvalues on the tangent plane are those of `I⁻¹ II`, the principal
+//! curvatures. The gradient terms matter whenever the frame normal `n0` is not the fitted
+//! surface's normal `N`.
+//!
+//! # Least squares
+//!
+//! Coordinates are divided by the neighbourhood radius `h` (Cazals & Pouget 2005, §5.1: the
+//! Vandermonde matrix is then well scaled), the columns of the Vandermonde matrix are
+//! equilibrated to unit norm, and the system is solved by Householder QR with column pivoting
+//! (Golub & Van Loan, *Matrix Computations*, §5.4.1). The condition number is estimated as
+//! `max |r_ii| / min |r_ii|` of the pivoted `R` (a lower bound of the 2-norm condition number,
+//! usually within a small factor of it); a fit above [`MAX_CONDITION`] is refused.
+
+use nalgebra::{Matrix2, Matrix3, Vector3};
+use surface::Mesh;
+
+use crate::Topology;
+
+/// Largest accepted condition-number estimate of the equilibrated, scaled Vandermonde system.
+/// Well-spread neighbourhoods give 10¹–10³ at degree 4; near-collinear ones 10⁸ and more, where
+/// the curvature coefficients have lost more than half their digits.
+pub const MAX_CONDITION: f64 = 1e7;
+
+/// Largest degree supported by the fixed-size buffers.
+pub const MAX_DEGREE: usize = 4;
+
+/// Largest number of coefficients (degree 4 with constant term).
+pub const MAX_COEFFS: usize = 15;
+
+/// Number of coefficients of a bivariate polynomial of degree `d`, with or without the
+/// constant term.
+pub fn num_coeffs(degree: usize, constant: bool) -> usize {
+    (degree + 1) * (degree + 2) / 2 - usize::from(!constant)
+}
+
+/// An orthonormal tangent basis `(t1, t2)` with `t1 × t2 = n` for a unit `n`, branch-free of
+/// singularities (Duff et al., *Building an Orthonormal Basis, Revisited*, JCGT 2017).
+pub fn tangent_basis(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let sign = 1.0_f64.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vector3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        Vector3::new(b, sign + n.y * n.y * a, -n.y),
+    )
+}
+
+/// The derivatives of a fitted height at the origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeightDerivatives {
+    /// `f_x`, `f_y`.
+    pub grad: [f64; 2],
+    /// `f_xx`, `f_xy`, `f_yy`.
+    pub hess: [f64; 3],
+}
+
+impl HeightDerivatives {
+    /// Unit normal and world shape tensor of the height field over the frame `(t1, t2, n0)`
+    /// (module docs). `None` if `I` is singular or a value is not finite (not expected: `I` is
+    /// positive definite for finite gradients).
+    pub fn normal_and_shape(
+        &self,
+        t1: &Vector3<f64>,
+        t2: &Vector3<f64>,
+        n0: &Vector3<f64>,
+    ) -> Option<(Vector3<f64>, Matrix3<f64>)> {
+        let [p, q] = self.grad;
+        let [r, s, t] = self.hess;
+        let w = (1.0 + p * p + q * q).sqrt();
+        let normal = (n0 - t1 * p - t2 * q) / w;
+        let first = Matrix2::new(1.0 + p * p, p * q, p * q, 1.0 + q * q);
+        let second = Matrix2::new(r, s, s, t) / w;
+        let inv = first.try_inverse()?;
+        let core = inv * second * inv;
+        let xx = t1 + n0 * p;
+        let xy = t2 + n0 * q;
+        let shape = xx * xx.transpose() * core[(0, 0)]
+            + (xx * xy.transpose()) * core[(0, 1)]
+            + (xy * xx.transpose()) * core[(1, 0)]
+            + xy * xy.transpose() * core[(1, 1)];
+        (normal.iter().all(|c| c.is_finite()) && shape.iter().all(|c| c.is_finite()))
+            .then_some((normal, shape))
+    }
+}
+
+/// Why a fit was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FitFailure {
+    /// Fewer points than coefficients.
+    TooFewPoints,
+    /// Rank-deficient or condition number above [`MAX_CONDITION`].
+    IllConditioned,
+}
+
+/// Reusable buffers of one thread: local coordinates of the neighbourhood, the Vandermonde
+/// matrix (column-major) and the right-hand side. Allocated once per rayon work item, never per
+/// vertex once grown.
+#[derive(Clone, Debug, Default)]
+pub struct Workspace {
+    /// Neighbourhood vertex indices.
+    pub ring: Vec<usize>,
+    /// Local coordinates `(x, y, z)/h`.
+    pub local: Vec<[f64; 3]>,
+    a: Vec<f64>,
+    b: Vec<f64>,
+}
+
+/// Fits `z ≈ Σ c_ij x^i y^j` (total degree `1..=degree`, or `0..=degree` with `constant`) to the
+/// points in `ws.local` (already scaled) by least squares, and returns the derivatives at the
+/// origin in the scaled coordinates. Monomials are ordered by total degree, then by the power
+/// of `y`: `1, x, y, x², xy, y², x³, …`.
+pub fn fit_height(
+    ws: &mut Workspace,
+    degree: usize,
+    constant: bool,
+) -> Result<HeightDerivatives, FitFailure> {
+    let degree = degree.clamp(1, MAX_DEGREE);
+    let n = num_coeffs(degree, constant);
+    let m = ws.local.len();
+    if m < n {
+        return Err(FitFailure::TooFewPoints);
+    }
+    ws.a.clear();
+    ws.a.resize(m * n, 0.0);
+    ws.b.clear();
+    ws.b.extend(ws.local.iter().map(|p| p[2]));
+    let first_degree = usize::from(!constant);
+    for (i, p) in ws.local.iter().enumerate() {
+        let mut col = 0;
+        for total in first_degree..=degree {
+            for k in 0..=total {
+                ws.a[col * m + i] = p[0].powi((total - k) as i32) * p[1].powi(k as i32);
+                col += 1;
+            }
+        }
+    }
+    let mut coeffs = [0.0; MAX_COEFFS];
+    solve_least_squares(&mut ws.a, &mut ws.b, m, n, &mut coeffs[..n])?;
+    let off = usize::from(constant);
+    let c = |i: usize| coeffs.get(off + i).copied().unwrap_or(0.0);
+    if degree < 2 {
+        return Ok(HeightDerivatives {
+            grad: [c(0), c(1)],
+            hess: [0.0; 3],
+        });
+    }
+    Ok(HeightDerivatives {
+        grad: [c(0), c(1)],
+        hess: [2.0 * c(2), c(3), 2.0 * c(4)],
+    })
+}
+
+/// Least squares `min ‖A c − b‖` for `A` (`m × n`, column-major, overwritten) by column
+/// equilibration and Householder QR with column pivoting; `out` (length `n`) receives `c`.
+pub fn solve_least_squares(
+    a: &mut [f64],
+    b: &mut [f64],
+    m: usize,
+    n: usize,
+    out: &mut [f64],
+) -> Result<f64, FitFailure> {
+    if n == 0 || n > MAX_COEFFS || m < n || a.len() < m * n || b.len() < m || out.len() < n {
+        return Err(FitFailure::TooFewPoints);
+    }
+    // Equilibrate: unit column norms.
+    let mut scale = [1.0; MAX_COEFFS];
+    for (j, s) in scale.iter_mut().enumerate().take(n) {
+        let col = &mut a[j * m..(j + 1) * m];
+        let norm = col.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(norm > 0.0 && norm.is_finite()) {
+            return Err(FitFailure::IllConditioned);
+        }
+        col.iter_mut().for_each(|x| *x /= norm);
+        *s = norm;
+    }
+    let mut perm = [0usize; MAX_COEFFS];
+    for (j, p) in perm.iter_mut().enumerate() {
+        *p = j;
+    }
+    let mut rdiag = [0.0; MAX_COEFFS];
+    for k in 0..n {
+        // Pivot: the remaining column of largest norm below row k.
+        let mut best = k;
+        let mut best_norm = -1.0;
+        for j in k..n {
+            let nj: f64 = a[j * m + k..(j + 1) * m].iter().map(|x| x * x).sum();
+            if nj > best_norm {
+                best_norm = nj;
+                best = j;
+            }
+        }
+        if best != k {
+            for i in 0..m {
+                a.swap(k * m + i, best * m + i);
+            }
+            perm.swap(k, best);
+            scale.swap(k, best);
+        }
+        let norm = best_norm.max(0.0).sqrt();
+        if norm == 0.0 || !norm.is_finite() {
+            return Err(FitFailure::IllConditioned);
+        }
+        let x0 = a[k * m + k];
+        let alpha = if x0 > 0.0 { -norm } else { norm };
+        // v = x − α e1, stored in place of column k below (and on) the diagonal.
+        a[k * m + k] = x0 - alpha;
+        let vnorm2: f64 = a[k * m + k..(k + 1) * m].iter().map(|x| x * x).sum();
+        rdiag[k] = alpha;
+        if vnorm2 > 0.0 {
+            for j in k + 1..n {
+                let dot: f64 = (k..m).map(|i| a[k * m + i] * a[j * m + i]).sum();
+                let f = 2.0 * dot / vnorm2;
+                for i in k..m {
+                    a[j * m + i] -= f * a[k * m + i];
+                }
+            }
+            let dot: f64 = (k..m).map(|i| a[k * m + i] * b[i]).sum();
+            let f = 2.0 * dot / vnorm2;
+            for i in k..m {
+                b[i] -= f * a[k * m + i];
+            }
+        }
+    }
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
+    for r in rdiag.iter().take(n) {
+        lo = lo.min(r.abs());
+        hi = hi.max(r.abs());
+    }
+    let cond = hi / lo;
+    if !(lo > 0.0 && cond.is_finite() && cond <= MAX_CONDITION) {
+        return Err(FitFailure::IllConditioned);
+    }
+    // Back substitution R y = Qᵀ b; R's strict upper part is a[j*m + i], i < j.
+    let mut y = [0.0; MAX_COEFFS];
+    for i in (0..n).rev() {
+        let mut acc = b[i];
+        for j in i + 1..n {
+            acc -= a[j * m + i] * y[j];
+        }
+        y[i] = acc / rdiag[i];
+    }
+    for k in 0..n {
+        out[perm[k]] = y[k] / scale[k];
+    }
+    if out.iter().take(n).all(|c| c.is_finite()) {
+        Ok(cond)
+    } else {
+        Err(FitFailure::IllConditioned)
+    }
+}
+
+/// How a vertex's neighbourhood is gathered for a fit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RingRule {
+    /// Grow rings until the neighbourhood (the vertex included) has this many points…
+    pub min_points: usize,
+    /// …but add at most this many rings…
+    pub max_rings: usize,
+    /// …and at most this many points.
+    pub max_points: usize,
+}
+
+/// A successful local fit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalFit {
+    /// Degree of the polynomial that was fitted.
+    pub degree: usize,
+    /// Unit normal of the fitted height field at the origin.
+    pub normal: Vector3<f64>,
+    /// World shape tensor of the fitted height field at the origin (`S normal = 0`).
+    pub shape: Matrix3<f64>,
+}
+
+/// What to fit: degree, constant term, neighbourhood.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FitSpec {
+    /// Highest degree tried (2..=4).
+    pub degree: usize,
+    /// Include the constant term (Cazals–Pouget jets approximate the vertex; libigl's quadric
+    /// interpolates it).
+    pub constant: bool,
+    /// The neighbourhood.
+    pub rule: RingRule,
+}
+
+/// Fits a height field of degree `degree` (falling back to lower degrees down to 2) over the
+/// neighbourhood of vertex `v` chosen by `rule`, in the frame of the unit normal `n0`, and
+/// returns its normal and shape tensor at `v` (module docs). `Err` when
+/// even degree 2 fails: too few points or ill-conditioned.
+pub fn fit_vertex(
+    mesh: &Mesh,
+    topo: &Topology,
+    v: usize,
+    n0: &Vector3<f64>,
+    spec: &FitSpec,
+    ws: &mut Workspace,
+) -> Result<LocalFit, FitFailure> {
+    let verts = mesh.vertices();
+    let Some(origin) = verts.get(v).map(|x| x.data.p) else {
+        return Err(FitFailure::TooFewPoints);
+    };
+    let rule = spec.rule;
+    topo.rings_into(
+        v,
+        rule.min_points,
+        rule.max_rings,
+        rule.max_points,
+        &mut ws.ring,
+    );
+    let FitSpec {
+        degree, constant, ..
+    } = *spec;
+    let (t1, t2) = tangent_basis(n0);
+    ws.local.clear();
+    let mut h = 0.0_f64;
+    for &u in ws.ring.iter() {
+        if u == v && !constant {
+            continue;
+        }
+        let d = verts[u].data.p - origin;
+        h = h.max(d.norm());
+        ws.local.push([d.dot(&t1), d.dot(&t2), d.dot(n0)]);
+    }
+    if !(h > 0.0 && h.is_finite()) {
+        return Err(FitFailure::TooFewPoints);
+    }
+    for p in ws.local.iter_mut() {
+        p.iter_mut().for_each(|c| *c /= h);
+    }
+    let mut last = FitFailure::TooFewPoints;
+    for d in (2..=degree.clamp(2, MAX_DEGREE)).rev() {
+        match fit_height(ws, d, constant) {
+            Ok(mut der) => {
+                der.hess.iter_mut().for_each(|c| *c /= h);
+                match der.normal_and_shape(&t1, &t2, n0) {
+                    Some((normal, shape)) => {
+                        return Ok(LocalFit {
+                            degree: d,
+                            normal,
+                            shape,
+                        })
+                    }
+                    None => last = FitFailure::IllConditioned,
+                }
+            }
+            Err(e) => last = e,
+        }
+    }
+    Err(last)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tangent_basis_is_orthonormal_and_right_handed() {
+        for n in [
+            Vector3::z(),
+            -Vector3::z(),
+            Vector3::x(),
+            Vector3::new(1.0, -2.0, 0.5).normalize(),
+            Vector3::new(1e-20, 0.0, -1.0).normalize(),
+        ] {
+            let (t1, t2) = tangent_basis(&n);
+            assert!((t1.norm() - 1.0).abs() < 1e-15);
+            assert!((t2.norm() - 1.0).abs() < 1e-15);
+            assert!(t1.dot(&t2).abs() < 1e-15);
+            assert!((t1.cross(&t2) - n).norm() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn least_squares_recovers_an_exact_polynomial() {
+        let mut ws = Workspace::default();
+        for i in -2..=2 {
+            for j in -2..=2 {
+                let (x, y) = (i as f64 / 2.0, j as f64 / 2.0);
+                let z = 0.1 + 0.2 * x - 0.3 * y + 0.5 * x * x - 0.25 * x * y + 0.75 * y * y;
+                ws.local.push([x, y, z]);
+            }
+        }
+        let d = fit_height(&mut ws, 2, true).expect("well posed");
+        let tol = 1e-13; // an exact fit of a 25×6 well-conditioned system
+        assert!((d.grad[0] - 0.2).abs() < tol && (d.grad[1] + 0.3).abs() < tol);
+        assert!((d.hess[0] - 1.0).abs() < tol);
+        assert!((d.hess[1] + 0.25).abs() < tol);
+        assert!((d.hess[2] - 1.5).abs() < tol);
+        // Collinear points: refused.
+        ws.local = (0..10).map(|i| [i as f64, 2.0 * i as f64, 1.0]).collect();
+        assert_eq!(
+            fit_height(&mut ws, 2, true),
+            Err(FitFailure::IllConditioned)
+        );
+    }
+}

@@ -1,0 +1,173 @@
+//! Jet fitting: Cazals & Pouget, *Estimating differential quantities using polynomial fitting
+//! of osculating jets*, SGP 2003 (CAGD 22(2), 2005).
+//!
+//! At each vertex `v`:
+//!
+//! 1. **Frame.** `z` along a first normal estimate `n0`: the given normal, else the
+//!    angle-weighted vertex normal ([`crate::normals`]); `x`, `y` an orthonormal tangent basis
+//!    ([`crate::fit::tangent_basis`]). Cazals–Pouget use a PCA frame; the angle-weighted normal
+//!    costs less and is as good a first estimate on a mesh (their §5.1 only needs the height
+//!    function to be well defined over the neighbourhood).
+//! 2. **Neighbourhood.** The vertex and its rings 1, 2, … added whole until there are at least
+//!    [`POINTS_PER_COEFFICIENT`] times as many points as coefficients, at most [`MAX_RINGS`]
+//!    rings and [`MAX_POINTS`] points. On a regular valence-6 mesh: degree 2 (6 coefficients,
+//!    12 points) uses the 2-ring (19 points), degree 3 (10, 20) and degree 4 (15, 30) the
+//!    3-ring (37 points).
+//! 3. **Fit.** The jet `z(x, y) = Σ_{i+j ≤ d} c_ij xⁱ yʲ` (constant term included: the jet
+//!    approximates, it does not interpolate the vertex) by least squares on coordinates scaled by
+//!    the neighbourhood radius, solved by pivoted QR ([`crate::fit`]).
+//! 4. **Differential quantities.** The normal from the jet's gradient at the origin (unless
+//!    given), the shape tensor from the Weingarten map `I⁻¹ II` of the graph at the origin with
+//!    the gradient terms included ([`crate::fit`] module docs), projected onto the output
+//!    normal's tangent plane.
+//!
+//! **Fallbacks.** Fewer points than coefficients, rank deficiency or a condition number above
+//! [`crate::fit::MAX_CONDITION`]: the next lower degree, down to 2
+//! ([`FallbackKind::LowerDegree`]); when degree 2 fails too, `S = 0` with the first normal
+//! ([`FallbackKind::Planar`]).
+//!
+//! **Order.** For a degree-`d` jet fitted to samples at spacing `h` Cazals–Pouget (Theorem 2)
+//! show normal errors `O(h^d)` and curvature errors `O(h^{d−1})`; on the regular data sets of
+//! the tests the symmetric neighbourhoods cancel a further order for even `d` (see
+//! `tests/jet.rs` for the measured orders).
+
+use nalgebra::{Matrix3, Vector3};
+use rayon::prelude::*;
+use surface::Mesh;
+
+use crate::fit::{fit_vertex, num_coeffs, FitFailure, FitSpec, RingRule, Workspace};
+use crate::normals::{vertex_normals_with, NormalWeighting};
+use crate::Topology;
+use crate::{finish, given_normal, Estimate, Estimator, Fallback, FallbackKind, PlanarReason};
+
+/// The neighbourhood has at least this many points per coefficient: twice as many equations as
+/// unknowns, so that the fit averages rather than interpolates (Cazals–Pouget only require at
+/// least as many).
+pub const POINTS_PER_COEFFICIENT: usize = 2;
+
+/// At most this many rings are added (a far-reaching neighbourhood no longer sees the local
+/// shape; on a regular mesh degree 4 needs 3).
+pub const MAX_RINGS: usize = 5;
+
+/// At most this many points (the vertex included): bounds the work at high-valence vertices.
+pub const MAX_POINTS: usize = 200;
+
+/// A jet-fitting estimator of a fixed highest degree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Jet {
+    /// Registered name.
+    pub name: &'static str,
+    /// One line for reports.
+    pub description: &'static str,
+    /// Degree of the jet (2, 3 or 4).
+    pub degree: usize,
+}
+
+/// The recommended default: the degree-2 jet on the adaptive neighbourhood (the 2-ring on a
+/// regular mesh), chosen by the convergence tests (`tests/jet.rs`: second-order curvature on
+/// the regular data sets, the fastest by far).
+pub static JET: Jet = Jet {
+    name: "jet",
+    description: "jet fitting (Cazals–Pouget 2003), recommended degree (2) on an adaptive k-ring",
+    degree: 2,
+};
+/// Degree-2 jet.
+pub static JET2: Jet = Jet {
+    name: "jet2",
+    description: "jet fitting (Cazals–Pouget 2003), degree 2 on an adaptive k-ring",
+    degree: 2,
+};
+/// Degree-3 jet.
+pub static JET3: Jet = Jet {
+    name: "jet3",
+    description: "jet fitting (Cazals–Pouget 2003), degree 3 on an adaptive k-ring",
+    degree: 3,
+};
+/// Degree-4 jet.
+pub static JET4: Jet = Jet {
+    name: "jet4",
+    description: "jet fitting (Cazals–Pouget 2003), degree 4 on an adaptive k-ring",
+    degree: 4,
+};
+
+impl Jet {
+    fn spec(&self) -> FitSpec {
+        FitSpec {
+            degree: self.degree,
+            constant: true,
+            rule: RingRule {
+                min_points: POINTS_PER_COEFFICIENT * num_coeffs(self.degree, true),
+                max_rings: MAX_RINGS,
+                max_points: MAX_POINTS,
+            },
+        }
+    }
+}
+
+/// Per-vertex result of a fitting estimator: normal, shape, one optional fallback.
+pub(crate) type VertexResult = (Vector3<f64>, Matrix3<f64>, Option<FallbackKind>);
+
+/// Runs a local fit at every vertex (in parallel) and assembles the [`Estimate`].
+/// `use_fit_normal`: output the fitted surface's normal where the normal is not given.
+pub(crate) fn estimate_by_fitting(
+    mesh: &Mesh,
+    given: Option<&[Vector3<f64>]>,
+    spec: FitSpec,
+    use_fit_normal: bool,
+) -> Estimate {
+    let topo = Topology::new(mesh);
+    let first = vertex_normals_with(mesh, &topo, NormalWeighting::Angle, given);
+    let results: Vec<VertexResult> = (0..mesh.num_vertices())
+        .into_par_iter()
+        .map_init(Workspace::default, |ws, v| {
+            let n0 = first.normals[v];
+            if topo.faces(v).is_empty() {
+                // Isolated: recorded by the normals.
+                return (n0, Matrix3::zeros(), None);
+            }
+            match fit_vertex(mesh, &topo, v, &n0, &spec, ws) {
+                Ok(fit) => {
+                    let keep = !use_fit_normal || given_normal(given, v).is_some();
+                    let n = if keep { n0 } else { fit.normal };
+                    let fb = (fit.degree < spec.degree).then_some(FallbackKind::LowerDegree {
+                        from: spec.degree,
+                        to: fit.degree,
+                    });
+                    (n, fit.shape, fb)
+                }
+                Err(e) => {
+                    let reason = match e {
+                        FitFailure::TooFewPoints => PlanarReason::TooFewNeighbours,
+                        FitFailure::IllConditioned => PlanarReason::IllConditioned,
+                    };
+                    (n0, Matrix3::zeros(), Some(FallbackKind::Planar { reason }))
+                }
+            }
+        })
+        .collect();
+    let mut fallbacks = first.fallbacks.clone();
+    let mut normals = Vec::with_capacity(results.len());
+    let mut shapes = Vec::with_capacity(results.len());
+    for (v, (n, s, fb)) in results.into_iter().enumerate() {
+        normals.push(n);
+        shapes.push(s);
+        if let Some(kind) = fb {
+            fallbacks.push(Fallback { vertex: v, kind });
+        }
+    }
+    finish(normals, shapes, fallbacks, &first)
+}
+
+impl Estimator for Jet {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn description(&self) -> &'static str {
+        self.description
+    }
+
+    fn estimate(&self, mesh: &Mesh, given: Option<&[Vector3<f64>]>) -> Estimate {
+        estimate_by_fitting(mesh, given, self.spec(), true)
+    }
+}

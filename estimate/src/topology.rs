@@ -1,0 +1,154 @@
+//! Flat (compressed-row) vertex adjacency built once per mesh, and k-ring neighbourhoods.
+//!
+//! [`Mesh::faces_around_vertex`] and [`Mesh::vertex_ring`] allocate a `Vec` per call; the
+//! estimators visit every vertex (and its rings) and use these flat arrays instead, so that the
+//! hot loop allocates nothing.
+
+use surface::Mesh;
+
+/// Faces around and neighbours of every vertex, in compressed-row form.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Topology {
+    face_start: Vec<usize>,
+    face_list: Vec<usize>,
+    nb_start: Vec<usize>,
+    nb_list: Vec<usize>,
+}
+
+impl Topology {
+    /// Builds the adjacency of `mesh` in `O(F)` (plus a sort of each vertex's short neighbour
+    /// list).
+    pub fn new(mesh: &Mesh) -> Self {
+        let nv = mesh.num_vertices();
+        let faces = mesh.faces();
+        let mut face_start = vec![0usize; nv + 1];
+        for f in faces {
+            for &v in f {
+                face_start[v + 1] += 1;
+            }
+        }
+        for i in 0..nv {
+            face_start[i + 1] += face_start[i];
+        }
+        let mut fill = face_start.clone();
+        let mut face_list = vec![0usize; face_start[nv]];
+        let mut nb_raw = vec![0usize; 2 * face_start[nv]];
+        for (fi, f) in faces.iter().enumerate() {
+            for (c, &v) in f.iter().enumerate() {
+                let slot = fill[v];
+                face_list[slot] = fi;
+                nb_raw[2 * slot] = f[(c + 1) % 3];
+                nb_raw[2 * slot + 1] = f[(c + 2) % 3];
+                fill[v] += 1;
+            }
+        }
+        let mut nb_start = vec![0usize; nv + 1];
+        let mut nb_list = Vec::with_capacity(face_start[nv] + nv);
+        for v in 0..nv {
+            let seg = &mut nb_raw[2 * face_start[v]..2 * face_start[v + 1]];
+            seg.sort_unstable();
+            let mut last = None;
+            for &u in seg.iter() {
+                if last != Some(u) {
+                    nb_list.push(u);
+                    last = Some(u);
+                }
+            }
+            nb_start[v + 1] = nb_list.len();
+        }
+        Topology {
+            face_start,
+            face_list,
+            nb_start,
+            nb_list,
+        }
+    }
+
+    /// Number of vertices.
+    pub fn num_vertices(&self) -> usize {
+        self.face_start.len().saturating_sub(1)
+    }
+
+    /// The faces using vertex `v` (in face order; empty for an isolated or missing vertex).
+    pub fn faces(&self, v: usize) -> &[usize] {
+        match (self.face_start.get(v), self.face_start.get(v + 1)) {
+            (Some(&a), Some(&b)) => self.face_list.get(a..b).unwrap_or(&[]),
+            _ => &[],
+        }
+    }
+
+    /// The distinct vertices sharing a face with `v` (sorted by index).
+    pub fn neighbours(&self, v: usize) -> &[usize] {
+        match (self.nb_start.get(v), self.nb_start.get(v + 1)) {
+            (Some(&a), Some(&b)) => self.nb_list.get(a..b).unwrap_or(&[]),
+            _ => &[],
+        }
+    }
+
+    /// Collects into `out` the vertex `v` followed by its rings 1, 2, … (breadth first, each
+    /// vertex once) until `out` holds at least `min_points` vertices, `max_rings` rings have been
+    /// added, `max_points` is reached (the last ring is then cut short) or the component is
+    /// exhausted. Returns the number of complete or partial rings added.
+    ///
+    /// Membership is tested by a linear scan of `out`: neighbourhoods are short (`max_points`),
+    /// and a scan needs no per-mesh marker array per thread.
+    pub fn rings_into(
+        &self,
+        v: usize,
+        min_points: usize,
+        max_rings: usize,
+        max_points: usize,
+        out: &mut Vec<usize>,
+    ) -> usize {
+        out.clear();
+        if v >= self.num_vertices() {
+            return 0;
+        }
+        out.push(v);
+        let mut ring_begin = 0;
+        let mut rings = 0;
+        while out.len() < min_points && rings < max_rings && out.len() < max_points {
+            let ring_end = out.len();
+            'ring: for i in ring_begin..ring_end {
+                let u = out[i];
+                for &w in self.neighbours(u) {
+                    if !out.contains(&w) {
+                        out.push(w);
+                        if out.len() >= max_points {
+                            break 'ring;
+                        }
+                    }
+                }
+            }
+            if out.len() == ring_end {
+                break;
+            }
+            rings += 1;
+            ring_begin = ring_end;
+        }
+        rings
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rings_of_the_octahedron() {
+        let data = surface::datasets::octa().expect("built-in");
+        let t = Topology::new(&data.mesh);
+        let mut out = Vec::new();
+        for v in 0..6 {
+            assert_eq!(t.faces(v).len(), 4);
+            assert_eq!(t.neighbours(v).len(), 4);
+            assert_eq!(t.rings_into(v, 2, 1, 100, &mut out), 1);
+            assert_eq!(out.len(), 5);
+            assert_eq!(t.rings_into(v, 100, 5, 100, &mut out), 2);
+            assert_eq!(out.len(), 6);
+        }
+        assert!(t.faces(6).is_empty());
+        assert_eq!(t.rings_into(6, 10, 2, 10, &mut out), 0);
+        assert!(out.is_empty());
+    }
+}
