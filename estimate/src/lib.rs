@@ -37,12 +37,14 @@ use surface::Mesh;
 pub mod fit;
 pub mod jet;
 pub mod normals;
+pub mod prepare;
 pub mod quadric;
 pub mod rusinkiewicz;
 pub mod topology;
 
 pub use jet::{Jet, JET, JET2, JET3, JET4};
 pub use normals::{vertex_normals, NormalWeighting, Normals};
+pub use prepare::{prepare, EstimateChoice, PrepareError, Prepared};
 pub use quadric::{Quadric, QUADRIC};
 pub use rusinkiewicz::{Rusinkiewicz, RUSINKIEWICZ};
 pub use topology::Topology;

@@ -69,9 +69,8 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     } else {
         WriteOptions::new()
     };
-    let bytes = meshio::write_bytes(&raw, format, &options).map_err(|e| {
-        ExperimentError::Usage(format!("{}: {e}", args.out.display()))
-    })?;
+    let bytes = meshio::write_bytes(&raw, format, &options)
+        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.out.display())))?;
     write_result(Some(&args.out), &bytes)?;
     for note in &loaded.notes {
         eprintln!("  {note}");

@@ -39,7 +39,9 @@ use estimate::{vertex_normals, Estimator, NormalWeighting, ESTIMATORS};
 use nalgebra::Vector3;
 use render::{LineChart, Series};
 use serde_json::{json, Map, Value};
-use surface::{compare_with_truth, fit, measure_g1, tessellate, AnalyticSurface, InteriorParameters, Mesh};
+use surface::{
+    compare_with_truth, fit, measure_g1, tessellate, AnalyticSurface, InteriorParameters, Mesh,
+};
 
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, write_result};
@@ -74,7 +76,6 @@ struct StudyMesh {
     name: String,
     family: String,
     mesh: Mesh,
-    surface: Arc<dyn AnalyticSurface>,
     /// Exact normal, K, H at each vertex.
     exact: Vec<(Vector3<f64>, f64, f64)>,
     h: f64,
@@ -119,7 +120,9 @@ fn jittered(mesh: &Mesh, surface: &dyn AnalyticSurface, seed: u64) -> Mesh {
         .collect();
     for (v, vert) in out.vertices_mut().iter_mut().enumerate() {
         let n = vert.data.n;
-        let t1 = n.cross(&Vector3::new(0.577, 0.577, 0.577)).try_normalize(1e-9);
+        let t1 = n
+            .cross(&Vector3::new(0.577, 0.577, 0.577))
+            .try_normalize(1e-9);
         let t1 = t1.unwrap_or_else(|| n.cross(&Vector3::x()).normalize());
         let t2 = n.cross(&t1);
         let angle = std::f64::consts::TAU * rng.next();
@@ -130,7 +133,12 @@ fn jittered(mesh: &Mesh, surface: &dyn AnalyticSurface, seed: u64) -> Mesh {
     out
 }
 
-fn study_mesh(name: String, family: &str, mesh: Mesh, surface: Arc<dyn AnalyticSurface>) -> StudyMesh {
+fn study_mesh(
+    name: String,
+    family: &str,
+    mesh: Mesh,
+    surface: Arc<dyn AnalyticSurface>,
+) -> StudyMesh {
     let exact = mesh
         .vertices()
         .iter()
@@ -144,7 +152,6 @@ fn study_mesh(name: String, family: &str, mesh: Mesh, surface: Arc<dyn AnalyticS
         name,
         family: family.to_string(),
         mesh,
-        surface,
         exact,
     }
 }
@@ -207,6 +214,9 @@ fn angle_deg(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     a.cross(b).norm().atan2(a.dot(b)).to_degrees()
 }
 
+/// Rows by estimator label.
+type Rows = BTreeMap<String, Row>;
+
 /// Errors of one estimator on one mesh.
 #[derive(Clone, Debug, Default)]
 struct Row {
@@ -235,7 +245,10 @@ fn measure(m: &StudyMesh) -> BTreeMap<String, Row> {
             label.to_string(),
             Row {
                 normal: Some(stat(
-                    ns.normals.iter().zip(&m.exact).map(|(n, e)| angle_deg(n, &e.0)),
+                    ns.normals
+                        .iter()
+                        .zip(&m.exact)
+                        .map(|(n, e)| angle_deg(n, &e.0)),
                 )),
                 fallbacks: ns.fallbacks.len(),
                 time: t.elapsed().as_secs_f64(),
@@ -252,11 +265,14 @@ fn measure(m: &StudyMesh) -> BTreeMap<String, Row> {
             est.name().to_string(),
             Row {
                 normal: Some(stat(
-                    e.normals.iter().zip(&m.exact).map(|(n, x)| angle_deg(n, &x.0)),
+                    e.normals
+                        .iter()
+                        .zip(&m.exact)
+                        .map(|(n, x)| angle_deg(n, &x.0)),
                 )),
-                k: Some(stat(
-                    (0..n).map(|v| (e.gaussian(v).unwrap_or(f64::NAN) - m.exact[v].1).abs()),
-                )),
+                k: Some(stat((0..n).map(|v| {
+                    (e.gaussian(v).unwrap_or(f64::NAN) - m.exact[v].1).abs()
+                }))),
                 h: Some(stat(
                     (0..n).map(|v| (e.mean(v).unwrap_or(f64::NAN) - m.exact[v].2).abs()),
                 )),
@@ -336,7 +352,11 @@ fn export(meshes: &[StudyMesh], dir: &Path) -> Result<(), ExperimentError> {
             exact.to_string().as_bytes(),
         )?;
     }
-    eprintln!("estimation: exported {} meshes to {}", meshes.len(), dir.display());
+    eprintln!(
+        "estimation: exported {} meshes to {}",
+        meshes.len(),
+        dir.display()
+    );
     Ok(())
 }
 
@@ -346,7 +366,8 @@ fn fmt(x: Option<Stat>) -> String {
 
 /// The ring study's fitted surfaces from exact and from estimated data.
 fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), ExperimentError> {
-    let data = surface::dataset_by_name("ring", None).map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    let data = surface::dataset_by_name("ring", None)
+        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
     let truth = data.surface.as_ref();
     let mut estimated = data.mesh.clone();
     let est = default_estimator();
@@ -396,9 +417,8 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
         return Ok(ExitCode::SUCCESS);
     }
     let golden: Value = match std::fs::read_to_string(&args.golden) {
-        Ok(text) => serde_json::from_str(&text).map_err(|e| {
-            ExperimentError::Usage(format!("{}: {e}", args.golden.display()))
-        })?,
+        Ok(text) => serde_json::from_str(&text)
+            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.golden.display())))?,
         Err(e) => {
             eprintln!(
                 "estimation: no golden numbers ({}: {e}); libigl columns left empty",
@@ -408,7 +428,7 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
         }
     };
     ensure_dir(&args.out)?;
-    let mut results: Vec<(usize, BTreeMap<String, Row>, BTreeMap<String, Row>)> = Vec::new();
+    let mut results: Vec<(usize, Rows, Rows)> = Vec::new();
     for (i, m) in meshes.iter().enumerate() {
         let ours = measure(m);
         let theirs = golden_rows(&golden, &m.name);
@@ -418,9 +438,15 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
             m.mesh.num_vertices(),
             m.h,
             default_estimator().name(),
-            ours[default_estimator().name()].normal.map_or(f64::NAN, |s| s.rms),
-            ours[default_estimator().name()].k.map_or(f64::NAN, |s| s.rms),
-            ours[default_estimator().name()].h.map_or(f64::NAN, |s| s.rms),
+            ours[default_estimator().name()]
+                .normal
+                .map_or(f64::NAN, |s| s.rms),
+            ours[default_estimator().name()]
+                .k
+                .map_or(f64::NAN, |s| s.rms),
+            ours[default_estimator().name()]
+                .h
+                .map_or(f64::NAN, |s| s.rms),
         );
         results.push((i, ours, theirs));
     }
@@ -445,11 +471,7 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
                 .map(|s| s.rms)
                 .fold(f64::INFINITY, f64::min)
         };
-        let (bn, bk, bh) = (
-            best(&|r| r.normal),
-            best(&|r| r.k),
-            best(&|r| r.h),
-        );
+        let (bn, bk, bh) = (best(&|r| r.normal), best(&|r| r.k), best(&|r| r.h));
         let o = &ours[def];
         let (on, ok, oh) = (
             o.normal.map_or(f64::NAN, |s| s.rms),
@@ -505,13 +527,22 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
             let (_, ours, theirs) = &results[idx[0]];
             ours.keys().chain(theirs.keys()).cloned().collect()
         };
-        let _ = writeln!(md, "\n## {fam}\n\n| estimator | measure | {} | order |\n|---|---|{}---:|",
-            idx.iter().map(|&i| meshes[i].name.clone()).collect::<Vec<_>>().join(" | "),
-            "---:|".repeat(idx.len()));
+        let _ = writeln!(
+            md,
+            "\n## {fam}\n\n| estimator | measure | {} | order |\n|---|---|{}---:|",
+            idx.iter()
+                .map(|&i| meshes[i].name.clone())
+                .collect::<Vec<_>>()
+                .join(" | "),
+            "---:|".repeat(idx.len())
+        );
         let mut charts = Vec::new();
         let mut fam_orders = Map::new();
         for (measure, pick) in [
-            ("normal RMS (°)", (|r: &Row| r.normal) as fn(&Row) -> Option<Stat>),
+            (
+                "normal RMS (°)",
+                (|r: &Row| r.normal) as fn(&Row) -> Option<Stat>,
+            ),
             ("K RMS", |r: &Row| r.k),
             ("H RMS", |r: &Row| r.h),
         ] {
@@ -549,7 +580,10 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
                     ord.map_or("—".into(), |o| format!("{o:.2}"))
                 );
                 series.push(Series {
-                    label: format!("{label} ({})", ord.map_or("—".into(), |o| format!("{o:.2}"))),
+                    label: format!(
+                        "{label} ({})",
+                        ord.map_or("—".into(), |o| format!("{o:.2}"))
+                    ),
                     points: pts.iter().map(|(h, e)| (h.log10(), *e)).collect(),
                 });
             }
@@ -567,7 +601,13 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
         if !charts.is_empty() {
             let png = args.out.join(format!("convergence-{fam}.png"));
             let svg = args.out.join(format!("convergence-{fam}.svg"));
-            render::write_line_charts(&charts, 3, &format!("{fam}: error against mesh size (fitted order in brackets)"), &png, &svg)?;
+            render::write_line_charts(
+                &charts,
+                3,
+                &format!("{fam}: error against mesh size (fitted order in brackets)"),
+                &png,
+                &svg,
+            )?;
             let _ = writeln!(md, "\n![{fam}](convergence-{fam}.png)");
         }
     }

@@ -216,7 +216,12 @@ pub fn refit_interior(
 pub fn tessellation_to_raw(tess: &surface::Tessellation) -> meshio::RawMesh {
     let mut raw = meshio::RawMesh::from_triangles(tess.positions.clone(), &tess.faces);
     raw.normals = Some(tess.normals.clone());
-    let mut abs: Vec<f64> = tess.gaussian.iter().map(|k| k.abs()).filter(|k| k.is_finite()).collect();
+    let mut abs: Vec<f64> = tess
+        .gaussian
+        .iter()
+        .map(|k| k.abs())
+        .filter(|k| k.is_finite())
+        .collect();
     abs.sort_by(f64::total_cmp);
     let limit = abs
         .get(abs.len().saturating_sub(1) * 95 / 100)
@@ -229,7 +234,8 @@ pub fn tessellation_to_raw(tess: &surface::Tessellation) -> meshio::RawMesh {
             .map(|k| render::colors::diverging(*k, limit))
             .collect(),
     );
-    raw.properties.insert("gaussian".into(), tess.gaussian.clone());
+    raw.properties
+        .insert("gaussian".into(), tess.gaussian.clone());
     raw.properties.insert("mean".into(), tess.mean.clone());
     raw
 }

@@ -3,10 +3,9 @@
 //! ([`estimate::prepare`]).
 
 use std::path::Path;
-use std::sync::Arc;
 
 use estimate::{EstimateChoice, Prepared};
-use surface::{AnalyticSurface, Mesh};
+use surface::Mesh;
 
 use crate::error::ExperimentError;
 
@@ -35,8 +34,6 @@ pub struct InputArgs {
 pub struct Loaded {
     /// The mesh, every vertex with a normal and (unless `--estimate none`) a shape tensor.
     pub mesh: Mesh,
-    /// The exact surface, for a named data set.
-    pub truth: Option<Arc<dyn AnalyticSurface>>,
     /// What was done to a file (repairs, estimation, notes), one line each.
     pub notes: Vec<String>,
     /// The repair and estimation record of a file (`None` for a data set).
@@ -46,20 +43,22 @@ pub struct Loaded {
 /// Loads `--data`: an existing file is read as a mesh; otherwise the name is a data set.
 pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
     let path = Path::new(&args.data);
-    if path.is_file() || surface::dataset_by_name(&args.data, None).is_err() && path.extension().is_some() {
+    if path.is_file()
+        || surface::dataset_by_name(&args.data, None).is_err() && path.extension().is_some()
+    {
         let raw = meshio::read_file(path).map_err(ExperimentError::MeshIo)?;
         let choice = EstimateChoice::parse(&args.estimate)
             .map_err(|e| ExperimentError::Usage(format!("--estimate: {e}")))?;
-        let prepared = estimate::prepare(&raw, choice, args.replace_normals)
-            .map_err(|source| ExperimentError::Prepare {
+        let prepared = estimate::prepare(&raw, choice, args.replace_normals).map_err(|source| {
+            ExperimentError::Prepare {
                 path: path.to_path_buf(),
                 source,
-            })?;
+            }
+        })?;
         let mut notes: Vec<String> = raw.notes.clone();
         notes.extend(prepared.summary_lines());
         return Ok(Loaded {
             mesh: prepared.mesh.clone(),
-            truth: None,
             notes,
             prepared: Some(prepared),
         });
@@ -72,7 +71,6 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
     })?;
     Ok(Loaded {
         mesh: data.mesh,
-        truth: Some(data.surface),
         notes: Vec::new(),
         prepared: None,
     })

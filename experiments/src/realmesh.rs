@@ -4,8 +4,8 @@
 //! optimized-curve surfaces, shaded and coloured by Gaussian curvature.
 //!
 //! The curvature colours are scale-free: `K · L²` with `L` the object's bounding-box diagonal,
-//! one colour limit for every object (the 95th percentile of `|K| L²` over all of them), so the
-//! objects compare although their sizes differ by orders of magnitude.
+//! one colour limit for every object ([`KCOLOR_MEDIANS`] times the median of `|K| L²` over all
+//! of them), so the objects compare although their sizes differ by orders of magnitude.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -15,7 +15,9 @@ use std::time::Instant;
 use curves::{method_by_name, MethodOptions};
 use nalgebra::{Point3, Vector3};
 use render::colors as colormap;
-use render::{render, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions, Tile};
+use render::{
+    render, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions, Tile,
+};
 use serde_json::{json, Map, Value};
 use surface::{fit, measure_g1, tessellate, InteriorParameters};
 
@@ -23,12 +25,16 @@ use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
 use crate::output::{ensure_dir, write_result};
 
+/// The KColor limit in medians of `|K| L²`: the tails of scanned meshes are spikes of 10⁴ and
+/// more (a percentile limit washes everything else out), while a sphere has `K L² = 12`; four
+/// medians keep the smooth parts' variation visible and saturate the spikes.
+const KCOLOR_MEDIANS: f64 = 4.0;
 /// Size of one picture in a composite.
 const TILE: (u32, u32) = (360, 300);
 /// Tessellation density of the pictures (segments per sub-patch edge).
 const SAMPLING: usize = 3;
 /// The two views (azimuth°, elevation°, name).
-const VIEWS: [(f64, f64, &str); 2] = [(30.0, 20.0, "front"), (210.0, 35.0, "back")];
+const VIEWS: [(f64, f64, &str); 2] = [(-60.0, 15.0, "front"), (120.0, 30.0, "back")];
 
 /// Options of the `realmesh` experiment.
 #[derive(clap::Args, Debug)]
@@ -114,13 +120,21 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 .map_err(|e| ExperimentError::Usage(format!("{}: {e}", path.display())))?;
             let t_fit = t.elapsed().as_secs_f64();
             let g1 = measure_g1(mesh, &f, 9);
-            let finite = f.patches.iter().flatten().all(|q| q.iter().all(|c| c.is_finite()));
+            let finite = f
+                .patches
+                .iter()
+                .flatten()
+                .all(|q| q.iter().all(|c| c.is_finite()));
             let _ = writeln!(
                 md,
                 "| {name} | {} | {} | {} | {method} | {} | {} | {:.1e} | {:.2} | {} | {:.3} |",
                 mesh.num_vertices(),
                 mesh.num_faces(),
-                if repairs.is_empty() { "none".to_string() } else { repairs.join("; ") },
+                if repairs.is_empty() {
+                    "none".to_string()
+                } else {
+                    repairs.join("; ")
+                },
                 f.face_fallbacks.len(),
                 f.degenerate_edges.len(),
                 g1.max_angle(),
@@ -150,7 +164,11 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                    "notes": loaded.notes, "load_time_seconds": t_load,
                    "methods": per_method}),
         );
-        eprintln!("  {name}: {} faces, {} notes", mesh.num_faces(), loaded.notes.len());
+        eprintln!(
+            "  {name}: {} faces, {} notes",
+            mesh.num_faces(),
+            loaded.notes.len()
+        );
     }
 
     // Pictures: columns are the objects, rows the views.
@@ -161,8 +179,8 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
         .collect();
     scaled.sort_by(f64::total_cmp);
     let limit = scaled
-        .get(scaled.len().saturating_sub(1) * 95 / 100)
-        .copied()
+        .get(scaled.len() / 2)
+        .map(|m| KCOLOR_MEDIANS * m)
         .filter(|x| *x > 0.0)
         .unwrap_or(1.0);
     let options = RenderOptions {
@@ -171,8 +189,16 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
         ..RenderOptions::default()
     };
     for (file, title, kcolor) in [
-        ("shaded", "Fitted with optimized curves from estimated data: shaded", false),
-        ("kcolor", "Fitted with optimized curves from estimated data: Gaussian curvature × L²", true),
+        (
+            "shaded",
+            "Fitted with optimized curves from estimated data: shaded",
+            false,
+        ),
+        (
+            "kcolor",
+            "Fitted with optimized curves from estimated data: Gaussian curvature × L²",
+            true,
+        ),
     ] {
         let mut tiles = Vec::new();
         for (az, el, vname) in VIEWS {
@@ -185,13 +211,19 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 } else {
                     vec![colormap::MATERIAL; t.positions.len()]
                 };
+                // The corpus models are y-up (as their sources); the camera is z-up.
+                let up = |p: &Point3<f64>| Point3::new(p.x, -p.z, p.y);
                 let mesh = RenderMesh {
-                    positions: t.positions.clone(),
-                    normals: t.normals.clone(),
+                    positions: t.positions.iter().map(up).collect(),
+                    normals: t
+                        .normals
+                        .iter()
+                        .map(|n| Vector3::new(n.x, -n.z, n.y))
+                        .collect(),
                     colors,
                     faces: t.faces.clone(),
                 };
-                let (lo, hi) = bbox(&t.positions);
+                let (lo, hi) = bbox(&mesh.positions);
                 let cam = Camera::framing(lo, hi, az, el);
                 tiles.push(Tile {
                     image: render(&mesh, &cam, &options)?,
@@ -203,7 +235,13 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             title: "K × (bounding-box diagonal)²".into(),
             kind: LegendKind::Diverging { limit },
         });
-        write_composite(&tiles, shots.len(), title, legend.as_ref(), &args.out.join(format!("{file}.png")))?;
+        write_composite(
+            &tiles,
+            shots.len(),
+            title,
+            legend.as_ref(),
+            &args.out.join(format!("{file}.png")),
+        )?;
         let _ = writeln!(md, "\n![{title}]({file}.png)");
     }
     let mut root = Map::new();

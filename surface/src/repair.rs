@@ -227,6 +227,12 @@ impl RepairReport {
                 list(&self.dropped_faces)
             ));
         }
+        if self.components > 1 || self.boundary_edges > 0 {
+            out.push(format!(
+                "{} components, {} boundary edges",
+                self.components, self.boundary_edges
+            ));
+        }
         out.extend(self.notes.iter().cloned());
         out
     }
@@ -514,74 +520,28 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         }
     }
 
-    // Rules 4–6: which faces are joined across which edges, then fans around each vertex.
-    let hs2 = sorted_half_edges(&oriented);
-    let mut pairs: Vec<((usize, usize), (usize, usize))> = Vec::new();
-    {
-        let conflict_set: std::collections::HashSet<(usize, usize)> =
-            conflicts.iter().copied().collect();
-        for g in groups(&hs2) {
-            let members = &hs2[g];
-            // First face running each way along the edge (in the current orientation).
-            let (key, _, _) = members[0];
-            let mut fwd: Option<(usize, usize)> = None;
-            let mut bwd: Option<(usize, usize)> = None;
-            for &(_, f, l) in members {
-                let forward = oriented[f][l] == key.0;
-                let slot = if forward { &mut fwd } else { &mut bwd };
-                if slot.is_none() {
-                    *slot = Some((f, l));
-                }
-            }
-            let mut detached = members.len() > 2;
-            match (fwd, bwd) {
-                (Some((f, l)), Some((h, m))) => {
-                    if conflict_set.contains(&(f.min(h), f.max(h))) {
-                        detached = true;
-                    } else {
-                        pairs.push(((f, l), (h, m)));
-                    }
-                }
-                // Two faces the same way: the walk's conflict of a non-orientable surface.
-                _ => detached |= members.len() == 2,
-            }
-            if detached {
-                report.detached_edges.push([key.0, key.1]);
-            }
-        }
-    }
-    // Fans: union corners (f, corner) around each vertex across joined edges. Edge l of f runs
-    // a → b and edge m of h runs b → a: vertex a is corner l of f and corner m + 1 of h, vertex
-    // b is corner l + 1 of f and corner m of h.
-    let mut dsu = Dsu::new(3 * oriented.len());
-    for ((f, l), (h, m)) in pairs {
-        dsu.union(3 * f + l, 3 * h + (m + 1) % 3);
-        dsu.union(3 * f + (l + 1) % 3, 3 * h + m);
-    }
-    // The first fan of each vertex keeps it; others get copies (file index kept in the source).
+    // Rules 4–6: which faces are joined across which edges, then fans around each vertex;
+    // repeated while an edge still has more than two faces (a detached face whose fans did not
+    // separate from the others is then cut loose along that edge with its own vertex copies).
+    let conflict_set: std::collections::HashSet<(usize, usize)> =
+        conflicts.iter().copied().collect();
     let mut vertex_source: Vec<usize> = (0..nv).collect();
-    let mut fan_vertex: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
-    let mut first_fan: Vec<Option<usize>> = vec![None; nv];
     let mut extra_copies: std::collections::BTreeMap<usize, usize> = Default::default();
+    let mut detached: std::collections::BTreeSet<[usize; 2]> = Default::default();
     let mut tris = oriented;
-    for (f, tri) in tris.iter_mut().enumerate() {
-        for (c, slot) in tri.iter_mut().enumerate() {
-            let v = *slot;
-            let fan = dsu.find(3 * f + c);
-            match first_fan[v] {
-                None => first_fan[v] = Some(fan),
-                Some(first) if first == fan => {}
-                Some(_) => {
-                    let copy = *fan_vertex.entry(fan).or_insert_with(|| {
-                        vertex_source.push(v);
-                        *extra_copies.entry(v).or_insert(0) += 1;
-                        vertex_source.len() - 1
-                    });
-                    *slot = copy;
-                }
-            }
+    for _round in 0..MAX_SPLIT_ROUNDS {
+        let forced = join_and_split(
+            &mut tris,
+            &mut vertex_source,
+            &conflict_set,
+            &mut detached,
+            &mut extra_copies,
+        );
+        if !forced {
+            break;
         }
     }
+    report.detached_edges = detached.into_iter().collect();
     report.split_vertices = extra_copies.into_iter().collect();
 
     // Rule 7: drop unused vertices, renumber.
@@ -696,6 +656,133 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         vertex_source,
         report,
     })
+}
+
+/// Rounds of [`join_and_split`] before the remaining defects are left to rule 9: each round
+/// cuts every face that is still a third face on an edge loose, so two rounds suffice for
+/// everything the tests and the corpus show; the bound keeps the work linear.
+const MAX_SPLIT_ROUNDS: usize = 4;
+
+/// One round of rules 4–6 on `tris` (vertex indices into `vertex_source`, which maps them to
+/// the file's vertices): join the first face running each way along every edge, split every
+/// vertex into one copy per fan of joined faces, then cut loose (own copies of the edge's two
+/// vertices) every face that still shares an edge with two others. Returns true when a face was
+/// cut loose (another round is needed).
+fn join_and_split(
+    tris: &mut [[usize; 3]],
+    vertex_source: &mut Vec<usize>,
+    conflict_set: &std::collections::HashSet<(usize, usize)>,
+    detached: &mut std::collections::BTreeSet<[usize; 2]>,
+    extra_copies: &mut std::collections::BTreeMap<usize, usize>,
+) -> bool {
+    let mut copy_of = |v: usize, vertex_source: &mut Vec<usize>| {
+        let s = vertex_source[v];
+        vertex_source.push(s);
+        *extra_copies.entry(s).or_insert(0) += 1;
+        vertex_source.len() - 1
+    };
+    let hs = sorted_half_edges(tris);
+    let mut pairs: Vec<((usize, usize), (usize, usize))> = Vec::new();
+    for g in groups(&hs) {
+        let members = &hs[g];
+        let (key, _, _) = members[0];
+        let mut fwd: Option<(usize, usize)> = None;
+        let mut bwd: Option<(usize, usize)> = None;
+        for &(_, f, l) in members {
+            let slot = if tris[f][l] == key.0 {
+                &mut fwd
+            } else {
+                &mut bwd
+            };
+            if slot.is_none() {
+                *slot = Some((f, l));
+            }
+        }
+        let mut cut = members.len() > 2;
+        match (fwd, bwd) {
+            (Some((f, l)), Some((h, m))) => {
+                if conflict_set.contains(&(f.min(h), f.max(h))) {
+                    cut = true;
+                } else {
+                    pairs.push(((f, l), (h, m)));
+                }
+            }
+            // Two faces the same way: the walk's conflict of a non-orientable surface.
+            _ => cut |= members.len() == 2,
+        }
+        if cut {
+            detached.insert([vertex_source[key.0], vertex_source[key.1]]);
+        }
+    }
+    // Fans: union corners (f, corner) around each vertex across joined edges. Edge l of f runs
+    // a → b and edge m of h runs b → a: vertex a is corner l of f and corner m + 1 of h, vertex
+    // b is corner l + 1 of f and corner m of h.
+    let mut dsu = Dsu::new(3 * tris.len());
+    for &((f, l), (h, m)) in &pairs {
+        dsu.union(3 * f + l, 3 * h + (m + 1) % 3);
+        dsu.union(3 * f + (l + 1) % 3, 3 * h + m);
+    }
+    // The first fan of each vertex keeps it; others get copies.
+    let mut fan_vertex: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    let mut first_fan: Vec<Option<usize>> = vec![None; vertex_source.len()];
+    for (f, tri) in tris.iter_mut().enumerate() {
+        for (c, slot) in tri.iter_mut().enumerate() {
+            let v = *slot;
+            let fan = dsu.find(3 * f + c);
+            match first_fan[v] {
+                None => first_fan[v] = Some(fan),
+                Some(first) if first == fan => {}
+                Some(_) => {
+                    *slot = match fan_vertex.get(&fan) {
+                        Some(&c) => c,
+                        None => {
+                            let c = copy_of(v, vertex_source);
+                            fan_vertex.insert(fan, c);
+                            c
+                        }
+                    };
+                }
+            }
+        }
+    }
+    // Faces still a third (or same-direction second) face on an edge: cut loose.
+    let joined: std::collections::HashSet<(usize, usize)> =
+        pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
+    let hs = sorted_half_edges(tris);
+    let mut forced = false;
+    for g in groups(&hs) {
+        let members = &hs[g];
+        let same_direction = members.len() == 2 && {
+            let (_, f, l) = members[0];
+            let (_, h, m) = members[1];
+            tris[f][l] == tris[h][m]
+        };
+        if members.len() <= 2 && !same_direction {
+            continue;
+        }
+        // Keep the joined pair (or the first face), cut the others loose.
+        let keep: Vec<(usize, usize)> = members
+            .iter()
+            .map(|&(_, f, l)| (f, l))
+            .filter(|fl| joined.contains(fl))
+            .collect();
+        let keep = if keep.len() == 2 {
+            keep
+        } else {
+            vec![(members[0].1, members[0].2)]
+        };
+        for &(_, f, l) in members {
+            if keep.contains(&(f, l)) {
+                continue;
+            }
+            let (a, b) = (tris[f][l], tris[f][(l + 1) % 3]);
+            let (ca, cb) = (copy_of(a, vertex_source), copy_of(b, vertex_source));
+            tris[f][l] = ca;
+            tris[f][(l + 1) % 3] = cb;
+            forced = true;
+        }
+    }
+    forced
 }
 
 fn symmetric(s: &Matrix3<f64>) -> Matrix3<f64> {
