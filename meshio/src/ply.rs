@@ -449,6 +449,8 @@ fn read_ply(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                         }
                     }
                 }
+                // An element without properties takes no bytes, whatever its count.
+                _ if el.props.is_empty() => {}
                 _ => {
                     for i in 0..el.count {
                         for p in &el.props {

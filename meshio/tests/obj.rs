@@ -1,4 +1,5 @@
 //! OBJ: round trips, corner forms, normals per corner, errors with their lines.
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
 mod common;
 

@@ -1,4 +1,5 @@
 //! OFF: header variants, colours, round trips, errors with their lines.
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
 mod common;
 

@@ -1,4 +1,5 @@
 //! STL: ASCII and binary, welding, the `solid` header on binary files, errors.
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
 mod common;
 

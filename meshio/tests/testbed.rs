@@ -1,4 +1,5 @@
 //! The testbed format: octa.m, fields, names, round trips, errors with their lines.
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
 mod common;
 
