@@ -665,6 +665,25 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
             ));
         }
     }
+    for (k, vs) in &mesh.properties {
+        if let Some(i) = vs.iter().position(|v| v.abs() > f32::MAX as f64) {
+            return Err(WriteError::invalid(
+                NAME,
+                format!("property `{k}` of vertex {i} does not fit a float"),
+            ));
+        }
+    }
+    if !options.double_precision
+        && mesh
+            .positions
+            .iter()
+            .any(|p| p.coords.amax() > f32::MAX as f64)
+    {
+        return Err(WriteError::invalid(
+            NAME,
+            "a position does not fit a float (write with double precision)",
+        ));
+    }
     if mesh.positions.len() > i32::MAX as usize {
         return Err(WriteError::invalid(
             NAME,
