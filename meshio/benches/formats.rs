@@ -1,1 +1,55 @@
-fn main() {}
+//! Reading and writing a 10⁶-triangle grid mesh in memory: binary PLY and glTF binary.
+#![allow(missing_docs)]
+#![allow(clippy::expect_used)] // a benchmark on fixed valid data
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use meshio::{format_by_name, RawMesh, WriteOptions};
+use nalgebra::Point3;
+
+/// A triangle grid of `n × n` cells (2n² triangles).
+fn grid(n: usize) -> RawMesh {
+    let mut positions = Vec::with_capacity((n + 1) * (n + 1));
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+            positions.push(Point3::new(x, y, 0.1 * (6.0 * x).sin() * (5.0 * y).cos()));
+        }
+    }
+    let mut tris = Vec::with_capacity(2 * n * n);
+    for j in 0..n {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            let (b, c, d) = (a + 1, a + n + 1, a + n + 2);
+            tris.push([a, b, d]);
+            tris.push([a, d, c]);
+        }
+    }
+    RawMesh::from_triangles(positions, &tris)
+}
+
+fn bench(c: &mut Criterion) {
+    // 708² · 2 ≈ 1.0 · 10⁶ triangles.
+    let mesh = grid(708);
+    let opts = WriteOptions::new();
+    let ply = format_by_name("ply").expect("ply");
+    let glb = format_by_name("glb").expect("glb");
+    let ply_bytes = ply.write(&mesh, &opts).expect("write ply");
+    let glb_bytes = glb.write(&mesh, &opts).expect("write glb");
+    let mut g = c.benchmark_group("formats_1M_triangles");
+    g.sample_size(10);
+    g.throughput(Throughput::Bytes(ply_bytes.len() as u64));
+    g.bench_function("ply_binary_read", |b| {
+        b.iter(|| ply.read(&ply_bytes).expect("read"))
+    });
+    g.bench_function("ply_binary_write", |b| {
+        b.iter(|| ply.write(&mesh, &opts).expect("write"))
+    });
+    g.throughput(Throughput::Bytes(glb_bytes.len() as u64));
+    g.bench_function("glb_write", |b| {
+        b.iter(|| glb.write(&mesh, &opts).expect("write"))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

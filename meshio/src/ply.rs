@@ -449,6 +449,8 @@ fn read_ply(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                         }
                     }
                 }
+                // An element without properties takes no bytes, whatever its count.
+                _ if el.props.is_empty() => {}
                 _ => {
                     for i in 0..el.count {
                         for p in &el.props {
@@ -662,6 +664,25 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
                 format!("property `{k}` would clash with a standard vertex property"),
             ));
         }
+    }
+    for (k, vs) in &mesh.properties {
+        if let Some(i) = vs.iter().position(|v| v.abs() > f32::MAX as f64) {
+            return Err(WriteError::invalid(
+                NAME,
+                format!("property `{k}` of vertex {i} does not fit a float"),
+            ));
+        }
+    }
+    if !options.double_precision
+        && mesh
+            .positions
+            .iter()
+            .any(|p| p.coords.amax() > f32::MAX as f64)
+    {
+        return Err(WriteError::invalid(
+            NAME,
+            "a position does not fit a float (write with double precision)",
+        ));
     }
     if mesh.positions.len() > i32::MAX as usize {
         return Err(WriteError::invalid(

@@ -1,4 +1,5 @@
 //! PLY: round trips, header variants, both byte orders, errors with their locations.
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
 mod common;
 

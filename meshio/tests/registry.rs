@@ -1,4 +1,5 @@
 //! The format registry: lookup by name and path, sniffing, the lying extension, errors.
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
 mod common;
 

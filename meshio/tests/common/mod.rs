@@ -81,3 +81,8 @@ pub fn polys(m: &RawMesh) -> Vec<Vec<usize>> {
 pub fn has_note(m: &RawMesh, text: &str) -> bool {
     m.notes.iter().any(|n| n.contains(text))
 }
+
+/// True when some of `notes` contains `text`.
+pub fn has_note_vec(notes: &[String], text: &str) -> bool {
+    notes.iter().any(|n| n.contains(text))
+}
