@@ -136,10 +136,10 @@ fn jittered(mesh: &Mesh, surface: &dyn AnalyticSurface, seed: u64) -> Mesh {
 fn study_mesh(
     name: String,
     family: &str,
-    mesh: Mesh,
+    mut mesh: Mesh,
     surface: Arc<dyn AnalyticSurface>,
 ) -> StudyMesh {
-    let exact = mesh
+    let exact: Vec<(Vector3<f64>, f64, f64)> = mesh
         .vertices()
         .iter()
         .map(|v| {
@@ -147,6 +147,12 @@ fn study_mesh(
             (c.data.n, c.gaussian(), c.mean())
         })
         .collect();
+    // Positions only reach the estimators: a stored exact normal must not leak into an estimate.
+    for v in mesh.vertices_mut() {
+        v.data.n = Vector3::zeros();
+        v.data.shape = nalgebra::Matrix3::zeros();
+        v.curvature_known = false;
+    }
     StudyMesh {
         h: mean_edge(&mesh),
         name,
