@@ -75,6 +75,10 @@ pub struct Prepared {
     pub estimate: Option<EstimateSummary>,
     /// What was estimated: `"normals and curvature"`, `"curvature"`, `"normals"` or `"nothing"`.
     pub estimated: &'static str,
+    /// Wall-clock time of the repair, seconds.
+    pub repair_time_seconds: f64,
+    /// Wall-clock time of the estimation, seconds.
+    pub estimate_time_seconds: f64,
 }
 
 impl Prepared {
@@ -108,7 +112,10 @@ pub fn prepare(
     choice: EstimateChoice,
     replace_normals: bool,
 ) -> Result<Prepared, PrepareError> {
+    let t0 = std::time::Instant::now();
     let repaired = repair(raw, &RepairOptions::default())?;
+    let repair_time_seconds = t0.elapsed().as_secs_f64();
+    let t1 = std::time::Instant::now();
     let mut mesh = repaired.mesh.clone();
     let curvature_given = mesh.vertices().iter().all(|v| v.curvature_known);
     let (estimate, estimated) = match choice {
@@ -151,5 +158,7 @@ pub fn prepare(
         repaired,
         estimate,
         estimated,
+        repair_time_seconds,
+        estimate_time_seconds: t1.elapsed().as_secs_f64(),
     })
 }

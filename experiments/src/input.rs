@@ -46,7 +46,9 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
     if path.is_file()
         || surface::dataset_by_name(&args.data, None).is_err() && path.extension().is_some()
     {
+        let t = std::time::Instant::now();
         let raw = meshio::read_file(path).map_err(ExperimentError::MeshIo)?;
+        let t_read = t.elapsed().as_secs_f64();
         let choice = EstimateChoice::parse(&args.estimate)
             .map_err(|e| ExperimentError::Usage(format!("--estimate: {e}")))?;
         let prepared = estimate::prepare(&raw, choice, args.replace_normals).map_err(|source| {
@@ -57,6 +59,10 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         })?;
         let mut notes: Vec<String> = raw.notes.clone();
         notes.extend(prepared.summary_lines());
+        notes.push(format!(
+            "time: read {:.3} s, repair {:.3} s, estimation {:.3} s",
+            t_read, prepared.repair_time_seconds, prepared.estimate_time_seconds
+        ));
         return Ok(Loaded {
             mesh: prepared.mesh.clone(),
             notes,
