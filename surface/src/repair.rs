@@ -37,6 +37,7 @@
 
 use meshio::RawMesh;
 use nalgebra::{Matrix3, Vector3};
+use rayon::slice::ParallelSliceMut;
 
 use crate::mesh::{ExtraFields, Mesh, MeshError, Vertex};
 
@@ -287,7 +288,7 @@ fn sorted_half_edges(faces: &[[usize; 3]]) -> Vec<((usize, usize), usize, usize)
             hs.push(((a.min(b), a.max(b)), f, l));
         }
     }
-    hs.sort_unstable();
+    hs.par_sort_unstable();
     hs
 }
 
@@ -355,7 +356,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
                 (k, f)
             })
             .collect();
-        keys.sort_unstable();
+        keys.par_sort_unstable();
         let mut dup = vec![false; faces.len()];
         for w in keys.windows(2) {
             if w[0].0 == w[1].0 {
@@ -565,42 +566,45 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     }
     let vertex_source = kept_source;
 
-    let vertices: Vec<Vertex> = vertex_source
-        .iter()
-        .map(|&s| {
-            let p = raw.positions[s];
-            let n = given_normals
-                .as_ref()
-                .map_or_else(Vector3::zeros, |ns| ns[s]);
-            let mut v = match &raw.shapes {
-                Some(shapes) if shapes.len() == nv => {
-                    Vertex::new(curves::VertexData::new(p, n, shapes[s]))
-                }
-                _ => Vertex::without_curvature(p, n),
-            };
-            if v.curvature_known {
-                v.data.shape = symmetric(&v.data.shape);
-            }
-            if let Some(name) = raw.vertex_names.as_ref().and_then(|n| n.get(s)) {
-                v.name = Some(name.clone());
-            }
-            if !raw.properties.is_empty() {
-                let mut extra = ExtraFields::new();
-                for (k, vals) in &raw.properties {
-                    if let Some(x) = vals.get(s) {
-                        extra.insert(k.clone(), vec![*x]);
+    let make_vertices = || -> Vec<Vertex> {
+        vertex_source
+            .iter()
+            .map(|&s| {
+                let p = raw.positions[s];
+                let n = given_normals
+                    .as_ref()
+                    .map_or_else(Vector3::zeros, |ns| ns[s]);
+                let mut v = match &raw.shapes {
+                    Some(shapes) if shapes.len() == nv => {
+                        Vertex::new(curves::VertexData::new(p, n, shapes[s]))
                     }
+                    _ => Vertex::without_curvature(p, n),
+                };
+                if v.curvature_known {
+                    v.data.shape = symmetric(&v.data.shape);
                 }
-                v.extra = extra;
-            }
-            v
-        })
-        .collect();
+                if let Some(name) = raw.vertex_names.as_ref().and_then(|n| n.get(s)) {
+                    v.name = Some(name.clone());
+                }
+                if !raw.properties.is_empty() {
+                    let mut extra = ExtraFields::new();
+                    for (k, vals) in &raw.properties {
+                        if let Some(x) = vals.get(s) {
+                            extra.insert(k.clone(), vec![*x]);
+                        }
+                    }
+                    v.extra = extra;
+                }
+                v
+            })
+            .collect()
+    };
 
-    // Rule 9: validate; drop what still fails, boundedly.
+    // Rule 9: validate; drop what still fails, boundedly (the vertices are rebuilt for a retry
+    // rather than copied for every attempt: a clean mesh is built once).
     let mut face_source = source;
     let mesh = loop {
-        match Mesh::new_allowing_degenerate(vertices.clone(), tris.clone()) {
+        match Mesh::new_allowing_degenerate(make_vertices(), tris.clone()) {
             Ok(m) => break m,
             Err(e) => {
                 let culprit = match &e {
@@ -746,8 +750,11 @@ fn join_and_split(
         }
     }
     // Faces still a third (or same-direction second) face on an edge: cut loose.
-    let joined: std::collections::HashSet<(usize, usize)> =
-        pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
+    let mut joined = vec![false; 3 * tris.len()];
+    for &((f, l), (h, m)) in &pairs {
+        joined[3 * f + l] = true;
+        joined[3 * h + m] = true;
+    }
     let hs = sorted_half_edges(tris);
     let mut forced = false;
     for g in groups(&hs) {
@@ -764,7 +771,7 @@ fn join_and_split(
         let keep: Vec<(usize, usize)> = members
             .iter()
             .map(|&(_, f, l)| (f, l))
-            .filter(|fl| joined.contains(fl))
+            .filter(|&(f, l)| joined[3 * f + l])
             .collect();
         let keep = if keep.len() == 2 {
             keep

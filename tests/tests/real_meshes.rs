@@ -25,9 +25,17 @@ fn fit_everything(label: &str, mesh: &Mesh) -> Vec<(&'static str, usize)> {
         let m = method_by_name(entry.name, &MethodOptions::default()).unwrap();
         let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
             .unwrap_or_else(|e| panic!("{label}/{}: {e}", entry.name));
-        assert_eq!(f.patches.len(), 3 * mesh.num_faces(), "{label}/{}", entry.name);
+        assert_eq!(
+            f.patches.len(),
+            3 * mesh.num_faces(),
+            "{label}/{}",
+            entry.name
+        );
         assert!(
-            f.patches.iter().flatten().all(|q| q.iter().all(|c| c.is_finite())),
+            f.patches
+                .iter()
+                .flatten()
+                .all(|q| q.iter().all(|c| c.is_finite())),
             "{label}/{}: non-finite control point",
             entry.name
         );
@@ -85,5 +93,8 @@ fn every_hostile_mesh_is_fitted() {
 fn without_estimation_a_file_without_normals_is_refused_by_name() {
     let raw = meshio::read_file(fixtures::corpus::corpus_dir().join("bunny.ply")).unwrap();
     let err = prepare(&raw, EstimateChoice::None, false).unwrap_err();
-    assert!(err.to_string().contains("no usable vertex normals"), "{err}");
+    assert!(
+        err.to_string().contains("no usable vertex normals"),
+        "{err}"
+    );
 }
