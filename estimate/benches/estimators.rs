@@ -1,2 +1,64 @@
-//! Placeholder (filled below).
-fn main() {}
+//! Estimation speed: every registered estimator on rings of about 10⁵ and 10⁶ triangles
+//! (`surface::datasets::ring(nu, nv)` has `2 nu nv` triangles), all cores (rayon over vertices).
+//! Throughput is reported in triangles per second.
+
+#![allow(clippy::expect_used)] // a benchmark on fixed valid data
+#![allow(missing_docs)] // criterion's macros generate undocumented items
+
+use std::time::Duration;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use estimate::ESTIMATORS;
+
+fn bench(c: &mut Criterion) {
+    let mut g = c.benchmark_group("estimate_ring");
+    g.sample_size(10);
+    g.warm_up_time(Duration::from_millis(500));
+    g.measurement_time(Duration::from_secs(3));
+    for (nu, nv) in [(316usize, 158usize), (1000, 500)] {
+        let data = surface::datasets::ring(nu, nv).expect("valid resolution");
+        let faces = data.mesh.num_faces();
+        g.throughput(Throughput::Elements(faces as u64));
+        for est in ESTIMATORS {
+            // `jet` is `jet2` under its recommended name: timed once.
+            if est.name() == "jet2" {
+                continue;
+            }
+            g.bench_with_input(
+                BenchmarkId::new(est.name(), faces),
+                &data.mesh,
+                |b, mesh| b.iter(|| est.estimate(mesh, None)),
+            );
+        }
+    }
+    g.finish();
+}
+
+/// The shared stages on the 10⁶-triangle ring: adjacency and first normals.
+fn stages(c: &mut Criterion) {
+    let mut g = c.benchmark_group("stages_ring");
+    g.sample_size(10);
+    g.warm_up_time(Duration::from_millis(500));
+    g.measurement_time(Duration::from_secs(2));
+    let data = surface::datasets::ring(1000, 500).expect("valid resolution");
+    let faces = data.mesh.num_faces();
+    g.throughput(Throughput::Elements(faces as u64));
+    g.bench_function(BenchmarkId::new("topology", faces), |b| {
+        b.iter(|| estimate::Topology::new(&data.mesh))
+    });
+    let topo = estimate::Topology::new(&data.mesh);
+    g.bench_function(BenchmarkId::new("angle_normals", faces), |b| {
+        b.iter(|| {
+            estimate::normals::vertex_normals_with(
+                &data.mesh,
+                &topo,
+                estimate::NormalWeighting::Angle,
+                None,
+            )
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench, stages);
+criterion_main!(benches);

@@ -145,10 +145,17 @@ pub fn fit_height(
     ws.b.extend(ws.local.iter().map(|p| p[2]));
     let first_degree = usize::from(!constant);
     for (i, p) in ws.local.iter().enumerate() {
+        // Powers by repeated multiplication (no `powi` in the hot loop).
+        let mut xp = [1.0; MAX_DEGREE + 1];
+        let mut yp = [1.0; MAX_DEGREE + 1];
+        for e in 1..=degree {
+            xp[e] = xp[e - 1] * p[0];
+            yp[e] = yp[e - 1] * p[1];
+        }
         let mut col = 0;
         for total in first_degree..=degree {
             for k in 0..=total {
-                ws.a[col * m + i] = p[0].powi((total - k) as i32) * p[1].powi(k as i32);
+                ws.a[col * m + i] = xp[total - k] * yp[k];
                 col += 1;
             }
         }

@@ -32,6 +32,7 @@
 use std::collections::BTreeMap;
 
 use nalgebra::{Matrix3, Vector3};
+use rayon::prelude::*;
 use surface::Mesh;
 
 pub mod fit;
@@ -281,24 +282,32 @@ pub(crate) fn finish(
     mut fallbacks: Vec<Fallback>,
     first: &Normals,
 ) -> Estimate {
-    for (v, (n, s)) in normals.iter_mut().zip(shapes.iter_mut()).enumerate() {
-        let len = n.norm();
-        if !(len.is_finite() && len > 0.0) {
-            *n = first.normals.get(v).copied().unwrap_or_else(Vector3::z);
-        } else {
-            *n /= len;
-        }
-        *s = project_shape(s, n);
-        if !s.iter().all(|c| c.is_finite()) {
+    let bad: Vec<Fallback> = normals
+        .par_iter_mut()
+        .zip(shapes.par_iter_mut())
+        .enumerate()
+        .with_min_len(1024)
+        .filter_map(|(v, (n, s))| {
+            let len = n.norm();
+            if !(len.is_finite() && len > 0.0) {
+                *n = first.normals.get(v).copied().unwrap_or_else(Vector3::z);
+            } else {
+                *n /= len;
+            }
+            *s = project_shape(s, n);
+            if s.iter().all(|c| c.is_finite()) {
+                return None;
+            }
             *s = Matrix3::zeros();
-            fallbacks.push(Fallback {
+            Some(Fallback {
                 vertex: v,
                 kind: FallbackKind::Planar {
                     reason: PlanarReason::NonFinite,
                 },
-            });
-        }
-    }
+            })
+        })
+        .collect();
+    fallbacks.extend(bad);
     fallbacks.sort();
     fallbacks.dedup();
     Estimate {
