@@ -261,7 +261,20 @@ pub fn apply(mesh: &mut Mesh, est: &dyn Estimator, keep_given_normals: bool) -> 
 pub(crate) fn given_normal(given: Option<&[Vector3<f64>]>, v: usize) -> Option<Vector3<f64>> {
     let n = given?.get(v)?;
     let len = n.norm();
-    (len.is_finite() && len > 0.0 && n.iter().all(|c| c.is_finite())).then(|| n / len)
+    (len.is_finite() && len > 0.0 && n.iter().all(|c| c.is_finite())).then(|| unit(n, len))
+}
+
+/// Within this of 1 a length is taken as unit and the vector kept bit for bit (so that given
+/// normals come back exactly as given).
+pub(crate) const UNIT_SLACK: f64 = 1e-14;
+
+/// `n / len`, or `n` itself when `len` is 1 to [`UNIT_SLACK`].
+pub(crate) fn unit(n: &Vector3<f64>, len: f64) -> Vector3<f64> {
+    if (len - 1.0).abs() <= UNIT_SLACK {
+        *n
+    } else {
+        n / len
+    }
 }
 
 /// Symmetrizes `s` and projects it onto the plane `⊥ n`: `P ½(S + Sᵀ) P`, `P = I − n nᵀ`, so
@@ -292,7 +305,7 @@ pub(crate) fn finish(
             if !(len.is_finite() && len > 0.0) {
                 *n = first.normals.get(v).copied().unwrap_or_else(Vector3::z);
             } else {
-                *n /= len;
+                *n = unit(n, len);
             }
             *s = project_shape(s, n);
             if s.iter().all(|c| c.is_finite()) {
