@@ -301,3 +301,80 @@ pub fn run(est: &dyn Estimator, mesh: &Mesh, given: Option<&[Vector3<f64>]>) -> 
     assert_sane(&e, mesh.num_vertices());
     e
 }
+
+/// Errors of `est` on the sphere at levels 3, 4, 5 (edge length halves each level) and the ring
+/// at 32×16, 64×32, 128×64, in that order.
+pub fn convergence(est: &dyn Estimator) -> (Vec<Errors>, Vec<Errors>) {
+    let sphere = [3, 4, 5]
+        .iter()
+        .map(|&l| {
+            let d = surface::datasets::sphere(l).expect("valid");
+            errors(&run(est, &d.mesh, None), &d.mesh)
+        })
+        .collect();
+    let ring = [32, 64, 128]
+        .iter()
+        .map(|&n| {
+            let d = surface::datasets::ring(n, n / 2).expect("valid");
+            errors(&run(est, &d.mesh, None), &d.mesh)
+        })
+        .collect();
+    (sphere, ring)
+}
+
+/// Asserts that each error decreases with every halving at least at `min_order`; `what`
+/// names the quantity.
+pub fn assert_order(errs: &[f64], min_order: f64, what: &str) {
+    for w in errs.windows(2) {
+        let o = order(w[0], w[1], 2.0);
+        assert!(
+            o >= min_order,
+            "{what}: errors {errs:?}, order {o} < {min_order}"
+        );
+    }
+}
+
+/// The tensor `[[a, b, 0], [b, c, 0], [0, 0, 0]]` rotated by `r`.
+pub fn quad_tensor(a: f64, b: f64, c: f64, r: &Rotation3<f64>) -> Matrix3<f64> {
+    let s = Matrix3::new(a, b, 0.0, b, c, 0.0, 0.0, 0.0, 0.0);
+    r.matrix() * s * r.matrix().transpose()
+}
+
+/// Checks that `est` reproduces `z = ½(a x² + 2b xy + c y²)` exactly at the centre of a
+/// point-symmetric grid (where the angle-weighted normal is exactly `+z`), untilted and moved
+/// by a rotation and translation, with and without the exact normal given.
+pub fn assert_reproduces_quadric(est: &dyn Estimator) {
+    /// An exact fit of well-conditioned small systems: rounding only.
+    const EXACT: f64 = 1e-10;
+    let (a, b, c) = (1.3, -0.4, 0.7);
+    let (mesh, centre) = height_grid(4, 0.1, |x, y| quad_height(a, b, c, x, y));
+    let tilts = [
+        (Rotation3::identity(), Vector3::zeros()),
+        (
+            Rotation3::from_euler_angles(0.4, -0.7, 1.1),
+            Vector3::new(3.0, -2.0, 5.0),
+        ),
+    ];
+    for (r, t) in tilts {
+        let moved = transformed(&mesh, &r, &t, 1.0);
+        let n = r * Vector3::z();
+        let mut given = vec![Vector3::z(); moved.num_vertices()];
+        given[centre] = n;
+        for g in [None, Some(given.as_slice())] {
+            let e = run(est, &moved, g);
+            let want = quad_tensor(a, b, c, &r);
+            assert!(
+                (e.normals[centre] - n).norm() < EXACT,
+                "{}: normal {:?}",
+                est.name(),
+                e.normals[centre]
+            );
+            assert!(
+                (e.shapes[centre] - want).norm() < EXACT,
+                "{}: S {:?}, want {want:?}",
+                est.name(),
+                e.shapes[centre]
+            );
+        }
+    }
+}
