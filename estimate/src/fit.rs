@@ -397,6 +397,30 @@ mod tests {
     }
 
     #[test]
+    fn gradient_terms_give_the_sphere_in_a_tilted_frame() {
+        // The unit sphere through the origin with outward normal N (centre −N), seen as a graph
+        // over a frame whose normal n0 is 0.3 rad off N. Implicit differentiation of
+        // |X + N|² = 1, X = x t1 + y t2 + f n0, at the origin (g = X + N = N there):
+        // f_x = −N·t1 / N·n0, f_xx = −|X_x|² / N·n0, f_xy = −X_x·X_y / N·n0, etc.
+        /// Closed-form derivatives: rounding only.
+        const EXACT: f64 = 1e-13;
+        let big_n = Vector3::new(0.2, -0.3, 0.9).normalize();
+        let n0 = (big_n + Vector3::new(0.25, 0.1, 0.0)).normalize();
+        let (t1, t2) = tangent_basis(&n0);
+        let gn = big_n.dot(&n0);
+        let (p, q) = (-big_n.dot(&t1) / gn, -big_n.dot(&t2) / gn);
+        let (xx, xy) = (t1 + n0 * p, t2 + n0 * q);
+        let d = HeightDerivatives {
+            grad: [p, q],
+            hess: [-xx.dot(&xx) / gn, -xx.dot(&xy) / gn, -xy.dot(&xy) / gn],
+        };
+        let (normal, shape) = d.normal_and_shape(&t1, &t2, &n0).expect("regular");
+        assert!((normal - big_n).norm() < EXACT);
+        let want = -(Matrix3::identity() - big_n * big_n.transpose());
+        assert!((shape - want).norm() < EXACT, "{shape} vs {want}");
+    }
+
+    #[test]
     fn least_squares_recovers_an_exact_polynomial() {
         let mut ws = Workspace::default();
         for i in -2..=2 {
