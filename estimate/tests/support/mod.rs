@@ -3,6 +3,7 @@
 //! rigid motions.
 
 #![allow(dead_code)] // each test file uses part of the support
+#![allow(clippy::expect_used)] // test fixtures built from fixed valid data
 
 use estimate::{principal_curvatures, Estimate, Estimator};
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
