@@ -57,6 +57,29 @@ fn stages(c: &mut Criterion) {
             )
         })
     });
+    // One vertex, one thread: the parts of the jet's hot loop.
+    let spec = estimate::fit::FitSpec {
+        degree: 2,
+        constant: true,
+        rule: estimate::fit::RingRule {
+            min_points: 12,
+            max_rings: 5,
+            max_points: 200,
+        },
+    };
+    let mut ws = estimate::fit::Workspace::default();
+    let n0 = data.mesh.vertices()[1234].data.n;
+    g.throughput(Throughput::Elements(1));
+    g.bench_function("rings_into_one_vertex", |b| {
+        b.iter(|| topo.rings_into(1234, 12, 5, 200, &mut ws.ring))
+    });
+    g.bench_function("jet2_one_vertex", |b| {
+        b.iter(|| estimate::fit::fit_vertex(&data.mesh, &topo, 1234, &n0, &spec, &mut ws))
+    });
+    let _ = estimate::fit::fit_vertex(&data.mesh, &topo, 1234, &n0, &spec, &mut ws);
+    g.bench_function("fit_height_one_vertex", |b| {
+        b.iter(|| estimate::fit::fit_height(&mut ws, 2, true))
+    });
     g.finish();
 }
 

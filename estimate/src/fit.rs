@@ -139,12 +139,8 @@ pub fn fit_height(
     if m < n {
         return Err(FitFailure::TooFewPoints);
     }
-    ws.a.clear();
-    ws.a.resize(m * n, 0.0);
-    ws.b.clear();
-    ws.b.extend(ws.local.iter().map(|p| p[2]));
     let first_degree = usize::from(!constant);
-    for (i, p) in ws.local.iter().enumerate() {
+    let row = |p: &[f64; 3], out: &mut [f64; MAX_COEFFS]| {
         // Powers by repeated multiplication (no `powi` in the hot loop).
         let mut xp = [1.0; MAX_DEGREE + 1];
         let mut yp = [1.0; MAX_DEGREE + 1];
@@ -155,13 +151,40 @@ pub fn fit_height(
         let mut col = 0;
         for total in first_degree..=degree {
             for k in 0..=total {
-                ws.a[col * m + i] = xp[total - k] * yp[k];
+                out[col] = xp[total - k] * yp[k];
                 col += 1;
             }
         }
-    }
+    };
     let mut coeffs = [0.0; MAX_COEFFS];
-    solve_least_squares(&mut ws.a, &mut ws.b, m, n, &mut coeffs[..n])?;
+    // Fast path: the equilibrated normal equations, accepted only when well conditioned.
+    let mut gram = [[0.0; MAX_COEFFS]; MAX_COEFFS];
+    let mut rhs = [0.0; MAX_COEFFS];
+    let mut r = [0.0; MAX_COEFFS];
+    for p in ws.local.iter() {
+        row(p, &mut r);
+        for i in 0..n {
+            let ri = r[i];
+            rhs[i] += ri * p[2];
+            for (g, rj) in gram[i][i..n].iter_mut().zip(&r[i..n]) {
+                *g += ri * rj;
+            }
+        }
+    }
+    if solve_normal_equations(&mut gram, &mut rhs, n, &mut coeffs[..n]).is_none() {
+        // Robust path: pivoted QR of the Vandermonde matrix.
+        ws.a.clear();
+        ws.a.resize(m * n, 0.0);
+        ws.b.clear();
+        ws.b.extend(ws.local.iter().map(|p| p[2]));
+        for (i, p) in ws.local.iter().enumerate() {
+            row(p, &mut r);
+            for (j, rj) in r.iter().take(n).enumerate() {
+                ws.a[j * m + i] = *rj;
+            }
+        }
+        solve_least_squares(&mut ws.a, &mut ws.b, m, n, &mut coeffs[..n])?;
+    }
     let off = usize::from(constant);
     let c = |i: usize| coeffs.get(off + i).copied().unwrap_or(0.0);
     if degree < 2 {
@@ -174,6 +197,109 @@ pub fn fit_height(
         grad: [c(0), c(1)],
         hess: [2.0 * c(2), c(3), 2.0 * c(4)],
     })
+}
+
+/// `Σ xᵢ yᵢ` over the shorter of the two slices, with four independent accumulators (a serial
+/// sum waits on the adder's latency at every term; the QR's dot products are its hot spot).
+fn dot(x: &[f64], y: &[f64]) -> f64 {
+    let len = x.len().min(y.len());
+    let (x, y) = (&x[..len], &y[..len]);
+    let mut acc = [0.0; 4];
+    let (xc, yc) = (x.chunks_exact(4), y.chunks_exact(4));
+    let (xr, yr) = (xc.remainder(), yc.remainder());
+    for (a, b) in xc.zip(yc) {
+        acc[0] += a[0] * b[0];
+        acc[1] += a[1] * b[1];
+        acc[2] += a[2] * b[2];
+        acc[3] += a[3] * b[3];
+    }
+    let mut tail = 0.0;
+    for (a, b) in xr.iter().zip(yr) {
+        tail += a * b;
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// Condition-number limit of the fast path ([`solve_normal_equations`]): squaring it in the
+/// normal equations leaves `1e4 · ε ≈ 2e-12` relative accuracy; above it the pivoted QR
+/// ([`solve_least_squares`]) takes over.
+pub const NORMAL_EQUATIONS_CONDITION: f64 = 1e2;
+
+/// Solves the normal equations `G c = r` (upper triangle of `G = AᵀA` filled, `r = Aᵀb`) after
+/// Jacobi equilibration, by Cholesky; `None` when `G` is not numerically positive definite or
+/// the estimated condition number of `A` (ratio of the largest to the smallest diagonal entry of
+/// the Cholesky factor, which is `R`'s diagonal of the unpivoted QR of `A`) exceeds
+/// [`NORMAL_EQUATIONS_CONDITION`]. Returns the estimate.
+pub fn solve_normal_equations(
+    g: &mut [[f64; MAX_COEFFS]; MAX_COEFFS],
+    r: &mut [f64; MAX_COEFFS],
+    n: usize,
+    out: &mut [f64],
+) -> Option<f64> {
+    if n == 0 || n > MAX_COEFFS || out.len() < n {
+        return None;
+    }
+    let mut d = [0.0; MAX_COEFFS];
+    for i in 0..n {
+        let gii = g[i][i];
+        if !(gii > 0.0 && gii.is_finite()) {
+            return None;
+        }
+        d[i] = gii.sqrt();
+    }
+    for i in 0..n {
+        for j in i..n {
+            g[i][j] /= d[i] * d[j];
+        }
+        r[i] /= d[i];
+    }
+    // Cholesky G = Uᵀ U in the upper triangle.
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
+    for k in 0..n {
+        let mut piv = g[k][k];
+        for i in 0..k {
+            piv -= g[i][k] * g[i][k];
+        }
+        if !(piv > 0.0 && piv.is_finite()) {
+            return None;
+        }
+        let ukk = piv.sqrt();
+        g[k][k] = ukk;
+        lo = lo.min(ukk);
+        hi = hi.max(ukk);
+        for j in k + 1..n {
+            let mut acc = g[k][j];
+            for i in 0..k {
+                acc -= g[i][k] * g[i][j];
+            }
+            g[k][j] = acc / ukk;
+        }
+    }
+    let cond = hi / lo;
+    if !(cond <= NORMAL_EQUATIONS_CONDITION) {
+        return None;
+    }
+    // Uᵀ y = r, then U c = y.
+    let mut y = [0.0; MAX_COEFFS];
+    for i in 0..n {
+        let mut acc = r[i];
+        for k in 0..i {
+            acc -= g[k][i] * y[k];
+        }
+        y[i] = acc / g[i][i];
+    }
+    for i in (0..n).rev() {
+        let mut acc = y[i];
+        for k in i + 1..n {
+            acc -= g[i][k] * out[k];
+        }
+        out[i] = acc;
+        out[i] /= g[i][i];
+    }
+    for i in 0..n {
+        out[i] /= d[i];
+    }
+    out.iter().take(n).all(|c| c.is_finite()).then_some(cond)
 }
 
 /// Least squares `min ‖A c − b‖` for `A` (`m × n`, column-major, overwritten) by column
@@ -192,7 +318,7 @@ pub fn solve_least_squares(
     let mut scale = [1.0; MAX_COEFFS];
     for (j, s) in scale.iter_mut().enumerate().take(n) {
         let col = &mut a[j * m..(j + 1) * m];
-        let norm = col.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let norm = dot(col, col).sqrt();
         if !(norm > 0.0 && norm.is_finite()) {
             return Err(FitFailure::IllConditioned);
         }
@@ -209,16 +335,16 @@ pub fn solve_least_squares(
         let mut best = k;
         let mut best_norm = -1.0;
         for j in k..n {
-            let nj: f64 = a[j * m + k..(j + 1) * m].iter().map(|x| x * x).sum();
+            let col = &a[j * m + k..(j + 1) * m];
+            let nj = dot(col, col);
             if nj > best_norm {
                 best_norm = nj;
                 best = j;
             }
         }
         if best != k {
-            for i in 0..m {
-                a.swap(k * m + i, best * m + i);
-            }
+            let (lo_cols, hi_cols) = a.split_at_mut(best * m);
+            lo_cols[k * m..(k + 1) * m].swap_with_slice(&mut hi_cols[..m]);
             perm.swap(k, best);
             scale.swap(k, best);
         }
@@ -226,25 +352,24 @@ pub fn solve_least_squares(
         if norm == 0.0 || !norm.is_finite() {
             return Err(FitFailure::IllConditioned);
         }
-        let x0 = a[k * m + k];
+        let (left, right) = a.split_at_mut((k + 1) * m);
+        let v = &mut left[k * m + k..];
+        let x0 = v[0];
         let alpha = if x0 > 0.0 { -norm } else { norm };
-        // v = x − α e1, stored in place of column k below (and on) the diagonal.
-        a[k * m + k] = x0 - alpha;
-        let vnorm2: f64 = a[k * m + k..(k + 1) * m].iter().map(|x| x * x).sum();
+        // v = x − α e1, stored in place of column k on and below the diagonal.
+        v[0] = x0 - alpha;
+        let v = &*v;
+        let vnorm2 = dot(v, v);
         rdiag[k] = alpha;
         if vnorm2 > 0.0 {
-            for j in k + 1..n {
-                let dot: f64 = (k..m).map(|i| a[k * m + i] * a[j * m + i]).sum();
-                let f = 2.0 * dot / vnorm2;
-                for i in k..m {
-                    a[j * m + i] -= f * a[k * m + i];
-                }
+            for col in right.chunks_exact_mut(m).take(n - k - 1) {
+                let col = &mut col[k..];
+                let f = 2.0 * dot(v, col) / vnorm2;
+                col.iter_mut().zip(v).for_each(|(c, x)| *c -= f * x);
             }
-            let dot: f64 = (k..m).map(|i| a[k * m + i] * b[i]).sum();
-            let f = 2.0 * dot / vnorm2;
-            for i in k..m {
-                b[i] -= f * a[k * m + i];
-            }
+            let rhs = &mut b[k..m];
+            let f = 2.0 * dot(v, rhs) / vnorm2;
+            rhs.iter_mut().zip(v).for_each(|(c, x)| *c -= f * x);
         }
     }
     let (mut lo, mut hi) = (f64::INFINITY, 0.0_f64);
