@@ -230,6 +230,7 @@ pub const NORMAL_EQUATIONS_CONDITION: f64 = 1e2;
 /// the estimated condition number of `A` (ratio of the largest to the smallest diagonal entry of
 /// the Cholesky factor, which is `R`'s diagonal of the unpivoted QR of `A`) exceeds
 /// [`NORMAL_EQUATIONS_CONDITION`]. Returns the estimate.
+#[allow(clippy::needless_range_loop)] // triangular index arithmetic reads clearer with indices
 pub fn solve_normal_equations(
     g: &mut [[f64; MAX_COEFFS]; MAX_COEFFS],
     r: &mut [f64; MAX_COEFFS],
@@ -276,7 +277,7 @@ pub fn solve_normal_equations(
         }
     }
     let cond = hi / lo;
-    if !(cond <= NORMAL_EQUATIONS_CONDITION) {
+    if cond.is_nan() || cond > NORMAL_EQUATIONS_CONDITION {
         return None;
     }
     // Uᵀ y = r, then U c = y.
