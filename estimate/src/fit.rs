@@ -29,6 +29,13 @@
 //! (Golub & Van Loan, *Matrix Computations*, §5.4.1). The condition number is estimated as
 //! `max |r_ii| / min |r_ii|` of the pivoted `R` (a lower bound of the 2-norm condition number,
 //! usually within a small factor of it); a fit above [`MAX_CONDITION`] is refused.
+//!
+//! **Fast path.** The QR's short dot products dominate the per-vertex cost, so the system is
+//! first solved through the Jacobi-equilibrated normal equations `AᵀA c = Aᵀb` by Cholesky
+//! ([`solve_normal_equations`]): the Cholesky factor is the `R` of the unpivoted QR of `A`, so
+//! its diagonal gives the same kind of condition estimate, and the solution is accepted only
+//! below [`NORMAL_EQUATIONS_CONDITION`] (squared: `1e4 ε` relative error); otherwise the pivoted
+//! QR decides. Both paths solve the same least-squares problem.
 
 use nalgebra::{Matrix2, Matrix3, Vector3};
 use surface::Mesh;
