@@ -514,6 +514,8 @@ mod tests {
 
     #[test]
     fn tangent_basis_is_orthonormal_and_right_handed() {
+        /// A handful of products and one division: rounding only.
+        const ROUNDING: f64 = 1e-15;
         for n in [
             Vector3::z(),
             -Vector3::z(),
@@ -522,10 +524,10 @@ mod tests {
             Vector3::new(1e-20, 0.0, -1.0).normalize(),
         ] {
             let (t1, t2) = tangent_basis(&n);
-            assert!((t1.norm() - 1.0).abs() < 1e-15);
-            assert!((t2.norm() - 1.0).abs() < 1e-15);
-            assert!(t1.dot(&t2).abs() < 1e-15);
-            assert!((t1.cross(&t2) - n).norm() < 1e-15);
+            assert!((t1.norm() - 1.0).abs() < ROUNDING);
+            assert!((t2.norm() - 1.0).abs() < ROUNDING);
+            assert!(t1.dot(&t2).abs() < ROUNDING);
+            assert!((t1.cross(&t2) - n).norm() < ROUNDING);
         }
     }
 
@@ -564,11 +566,12 @@ mod tests {
             }
         }
         let d = fit_height(&mut ws, 2, true).expect("well posed");
-        let tol = 1e-13; // an exact fit of a 25×6 well-conditioned system
-        assert!((d.grad[0] - 0.2).abs() < tol && (d.grad[1] + 0.3).abs() < tol);
-        assert!((d.hess[0] - 1.0).abs() < tol);
-        assert!((d.hess[1] + 0.25).abs() < tol);
-        assert!((d.hess[2] - 1.5).abs() < tol);
+        /// An exact fit of a 25×6 well-conditioned system.
+        const TOL: f64 = 1e-13;
+        assert!((d.grad[0] - 0.2).abs() < TOL && (d.grad[1] + 0.3).abs() < TOL);
+        assert!((d.hess[0] - 1.0).abs() < TOL);
+        assert!((d.hess[1] + 0.25).abs() < TOL);
+        assert!((d.hess[2] - 1.5).abs() < TOL);
         // Collinear points: refused.
         ws.local = (0..10).map(|i| [i as f64, 2.0 * i as f64, 1.0]).collect();
         assert_eq!(

@@ -67,7 +67,11 @@ fn sphere_sign_convention() {
 #[test]
 fn jets_converge_at_the_observed_orders() {
     // (estimator, min normal order, min curvature order): the observed orders less a margin.
-    for (est, n_order, k_order) in [(&JET2, 1.8, 1.8), (&JET3, 1.8, 1.8), (&JET4, 3.4, 3.4)] {
+    for (est, n_order, k_order) in [
+        (&JET2, ORDER_2, ORDER_2),
+        (&JET3, ORDER_2, ORDER_2),
+        (&JET4, ORDER_4, ORDER_4),
+    ] {
         let (sphere, ring) = convergence(est);
         for (set, errs) in [("sphere", &sphere), ("ring", &ring)] {
             let name = format!("{} {set}", est.name());

@@ -31,12 +31,18 @@ fn quadric_keeps_the_angle_weighted_normal() {
 /// vertices of the octahedron among valence 6) falls only at order ≈ 1.5.
 #[test]
 fn quadric_converges_at_the_observed_orders() {
+    /// The angle-weighted normal on the subdivided sphere: observed 1.4–1.5.
+    const SLOW_NORMAL_ORDER: f64 = 1.2;
     let (sphere, ring) = convergence(&QUADRIC);
     let col = |errs: &[Errors], f: fn(&Errors) -> f64| errs.iter().map(f).collect::<Vec<_>>();
-    assert_order(&col(&sphere, |e| e.normal_deg), 1.2, "sphere normal");
-    assert_order(&col(&ring, |e| e.normal_deg), 1.8, "ring normal");
+    assert_order(
+        &col(&sphere, |e| e.normal_deg),
+        SLOW_NORMAL_ORDER,
+        "sphere normal",
+    );
+    assert_order(&col(&ring, |e| e.normal_deg), ORDER_2, "ring normal");
     for (set, errs) in [("sphere", &sphere), ("ring", &ring)] {
-        assert_order(&col(errs, |e| e.k), 1.8, &format!("{set} K"));
-        assert_order(&col(errs, |e| e.h), 1.8, &format!("{set} H"));
+        assert_order(&col(errs, |e| e.k), ORDER_2, &format!("{set} K"));
+        assert_order(&col(errs, |e| e.h), ORDER_2, &format!("{set} H"));
     }
 }

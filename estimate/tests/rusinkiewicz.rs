@@ -29,8 +29,16 @@ fn exact_on_the_sphere() {
 #[test]
 fn converges_on_the_ring() {
     let (_, ring) = convergence(&RUSINKIEWICZ);
-    assert_order(&ring.iter().map(|e| e.k).collect::<Vec<_>>(), 1.8, "ring K");
-    assert_order(&ring.iter().map(|e| e.h).collect::<Vec<_>>(), 1.8, "ring H");
+    assert_order(
+        &ring.iter().map(|e| e.k).collect::<Vec<_>>(),
+        ORDER_2,
+        "ring K",
+    );
+    assert_order(
+        &ring.iter().map(|e| e.h).collect::<Vec<_>>(),
+        ORDER_2,
+        "ring H",
+    );
 }
 
 #[test]

@@ -9,6 +9,17 @@ use estimate::{principal_curvatures, Estimate, Estimator};
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
 use surface::{Mesh, Vertex};
 
+/// Normals that are exact by symmetry or construction (a flat triangle's, a symmetric fan's)
+/// come out to rounding.
+pub const SYMMETRIC_NORMAL: f64 = 1e-12;
+
+/// Smallest accepted order where about 2 is observed (the margin absorbs pre-asymptotic
+/// resolutions).
+pub const ORDER_2: f64 = 1.8;
+
+/// Smallest accepted order where about 4 is observed.
+pub const ORDER_4: f64 = 3.4;
+
 /// Root-mean-square errors of an estimate against the exact data carried by the mesh.
 #[derive(Clone, Copy, Debug)]
 pub struct Errors {
