@@ -46,6 +46,31 @@ fn broken_meshes_give_finite_estimates_and_count_fallbacks() {
 }
 
 #[test]
+fn a_single_triangle() {
+    let verts = vec![
+        vx(Point3::new(0.0, 0.0, 1.0)),
+        vx(Point3::new(1.0, 0.0, 1.0)),
+        vx(Point3::new(0.0, 1.0, 1.0)),
+    ];
+    let mesh = surface::Mesh::new(verts, vec![[0, 1, 2]]).expect("valid");
+    for est in ESTIMATORS {
+        let e = run(*est, &mesh, None);
+        for v in 0..3 {
+            assert!((e.normals[v] - Vector3::z()).norm() < SYMMETRIC_NORMAL);
+            assert_eq!(e.shapes[v], Matrix3::zeros(), "{}", est.name());
+        }
+        // Three points cannot carry a quadric: the fits say so; rusinkiewicz differentiates
+        // three equal normals and finds the plane without falling back.
+        let planar = e
+            .fallbacks
+            .iter()
+            .filter(|f| matches!(f.kind, FallbackKind::Planar { .. }))
+            .count();
+        assert_eq!(planar, if est.name() == "rusinkiewicz" { 0 } else { 3 });
+    }
+}
+
+#[test]
 fn a_mesh_of_zero_area_faces_falls_back_to_default_normals() {
     let mesh = all_degenerate_fan();
     for est in ESTIMATORS {
