@@ -32,6 +32,7 @@
 use std::collections::BTreeMap;
 
 use nalgebra::{Matrix3, Vector3};
+use rayon::prelude::*;
 use surface::Mesh;
 
 pub mod fit;
@@ -262,7 +263,20 @@ pub fn apply(mesh: &mut Mesh, est: &dyn Estimator, keep_given_normals: bool) -> 
 pub(crate) fn given_normal(given: Option<&[Vector3<f64>]>, v: usize) -> Option<Vector3<f64>> {
     let n = given?.get(v)?;
     let len = n.norm();
-    (len.is_finite() && len > 0.0 && n.iter().all(|c| c.is_finite())).then(|| n / len)
+    (len.is_finite() && len > 0.0 && n.iter().all(|c| c.is_finite())).then(|| unit(n, len))
+}
+
+/// Within this of 1 a length is taken as unit and the vector kept bit for bit (so that given
+/// normals come back exactly as given).
+pub(crate) const UNIT_SLACK: f64 = 1e-14;
+
+/// `n / len`, or `n` itself when `len` is 1 to [`UNIT_SLACK`].
+pub(crate) fn unit(n: &Vector3<f64>, len: f64) -> Vector3<f64> {
+    if (len - 1.0).abs() <= UNIT_SLACK {
+        *n
+    } else {
+        n / len
+    }
 }
 
 /// Symmetrizes `s` and projects it onto the plane `⊥ n`: `P ½(S + Sᵀ) P`, `P = I − n nᵀ`, so
@@ -283,24 +297,32 @@ pub(crate) fn finish(
     mut fallbacks: Vec<Fallback>,
     first: &Normals,
 ) -> Estimate {
-    for (v, (n, s)) in normals.iter_mut().zip(shapes.iter_mut()).enumerate() {
-        let len = n.norm();
-        if !(len.is_finite() && len > 0.0) {
-            *n = first.normals.get(v).copied().unwrap_or_else(Vector3::z);
-        } else {
-            *n /= len;
-        }
-        *s = project_shape(s, n);
-        if !s.iter().all(|c| c.is_finite()) {
+    let bad: Vec<Fallback> = normals
+        .par_iter_mut()
+        .zip(shapes.par_iter_mut())
+        .enumerate()
+        .with_min_len(1024)
+        .filter_map(|(v, (n, s))| {
+            let len = n.norm();
+            if !(len.is_finite() && len > 0.0) {
+                *n = first.normals.get(v).copied().unwrap_or_else(Vector3::z);
+            } else {
+                *n = unit(n, len);
+            }
+            *s = project_shape(s, n);
+            if s.iter().all(|c| c.is_finite()) {
+                return None;
+            }
             *s = Matrix3::zeros();
-            fallbacks.push(Fallback {
+            Some(Fallback {
                 vertex: v,
                 kind: FallbackKind::Planar {
                     reason: PlanarReason::NonFinite,
                 },
-            });
-        }
-    }
+            })
+        })
+        .collect();
+    fallbacks.extend(bad);
     fallbacks.sort();
     fallbacks.dedup();
     Estimate {
@@ -336,7 +358,9 @@ mod tests {
     fn principal_curvatures_of_the_sphere_tensor() {
         let n = Vector3::new(1.0, 2.0, 2.0) / 3.0;
         let s = -(Matrix3::identity() - n * n.transpose());
+        /// A 2×2 eigenproblem in closed form: rounding only.
+        const ROUNDING: f64 = 1e-14;
         let [a, b] = principal_curvatures(&s, &n);
-        assert!((a + 1.0).abs() < 1e-14 && (b + 1.0).abs() < 1e-14);
+        assert!((a + 1.0).abs() < ROUNDING && (b + 1.0).abs() < ROUNDING);
     }
 }

@@ -190,11 +190,12 @@ mod tests {
     #[test]
     fn max_weights_are_exact_on_the_sphere() {
         let data = surface::datasets::sphere(2).expect("valid");
-        let tol = 1e-13; // Max's weights reproduce sphere normals up to rounding
+        /// Max's weights reproduce sphere normals up to rounding.
+        const TOL: f64 = 1e-13;
         let n = vertex_normals(&data.mesh, NormalWeighting::Max);
         assert!(n.fallbacks.is_empty());
         for (est, v) in n.normals.iter().zip(data.mesh.vertices()) {
-            assert!((est - v.data.n).norm() < tol);
+            assert!((est - v.data.n).norm() < TOL);
         }
     }
 }
