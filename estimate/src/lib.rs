@@ -36,6 +36,7 @@ use rayon::prelude::*;
 use surface::Mesh;
 
 pub mod fit;
+pub mod hybrid;
 pub mod jet;
 pub mod normals;
 pub mod prepare;
@@ -43,6 +44,7 @@ pub mod quadric;
 pub mod rusinkiewicz;
 pub mod topology;
 
+pub use hybrid::{Hybrid, HYBRID};
 pub use jet::{Jet, JET, JET2, JET3, JET4};
 pub use normals::{vertex_normals, NormalWeighting, Normals};
 pub use prepare::{prepare, EstimateChoice, PrepareError, Prepared};
@@ -199,10 +201,13 @@ pub struct UnknownEstimator {
 }
 
 /// Every registered estimator (`jet` first: the recommended default).
-pub static ESTIMATORS: &[&dyn Estimator] = &[&JET, &JET2, &JET3, &JET4, &QUADRIC, &RUSINKIEWICZ];
+pub static ESTIMATORS: &[&dyn Estimator] =
+    &[&JET, &JET2, &JET3, &JET4, &QUADRIC, &RUSINKIEWICZ, &HYBRID];
 
-/// The recommended default estimator's name.
-pub const DEFAULT_ESTIMATOR: &str = "jet";
+/// The recommended default estimator's name: `hybrid`, the most accurate in the `estimation`
+/// study (at least as accurate as the best of libigl's estimators on 30 of 32 meshes for the
+/// normals, 18 for K and 31 for H, against 14, 0 and 0 for `jet`).
+pub const DEFAULT_ESTIMATOR: &str = "hybrid";
 
 /// Looks an estimator up by name.
 pub fn estimator_by_name(name: &str) -> Result<&'static dyn Estimator, UnknownEstimator> {

@@ -51,9 +51,31 @@ use crate::output::{ensure_dir, write_result};
 /// enough that no triangle folds.
 pub const JITTER: f64 = 0.3;
 
-/// The estimator the workbench recommends (the registry's first entry).
+/// The estimator the workbench recommends ([`estimate::DEFAULT_ESTIMATOR`]).
 fn default_estimator() -> &'static dyn Estimator {
-    ESTIMATORS[0]
+    estimate::estimator_by_name(estimate::DEFAULT_ESTIMATOR).unwrap_or(ESTIMATORS[0])
+}
+
+/// The estimators drawn in the convergence plots (six at most, one colour each; every estimator
+/// is in the tables): ours that differ, and libigl's best of each kind. `jet2` is `jet`, and
+/// `quadric` and `normals-angle` give libigl's angle-weighted normals.
+const PLOTTED: [&str; 7] = [
+    "hybrid",
+    "jet",
+    "jet4",
+    "rusinkiewicz",
+    "igl-normals-angle",
+    "igl-quadric-r2",
+    "igl-angle-defect",
+];
+
+/// Two errors at the level of rounding are equal: the exact cases (normals on the sphere) come
+/// out at 1e-15 to 1e-13 degrees depending on the order of additions.
+const ROUNDING: f64 = 1e-12;
+
+/// True when `ours` is at most `best`, or both are at the level of rounding.
+fn at_least_as_good(ours: f64, best: f64) -> bool {
+    ours <= best || (ours < ROUNDING && best < ROUNDING)
 }
 
 /// Options of the `estimation` experiment.
@@ -466,6 +488,9 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
     );
     let def = default_estimator().name();
     let mut goal_failures = Vec::new();
+    // Meshes where the default is at least as accurate as the best of libigl: normals, K, H,
+    // and how many meshes had golden numbers.
+    let mut met_counts = [0usize; 4];
     let _ = writeln!(md, "## Goal: `{def}` against the best of libigl\n\n| mesh | h | normal ° ({def} / best igl) | K ({def} / best igl) | H ({def} / best igl) | met |\n|---|---:|---:|---:|---:|:---:|");
     let mut json_meshes = Map::new();
     for (i, ours, theirs) in &results {
@@ -486,9 +511,15 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
         );
         // A measure libigl has no number for (infinite best) is met trivially.
         let checked = bn.is_finite() || bk.is_finite() || bh.is_finite();
+        if checked {
+            met_counts[0] += usize::from(at_least_as_good(on, bn));
+            met_counts[1] += usize::from(at_least_as_good(ok, bk));
+            met_counts[2] += usize::from(at_least_as_good(oh, bh));
+            met_counts[3] += 1;
+        }
         let met = if !checked {
             "not checked"
-        } else if on <= bn && ok <= bk && oh <= bh {
+        } else if at_least_as_good(on, bn) && at_least_as_good(ok, bk) && at_least_as_good(oh, bh) {
             "yes"
         } else {
             goal_failures.push(m.name.clone());
@@ -514,6 +545,11 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
         );
     }
 
+    let _ = writeln!(
+        md,
+        "\n`{def}` is at least as accurate as the best of libigl's estimators on {} of {} meshes for the normals, {} for K and {} for H. Where it is not, the family tables below show which estimator is: libigl's angle-defect K on coarse and middle resolutions (on regular grids it converges with the grid's symmetry, and on the capsule it is not disturbed by the seams where the meridian curvature jumps), which no tensor estimator here matches. The Max-weighted normals and Rusinkiewicz tensors are exact on the sphere and on the regular torus grid; `jet4` is the most accurate everywhere from about 64×32 on (fourth order) but the worst on the coarsest meshes; `hybrid` takes each where it is best.",
+        met_counts[0], met_counts[3], met_counts[1], met_counts[2]
+    );
     // Per family: the full table and convergence plots with fitted orders.
     let families: Vec<String> = {
         let mut f: Vec<String> = meshes.iter().map(|m| m.family.clone()).collect();
@@ -585,6 +621,9 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
                         .join(" | "),
                     ord.map_or("—".into(), |o| format!("{o:.2}"))
                 );
+                if !PLOTTED.contains(&label.as_str()) {
+                    continue;
+                }
                 series.push(Series {
                     label: format!(
                         "{label} ({})",
@@ -624,6 +663,10 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
     report.insert("meshes".into(), Value::Object(json_meshes));
     report.insert("orders".into(), Value::Object(orders_json));
     report.insert("goal_failures".into(), json!(goal_failures));
+    report.insert(
+        "goal_met".into(),
+        json!({"meshes_checked": met_counts[3], "normals": met_counts[0], "K": met_counts[1], "H": met_counts[2]}),
+    );
     ring_rebuilt(&mut report, &mut md)?;
     report.insert("time_seconds".into(), json!(t0.elapsed().as_secs_f64()));
     write_result(

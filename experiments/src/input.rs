@@ -20,9 +20,9 @@ pub struct InputArgs {
     #[arg(long)]
     pub resolution: Option<usize>,
     /// How to estimate what a mesh file lacks (normals, shape tensors): an estimator's name
-    /// (jet, jet2, jet3, jet4, quadric, rusinkiewicz) or `none` (use the file's data only;
+    /// (hybrid, jet, jet2, jet3, jet4, quadric, rusinkiewicz) or `none` (use the file's data only;
     /// curvature-based curves then need a file with shape tensors).
-    #[arg(long, default_value = "jet")]
+    #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR)]
     pub estimate: String,
     /// Estimate normals even where the file gives them (by default the file's normals are kept
     /// and only the curvature is estimated, in their tangent planes).

@@ -46,7 +46,7 @@ pub struct RealMeshArgs {
     #[arg(long, default_value = "results/realmesh")]
     out: PathBuf,
     /// Estimator for the normals and shape tensors the files lack.
-    #[arg(long, default_value = "jet")]
+    #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR)]
     estimate: String,
 }
 

@@ -80,14 +80,19 @@ fn drawable(points: &[(f64, f64)], log_y: bool) -> (Vec<(f64, f64)>, usize) {
     (ok, skipped)
 }
 
-/// Integers without a decimal point (iteration counts), other values with three digits.
+/// Integers without a decimal point (iteration counts), other values with at most three
+/// decimals and no trailing zeros (`-1.2`, not `-1.200`).
 fn fmt_x(v: &f64) -> String {
     if (v - v.round()).abs() < 1e-9 {
         format!("{:.0}", v)
     } else {
-        format!("{v:.3}")
+        let s = format!("{v:.3}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
     }
 }
+
+/// Tick labels along x in a chart cell: more overlap at the cell's width.
+const X_TICKS: usize = 6;
 
 /// The series of a line chart (with point markers if asked) and the legend, on either axis kind.
 fn draw_series<'a, DB: DrawingBackend + 'a, X, Y>(
@@ -175,6 +180,7 @@ fn draw_line_chart<DB: DrawingBackend>(
             .axis_desc_style(font(15.0))
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .x_label_formatter(&fmt_x)
+            .x_labels(X_TICKS)
             .draw()
             .map_err(|x| e(&x))?;
         draw_series(&mut c, &prepared, chart, true)?;
@@ -193,6 +199,7 @@ fn draw_line_chart<DB: DrawingBackend>(
             .label_style(font(14.0))
             .axis_desc_style(font(15.0))
             .x_label_formatter(&fmt_x)
+            .x_labels(X_TICKS)
             .draw()
             .map_err(|x| e(&x))?;
         draw_series(&mut c, &prepared, chart, false)?;

@@ -1,0 +1,91 @@
+//! `hybrid`: per vertex, the fourth-order jet where the sampling resolves the surface, the
+//! Rusinkiewicz tensor (with Max-weighted normals) where it does not.
+//!
+//! # Why
+//!
+//! The `estimation` study (`results/estimation/`) shows two regimes. Where the neighbourhood a
+//! degree-4 jet needs (about three rings) is small against the radius of curvature, `jet4` is
+//! the most accurate estimator of all, libigl's included (fourth order in the normals, K and H,
+//! on regular and irregular meshes alike). Where it is not — coarse samplings, as in the seeds'
+//! 16 × 8 ring — a height-field polynomial over three rings wraps around the surface and
+//! `jet4` is the worst, while Rusinkiewicz's per-face tensors from Max-weighted normals (which
+//! use one ring only, and are exact on spheres) are the best.
+//!
+//! # The rule
+//!
+//! At vertex `v` with Rusinkiewicz principal curvatures `κ1, κ2` and mean incident edge length
+//! `ℓ`, the resolution is `ρ = max(|κ1|, |κ2|) · ℓ` (the angle, in radians, the normal turns
+//! over one edge). `ρ ≤` [`RESOLVED`] takes `jet4`'s normal and tensor, otherwise
+//! Rusinkiewicz's. A vertex where `jet4` had to fall back (lower degree or planar) takes
+//! Rusinkiewicz's estimate too. Given normals are kept by both.
+
+use nalgebra::Vector3;
+use surface::Mesh;
+
+use crate::{Estimate, Estimator, FallbackKind, JET4, RUSINKIEWICZ};
+
+/// The largest normal turn per edge (radians) at which the degree-4 jet is trusted: chosen by
+/// the `estimation` study (at 0.1 the jet is used only from about ring 128 × 64 on and loses
+/// to Rusinkiewicz's O(h) tensors on irregular 64 × 32 meshes; at 0.4 it reaches the coarse
+/// rings, where its three-ring fit wraps around the tube).
+pub const RESOLVED: f64 = 0.2;
+
+/// The hybrid estimator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Hybrid;
+
+/// The registered `hybrid`.
+pub static HYBRID: Hybrid = Hybrid;
+
+impl Estimator for Hybrid {
+    fn name(&self) -> &'static str {
+        "hybrid"
+    }
+
+    fn description(&self) -> &'static str {
+        "per vertex: jet4 where one edge turns the normal by at most 0.2 rad, Rusinkiewicz elsewhere"
+    }
+
+    fn estimate(&self, mesh: &Mesh, given: Option<&[Vector3<f64>]>) -> Estimate {
+        let rus = RUSINKIEWICZ.estimate(mesh, given);
+        let jet = JET4.estimate(mesh, given);
+        let n = mesh.num_vertices();
+        // Mean incident edge length per vertex.
+        let mut len = vec![0.0f64; n];
+        let mut count = vec![0usize; n];
+        let verts = mesh.vertices();
+        for e in mesh.edges() {
+            let [a, b] = e.vertices;
+            let l = (verts[b].data.p - verts[a].data.p).norm();
+            for v in [a, b] {
+                len[v] += l;
+                count[v] += 1;
+            }
+        }
+        let mut jet_fell_back = vec![false; n];
+        for f in &jet.fallbacks {
+            if matches!(
+                f.kind,
+                FallbackKind::LowerDegree { .. } | FallbackKind::Planar { .. }
+            ) {
+                if let Some(x) = jet_fell_back.get_mut(f.vertex) {
+                    *x = true;
+                }
+            }
+        }
+        let mut out = rus.clone();
+        for v in 0..n {
+            let [k1, k2] = rus.principal(v).unwrap_or([0.0, 0.0]);
+            let ell = len[v] / count[v].max(1) as f64;
+            let rho = k1.abs().max(k2.abs()) * ell;
+            if rho <= RESOLVED && !jet_fell_back[v] && count[v] > 0 {
+                out.normals[v] = jet.normals[v];
+                out.shapes[v] = jet.shapes[v];
+            }
+        }
+        // Fallbacks: Rusinkiewicz's, plus the jet's where its estimate was used (none are, by
+        // the rule, except normal fallbacks, which both share).
+        out.fallbacks = rus.fallbacks;
+        out
+    }
+}
