@@ -1,0 +1,139 @@
+//! Mesh files through the command line as a user runs it: `convert` between formats with
+//! estimation, the testbed format carrying the estimates back into `fit --estimate none`,
+//! `fit` on a real mesh writing glTF, and bad input named with a non-zero exit.
+
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn run(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_experiments"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn tmp(name: &str) -> (tempfile::TempDir, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name).to_string_lossy().into_owned();
+    (dir, path)
+}
+
+#[test]
+fn estimates_written_as_testbed_fields_are_read_back_as_exact_data() {
+    let (_dir, m) = tmp("teapot.m");
+    let (code, err) = run(&["convert", "--data", "data/meshes/teapot.ply", "--out", &m]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&m).unwrap();
+    assert!(text.contains("(norm . [") && text.contains("(shape . ["));
+    // With the file's normals and shape tensors, curvature-based curves run without
+    // estimation, and nothing is estimated.
+    let (code, err) = run(&[
+        "fit",
+        "--data",
+        &m,
+        "--estimate",
+        "none",
+        "--curves",
+        "optimized",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("estimated"), "{err}");
+}
+
+#[test]
+fn a_real_mesh_is_fitted_and_written_as_gltf() {
+    let (_dir, glb) = tmp("bunny.glb");
+    let (code, err) = run(&[
+        "fit",
+        "--data",
+        "data/meshes/bunny.ply",
+        "--curves",
+        "optimized",
+        "--tess",
+        "2",
+        "--mesh-out",
+        &glb,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let bytes = std::fs::read(&glb).unwrap();
+    assert_eq!(&bytes[..4], b"glTF");
+    assert!(
+        err.contains("estimated normals and curvature by `hybrid`"),
+        "{err}"
+    );
+}
+
+#[test]
+fn every_format_converts_to_every_writable_one() {
+    let (dir, _) = tmp("x");
+    let mut sources = Vec::new();
+    for ext in ["ply", "obj", "off", "stl", "m"] {
+        let out = dir.path().join(format!("bunny.{ext}"));
+        let out = out.to_string_lossy().into_owned();
+        let (code, err) = run(&["convert", "--data", "data/meshes/bunny.ply", "--out", &out]);
+        assert_eq!(code, 0, "{ext}: {err}");
+        sources.push(out);
+    }
+    for src in &sources {
+        let out = dir.path().join("again.glb").to_string_lossy().into_owned();
+        let (code, err) = run(&["convert", "--data", src, "--out", &out]);
+        assert_eq!(code, 0, "{src}: {err}");
+        // STL welds by exact position; every format keeps the bunny's 3674 faces.
+        assert!(err.contains("3674 faces"), "{src}: {err}");
+    }
+}
+
+#[test]
+fn bad_files_are_named_and_fail() {
+    let (dir, _) = tmp("x");
+    let truncated = dir.path().join("cut.ply");
+    let bytes = std::fs::read(root().join("data/meshes/bunny.ply")).unwrap();
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
+    let (code, err) = run(&["fit", "--data", truncated.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("cut.ply") && err.contains("element"), "{err}");
+
+    let empty = dir.path().join("empty.obj");
+    std::fs::write(&empty, "# nothing here\n").unwrap();
+    let (code, err) = run(&["fit", "--data", empty.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(
+        err.contains("empty.obj") && err.contains("nothing to fit"),
+        "{err}"
+    );
+
+    let unknown = dir.path().join("mesh.xyz");
+    std::fs::write(&unknown, "1 2 3\n").unwrap();
+    let (code, err) = run(&["fit", "--data", unknown.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("unsupported format"), "{err}");
+
+    // A PLY named .obj is read as PLY, with a note.
+    let lying = dir.path().join("bunny.obj");
+    std::fs::write(&lying, &bytes).unwrap();
+    let (code, err) = run(&["fit", "--data", lying.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("content is ply"), "{err}");
+
+    // The output may not be the input.
+    let (code, err) = run(&[
+        "convert",
+        "--data",
+        lying.to_str().unwrap(),
+        "--out",
+        lying.to_str().unwrap(),
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("the output is the input"), "{err}");
+}
