@@ -1,13 +1,15 @@
 //! Surfaces: triangle meshes with adjacency and per-vertex data (position, normal, shape
-//! tensor), the testbed's mesh format and OBJ, analytic data sets (sphere, ring, capsule, the
-//! octahedron of the testbed's Figure 2), triangular Bézier patches and their tessellation with
-//! differential geometry.
+//! tensor), the testbed's mesh format read strictly (through `meshio`), the repair of user files,
+//! analytic data sets (sphere, ring, capsule, the octahedron of the testbed's Figure 2),
+//! triangular Bézier patches, the split-domain scheme with its per-face fallback, and
+//! tessellation with differential geometry.
 //!
 //! * [`mesh`] — [`Mesh`]: validated triangle meshes with half-edge adjacency, stable edge
 //!   indices, vertex fans, walks;
+//! * [`repair`] — a file's raw mesh to a valid mesh by stated, counted rules;
+//! * [`fallback`] — the C0 macro-patch of a face the scheme cannot fit;
 //! * [`testbed_format`] — the testbed's "semi-dstruct" mesh format (Lounsbery et al. 1990,
 //!   Figure 2), read and written;
-//! * [`obj`] — Wavefront OBJ, read and written;
 //! * [`datasets`] — analytic reference surfaces with exact closest points and curvatures, and
 //!   the named data sets sampled from them ([`dataset_by_name`]);
 //! * [`beztri`] — triangular Bézier patches of any degree ([`BezierTriangle`]);
@@ -35,7 +37,6 @@ pub mod g1;
 pub mod interior;
 pub mod mesh;
 pub mod metrics;
-pub mod obj;
 pub mod repair;
 pub mod shirman_sequin;
 pub mod tessellate;
@@ -52,7 +53,6 @@ pub use fit::{
 pub use g1::{measure as measure_g1, Boundary, G1Report};
 pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
 pub use metrics::{compare as compare_with_truth, SurfaceErrors};
-pub use obj::{read_obj, read_obj_file, write_obj, write_obj_file, ObjError};
 pub use shirman_sequin::{
     chiyokura_kimura, macro_patch, CrossEnd, CrossFailure, InteriorParameters, QuarticNet,
     SchemeError,

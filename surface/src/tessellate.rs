@@ -28,6 +28,7 @@
 use std::collections::HashMap;
 
 use curves::VertexData;
+use meshio::MeshFormat;
 use nalgebra::{Matrix3, Point3, Vector3};
 
 use crate::beztri::{BezierTriangle, Curvature};
@@ -109,10 +110,26 @@ impl Tessellation {
         Mesh::new(vertices, self.faces.clone())
     }
 
-    /// Writes positions, normals and triangles as OBJ (curvatures are not part of OBJ; a PLY
-    /// writer can add them as vertex properties).
-    pub fn write_obj<W: std::io::Write>(&self, out: W) -> std::io::Result<()> {
-        crate::obj::write_obj(out, &self.positions, &self.normals, &self.faces)
+    /// The tessellation as a raw mesh for `meshio`'s writers: positions, normals, triangles, and
+    /// the Gaussian and mean curvature as vertex properties `gaussian`, `mean`.
+    pub fn to_raw(&self) -> meshio::RawMesh {
+        let mut raw = meshio::RawMesh::from_triangles(self.positions.clone(), &self.faces);
+        raw.normals = Some(self.normals.clone());
+        raw.properties
+            .insert("gaussian".into(), self.gaussian.clone());
+        raw.properties.insert("mean".into(), self.mean.clone());
+        raw
+    }
+
+    /// Writes positions, normals and triangles as OBJ (curvatures are not part of OBJ; PLY
+    /// carries them: [`Tessellation::to_raw`]).
+    pub fn write_obj<W: std::io::Write>(&self, mut out: W) -> std::io::Result<()> {
+        let mut raw = meshio::RawMesh::from_triangles(self.positions.clone(), &self.faces);
+        raw.normals = Some(self.normals.clone());
+        let bytes = meshio::obj::Obj
+            .write(&raw, &meshio::WriteOptions::new())
+            .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))?;
+        out.write_all(&bytes)
     }
 }
 
@@ -388,8 +405,9 @@ mod tests {
         // The OBJ output reads back as the same mesh.
         let mut buf = Vec::new();
         t.write_obj(&mut buf).unwrap();
-        let back = crate::obj::read_obj(std::str::from_utf8(&buf).unwrap()).unwrap();
-        assert_eq!(back.faces(), mesh.faces());
+        let back = meshio::obj::Obj.read(&buf).unwrap();
+        let faces: Vec<[usize; 3]> = back.polygons.iter().map(|f| [f[0], f[1], f[2]]).collect();
+        assert_eq!(faces, t.faces);
         assert_eq!(back.num_vertices(), t.positions.len());
     }
 }
