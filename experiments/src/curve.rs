@@ -29,7 +29,7 @@ use serde_json::{json, Map, Value};
 use solver::{SolveOptions, SolverKind};
 
 use crate::error::ExperimentError;
-use crate::output::{ensure_dir, write_result};
+use crate::output::{ensure_dir, write_result, Staged};
 
 /// Options of the `curve` experiment.
 #[derive(clap::Args, Debug)]
@@ -120,9 +120,20 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
         out.push_str(&record.to_string());
         out.push('\n');
     }
-    write_result(args.output.as_deref(), out.as_bytes())?;
-    if let Some(dir) = &args.plot {
-        write_plots(dir, &answered, args)?;
+    // The plot directory is written whole (staged, then swapped in); an `--output` inside it
+    // goes into the staging directory too, so it is not lost in the swap.
+    let staged = args.plot.as_deref().map(Staged::begin).transpose()?;
+    let output = match (&args.output, &args.plot, &staged) {
+        (Some(o), Some(dir), Some(st)) => match o.strip_prefix(dir) {
+            Ok(rel) => Some(st.path().join(rel)),
+            Err(_) => Some(o.clone()),
+        },
+        (o, _, _) => o.clone(),
+    };
+    write_result(output.as_deref(), out.as_bytes())?;
+    if let Some(st) = staged {
+        write_plots(st.path(), &answered, args)?;
+        st.commit()?;
     }
 
     let fallbacks = answered
@@ -341,7 +352,7 @@ fn write_plots(dir: &Path, answered: &[Answered], args: &CurveArgs) -> Result<()
         args.methods.join(","),
         args.dbhs_pick,
         args.solver,
-        dir.display()
+        args.plot.as_deref().unwrap_or(dir).display()
     ));
     md.push_str(
         "Each figure shows, per construction, the cubic on the unit chord with its control \

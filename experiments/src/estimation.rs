@@ -44,7 +44,7 @@ use surface::{
 };
 
 use crate::error::ExperimentError;
-use crate::output::{ensure_dir, write_result};
+use crate::output::{ensure_dir, write_result, Staged};
 
 /// Largest tangential step of the irregular meshes, as a fraction of a vertex's shortest edge:
 /// large enough to make the triangulation visibly irregular (angles from ~25° to ~120°), small
@@ -455,7 +455,8 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
             Value::Null
         }
     };
-    ensure_dir(&args.out)?;
+    let staged = Staged::begin(&args.out)?;
+    let out = staged.path().to_path_buf();
     let mut results: Vec<(usize, Rows, Rows)> = Vec::new();
     for (i, m) in meshes.iter().enumerate() {
         let ours = measure(m);
@@ -644,8 +645,8 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
         }
         orders_json.insert(fam.clone(), Value::Object(fam_orders));
         if !charts.is_empty() {
-            let png = args.out.join(format!("convergence-{fam}.png"));
-            let svg = args.out.join(format!("convergence-{fam}.svg"));
+            let png = out.join(format!("convergence-{fam}.png"));
+            let svg = out.join(format!("convergence-{fam}.svg"));
             render::write_line_charts(
                 &charts,
                 3,
@@ -670,12 +671,12 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
     ring_rebuilt(&mut report, &mut md)?;
     report.insert("time_seconds".into(), json!(t0.elapsed().as_secs_f64()));
     write_result(
-        Some(&args.out.join("report.json")),
+        Some(&out.join("report.json")),
         serde_json::to_string_pretty(&Value::Object(report))
             .unwrap_or_default()
             .as_bytes(),
     )?;
-    write_result(Some(&args.out.join("report.md")), md.as_bytes())?;
+    write_result(Some(&out.join("report.md")), md.as_bytes())?;
     eprintln!(
         "estimation: {} meshes in {:.1} s → {}; goal missed on {:?}",
         meshes.len(),
@@ -683,5 +684,6 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
         args.out.display(),
         goal_failures
     );
+    staged.commit()?;
     Ok(ExitCode::SUCCESS)
 }

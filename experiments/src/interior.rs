@@ -20,7 +20,7 @@ use surface::interior::corner_measures;
 use surface::{fit, InteriorParameters};
 
 use crate::error::ExperimentError;
-use crate::output::{ensure_dir, write_result};
+use crate::output::{write_result, Staged};
 
 /// Options of the `interior` experiment.
 #[derive(clap::Args, Debug)]
@@ -201,19 +201,20 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
                             "kept_default": stats.kept_default, "energy_default": stats.energy_default, "energy_chosen": stats.energy_chosen}));
         }
     }
-    ensure_dir(&args.out)?;
+    let staged = Staged::begin(&args.out)?;
+    let out = staged.path().to_path_buf();
     render::write_line_charts(
         &charts,
         2,
         "Section 4's objectives against β and c (flat lines: the claim holds)",
-        &args.out.join("objectives.png"),
-        &args.out.join("objectives.svg"),
+        &out.join("objectives.png"),
+        &out.join("objectives.svg"),
     )?;
     let report = json!({"experiment": "interior", "curves": "optimized", "datasets": records, "interior_settings": cmp});
     let mut text = serde_json::to_string_pretty(&report)
         .map_err(|e| ExperimentError::Usage(format!("cannot serialize: {e}")))?;
     text.push('\n');
-    write_result(Some(&args.out.join("report.json")), text.as_bytes())?;
+    write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let mut md = String::new();
     let _ = writeln!(
         md,
@@ -247,7 +248,8 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
     }
     md.push('\n');
     let _ = writeln!(md, "## What holds\n\nBoth measures are independent of β and c to rounding: the changes above are at the level of floating-point noise, and the curves are flat. The derivation: `I¹ − V = β(E⁴_a + E⁴_b − 2V)` lies in the tangent plane and scales with β; the normal components of `I² − I¹` and of the twist come only from the Chiyokura–Kimura terms `k_0 Ĉ_1` and `2h_0(E² − E¹)`, whose coefficients are proportional to β and do not involve c (c multiplies `Ĉ_0`, which is perpendicular to the normal at the vertex). So the boundary's normal curvature is (β²)/(β²) and the normalized twist (β)/(β). The seed's final mixed-partial expression keeps `|I_i1 − V_i|` in a denominator: that length is proportional to β, and the seed's numerator has the compensating factor β it dropped one line earlier; with it the claim holds.\n\nThe corner objectives' gradients are therefore zero; the energies above carry exact Jacobians (checked by finite differences in `surface/tests/interior.rs`).");
-    write_result(Some(&args.out.join("report.md")), md.as_bytes())?;
+    write_result(Some(&out.join("report.md")), md.as_bytes())?;
     eprintln!("interior: written to {}", args.out.display());
+    staged.commit()?;
     Ok(ExitCode::SUCCESS)
 }

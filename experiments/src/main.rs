@@ -67,6 +67,13 @@ enum Experiment {
 }
 
 fn main() -> ExitCode {
+    // On SIGINT, SIGTERM or SIGHUP: remove the temporary files and staging directories in
+    // flight, so an interrupted run leaves the previous results as they were and nothing else.
+    let _ = ctrlc::set_handler(|| {
+        let removed = render::remove_in_flight();
+        eprintln!("interrupted: removed {removed} temporary files and directories");
+        std::process::exit(130);
+    });
     let cli = Cli::parse();
     let result = match cli.experiment {
         Experiment::Ring(args) => ring::run(&args),

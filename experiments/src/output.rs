@@ -49,3 +49,90 @@ pub fn refuse_overwriting_input(out: &Path, input: &str) -> Result<(), Experimen
     }
     Ok(())
 }
+
+/// A result directory written whole: every file goes into a fresh staging directory beside the
+/// final one, and [`Staged::commit`] swaps it in (the old directory renamed aside, the new one
+/// renamed into place, the old one removed), so a reader never sees files of two runs mixed.
+/// Dropped without a commit (an error), the staging directory is removed; on an interrupt the
+/// handler of `main` removes it ([`render::remove_in_flight`]).
+pub struct Staged {
+    final_dir: std::path::PathBuf,
+    staging: std::path::PathBuf,
+    committed: bool,
+}
+
+impl Staged {
+    /// Starts a result directory at `out` (which may exist: it is replaced on commit, but must be
+    /// a directory, not a file, a device or a link to one).
+    pub fn begin(out: &Path) -> Result<Self, ExperimentError> {
+        if let Ok(meta) = std::fs::symlink_metadata(out) {
+            if !meta.is_dir() {
+                return Err(ExperimentError::Usage(format!(
+                    "{}: exists and is not a directory; results are a directory",
+                    out.display()
+                )));
+            }
+        }
+        let name = out
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "results".into());
+        let staging = out.with_file_name(format!(".{name}.staging-{}", std::process::id()));
+        if staging.exists() {
+            let _ = std::fs::remove_dir_all(&staging);
+        }
+        ensure_dir(&staging)?;
+        render::io::in_flight(&staging);
+        Ok(Staged {
+            final_dir: out.to_path_buf(),
+            staging,
+            committed: false,
+        })
+    }
+
+    /// Where to write the files now.
+    pub fn path(&self) -> &Path {
+        &self.staging
+    }
+
+    /// Swaps the staging directory in.
+    pub fn commit(mut self) -> Result<(), ExperimentError> {
+        let write_err = |path: &Path, source| ExperimentError::Write {
+            path: path.to_path_buf(),
+            source,
+        };
+        let old = self.final_dir.with_file_name(format!(
+            ".{}.old-{}",
+            self.final_dir
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            std::process::id()
+        ));
+        let had_old = self.final_dir.exists();
+        if had_old {
+            std::fs::rename(&self.final_dir, &old).map_err(|e| write_err(&self.final_dir, e))?;
+        }
+        if let Err(e) = std::fs::rename(&self.staging, &self.final_dir) {
+            if had_old {
+                let _ = std::fs::rename(&old, &self.final_dir);
+            }
+            return Err(write_err(&self.final_dir, e));
+        }
+        render::io::landed(&self.staging);
+        self.committed = true;
+        if had_old {
+            let _ = std::fs::remove_dir_all(&old);
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.staging);
+            render::io::landed(&self.staging);
+        }
+    }
+}

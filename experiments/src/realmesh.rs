@@ -23,7 +23,7 @@ use surface::{fit, measure_g1, tessellate, InteriorParameters};
 
 use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
-use crate::output::{ensure_dir, write_result};
+use crate::output::{write_result, Staged};
 
 /// The KColor limit in medians of `|K| L²`: the tails of scanned meshes are spikes of 10⁴ and
 /// more (a percentile limit washes everything else out), while a sphere has `K L² = 12`; four
@@ -78,7 +78,8 @@ fn bbox(points: &[Point3<f64>]) -> (Point3<f64>, Point3<f64>) {
 /// Runs the experiment.
 pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     let t_all = Instant::now();
-    ensure_dir(&args.out)?;
+    let staged = Staged::begin(&args.out)?;
+    let out = staged.path().to_path_buf();
     let files = corpus_files(&args.corpus)?;
     if files.is_empty() {
         return Err(ExperimentError::Usage(format!(
@@ -240,7 +241,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             shots.len(),
             title,
             legend.as_ref(),
-            &args.out.join(format!("{file}.png")),
+            &out.join(format!("{file}.png")),
         )?;
         let _ = writeln!(md, "\n![{title}]({file}.png)");
     }
@@ -251,17 +252,18 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     root.insert("meshes".into(), Value::Object(report));
     root.insert("time_seconds".into(), json!(t_all.elapsed().as_secs_f64()));
     write_result(
-        Some(&args.out.join("report.json")),
+        Some(&out.join("report.json")),
         serde_json::to_string_pretty(&Value::Object(root))
             .unwrap_or_default()
             .as_bytes(),
     )?;
-    write_result(Some(&args.out.join("report.md")), md.as_bytes())?;
+    write_result(Some(&out.join("report.md")), md.as_bytes())?;
     eprintln!(
         "realmesh: {} meshes in {:.1} s → {}",
         files.len(),
         t_all.elapsed().as_secs_f64(),
         args.out.display()
     );
+    staged.commit()?;
     Ok(ExitCode::SUCCESS)
 }

@@ -24,7 +24,7 @@ use surface::{
 };
 
 use crate::error::ExperimentError;
-use crate::output::{ensure_dir, write_result};
+use crate::output::{write_result, Staged};
 use crate::stats::median;
 
 /// The constructions compared, in the order of the seeds' Figure 5.
@@ -290,13 +290,14 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     }
     stage("tessellate_and_measure", t);
 
-    ensure_dir(&args.out)?;
+    let staged = Staged::begin(&args.out)?;
+    let out = staged.path().to_path_buf();
     let t = Instant::now();
-    let pictures = crate::ring_render::render_all(&args.out, &surfaces_view(&surfaces))?;
+    let pictures = crate::ring_render::render_all(&out, &surfaces_view(&surfaces))?;
     stage("render", t);
 
     let t = Instant::now();
-    crate::ring_render::write_meshes(&args.out, &surfaces_view(&surfaces))?;
+    crate::ring_render::write_meshes(&out, &surfaces_view(&surfaces))?;
     // Patch nets of the optimized surface (the others: `experiments -- fit --out`), to keep the
     // committed results small.
     for (name, f, _, _) in fits.iter().filter(|f| f.0 == "optimized") {
@@ -310,14 +311,14 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
             );
         }
         write_result(
-            Some(&args.out.join(format!("patches-{name}.jsonl"))),
+            Some(&out.join(format!("patches-{name}.jsonl"))),
             text.as_bytes(),
         )?;
     }
     stage("write_meshes", t);
 
     let t = Instant::now();
-    let figure2 = figure2(&args.out, &problems, &fits)?;
+    let figure2 = figure2(&out, &problems, &fits)?;
     stage("figure2", t);
     times.insert(
         "total_time_seconds".into(),
@@ -358,13 +359,14 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     let mut text = serde_json::to_string_pretty(&report)
         .map_err(|e| ExperimentError::Usage(format!("cannot serialize the report: {e}")))?;
     text.push('\n');
-    write_result(Some(&args.out.join("report.json")), text.as_bytes())?;
+    write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let md = markdown(args, &report, &surfaces, &fits);
-    write_result(Some(&args.out.join("report.md")), md.as_bytes())?;
+    write_result(Some(&out.join("report.md")), md.as_bytes())?;
     print!(
         "{}",
         summary(&surfaces, &fits, t_all.elapsed().as_secs_f64())
     );
+    staged.commit()?;
     Ok(ExitCode::SUCCESS)
 }
 

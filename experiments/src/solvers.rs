@@ -9,6 +9,7 @@
 //! iteration histogram. Costs are `½‖r‖²` (the Ceres/SciPy convention), as in every solver report.
 
 use std::collections::BTreeMap;
+use std::path::Path;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -21,7 +22,7 @@ use solver::{solve, ConvergenceTest, SolveOptions, SolveReport, SolverKind, Term
 
 use crate::datasets::edge_problems;
 use crate::error::ExperimentError;
-use crate::output::{ensure_dir, write_result};
+use crate::output::{write_result, Staged};
 use crate::stats::median;
 
 /// Two adapters "agree" on a problem when their optima differ by at most this in α (max norm):
@@ -242,8 +243,9 @@ pub fn run(args: &SolversArgs) -> Result<std::process::ExitCode, ExperimentError
         }
     }
     let characteristic = characteristic_problems(&problems);
-    ensure_dir(&args.out)?;
-    write_figures(args, &problems, &characteristic)?;
+    let staged = Staged::begin(&args.out)?;
+    let out = staged.path().to_path_buf();
+    write_figures(&out, &problems, &characteristic)?;
 
     let problem_records: Vec<Value> = problems
         .iter()
@@ -298,7 +300,7 @@ pub fn run(args: &SolversArgs) -> Result<std::process::ExitCode, ExperimentError
     let mut text = serde_json::to_string_pretty(&report)
         .map_err(|e| ExperimentError::Usage(format!("cannot serialize the report: {e}")))?;
     text.push('\n');
-    write_result(Some(&args.out.join("report.json")), text.as_bytes())?;
+    write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let md = markdown(
         args,
         &problems,
@@ -307,7 +309,7 @@ pub fn run(args: &SolversArgs) -> Result<std::process::ExitCode, ExperimentError
         &characteristic,
         total_time,
     );
-    write_result(Some(&args.out.join("report.md")), md.as_bytes())?;
+    write_result(Some(&out.join("report.md")), md.as_bytes())?;
     eprintln!(
         "solvers: {} problems × {} adapters in {:.2} s; written to {}",
         problems.len(),
@@ -315,6 +317,7 @@ pub fn run(args: &SolversArgs) -> Result<std::process::ExitCode, ExperimentError
         total_time,
         args.out.display()
     );
+    staged.commit()?;
     Ok(std::process::ExitCode::SUCCESS)
 }
 
@@ -375,7 +378,7 @@ fn characteristic_problems(problems: &[Problem]) -> Vec<(String, usize)> {
 }
 
 fn write_figures(
-    args: &SolversArgs,
+    out: &Path,
     problems: &[Problem],
     characteristic: &[(String, usize)],
 ) -> Result<(), ExperimentError> {
@@ -416,8 +419,8 @@ fn write_figures(
         &charts,
         2,
         "Cost against iteration on characteristic edge problems",
-        &args.out.join("cost-history.png"),
-        &args.out.join("cost-history.svg"),
+        &out.join("cost-history.png"),
+        &out.join("cost-history.svg"),
     )?;
     let max_it = problems
         .iter()
@@ -444,8 +447,8 @@ fn write_figures(
             categories,
             groups,
         },
-        &args.out.join("iterations.png"),
-        &args.out.join("iterations.svg"),
+        &out.join("iterations.png"),
+        &out.join("iterations.svg"),
     )?;
     Ok(())
 }

@@ -137,3 +137,81 @@ fn bad_files_are_named_and_fail() {
     assert_ne!(code, 0);
     assert!(err.contains("the output is the input"), "{err}");
 }
+
+#[test]
+fn outputs_that_are_not_regular_files_are_refused() {
+    let (dir, _) = tmp("x");
+    let sub = dir.path().join("a-directory");
+    std::fs::create_dir(&sub).unwrap();
+    let (code, err) = run(&["convert", "--data", "octa", "--out", sub.to_str().unwrap()]);
+    // A directory has no extension: refused as an unsupported output before anything is read.
+    assert_ne!(code, 0, "{err}");
+    let glb_dir = dir.path().join("dir.glb");
+    std::fs::create_dir(&glb_dir).unwrap();
+    let (code, err) = run(&[
+        "convert",
+        "--data",
+        "octa",
+        "--out",
+        glb_dir.to_str().unwrap(),
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("a directory, not a regular file"), "{err}");
+    assert!(glb_dir.is_dir());
+    #[cfg(unix)]
+    {
+        let (code, err) = run(&["fit", "--data", "octa", "--out", "/dev/null"]);
+        assert_ne!(code, 0);
+        assert!(err.contains("a device"), "{err}");
+        // A link to a regular file writes through to the file and keeps the link.
+        let target = dir.path().join("target.jsonl");
+        std::fs::write(&target, "old\n").unwrap();
+        let link = dir.path().join("link.jsonl");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        let (code, err) = run(&["fit", "--data", "octa", "--out", link.to_str().unwrap()]);
+        assert_eq!(code, 0, "{err}");
+        assert!(std::fs::read_to_string(&target)
+            .unwrap()
+            .contains("BezierTriangle"));
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn an_interrupted_study_leaves_the_old_results_and_nothing_else() {
+    let (dir, _) = tmp("x");
+    let out = dir.path().join("estimation");
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("report.md"), "previous run\n").unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_experiments"))
+        .args(["estimation", "--out", out.to_str().unwrap()])
+        .current_dir(root())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let _ = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status();
+    let status = child.wait().unwrap();
+    let names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, vec!["estimation".to_string()], "left: {names:?}");
+    if status.code() == Some(130) {
+        // Interrupted: the previous results are untouched.
+        assert_eq!(
+            std::fs::read_to_string(out.join("report.md")).unwrap(),
+            "previous run\n"
+        );
+    } else {
+        // It finished first: the directory holds one whole new run.
+        assert!(status.success());
+        assert!(!out.join("report.md").exists() || out.join("report.json").exists());
+    }
+}

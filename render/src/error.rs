@@ -21,6 +21,16 @@ pub enum RenderError {
         /// The offending path.
         path: PathBuf,
     },
+    /// The output path exists and is not a regular file (a directory, a device, a FIFO, a
+    /// socket, or a symbolic link to one): writing would replace or feed something that is not
+    /// a result file.
+    #[error("cannot write {path}: it is {kind}, not a regular file (choose a file path; to write to standard output, leave the option out)", path = .path.display())]
+    NotRegularFile {
+        /// The offending path.
+        path: PathBuf,
+        /// What it is (`"a directory"`, `"a FIFO"`, …).
+        kind: &'static str,
+    },
     /// The figure has nothing to draw.
     #[error("cannot write {path}: the figure has no panels", path = .path.display())]
     EmptyFigure {

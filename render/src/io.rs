@@ -1,14 +1,148 @@
-//! Atomic file output shared by all renderers.
+//! File output that cannot destroy anything, shared by every writer of the workbench.
+//!
+//! * **Atomic**: bytes go to a temporary sibling, are flushed, and the sibling is renamed over
+//!   the path; a reader sees the old file or the whole new one.
+//! * **Only over regular files**: a path that exists and is a directory, device, FIFO or socket
+//!   is refused ([`RenderError::NotRegularFile`]); a symbolic link is followed to its target,
+//!   which must itself be a regular file or not exist (the link stays a link, the target is
+//!   replaced atomically).
+//! * **No leftovers**: a temporary file is removed when the write fails, and every temporary
+//!   path in flight is registered ([`in_flight`]) so that an interrupt handler can remove them
+//!   ([`remove_in_flight`]) before the process exits.
 
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
 
 use crate::RenderError;
 
 /// Distinguishes temporary files of concurrent writes from one process.
 static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// A set of temporary paths (files or directories) being written.
+#[derive(Debug, Default)]
+pub struct Registry(Mutex<Vec<PathBuf>>);
+
+impl Registry {
+    /// An empty registry.
+    pub const fn new() -> Self {
+        Registry(Mutex::new(Vec::new()))
+    }
+
+    /// Registers a path as in flight.
+    pub fn add(&self, path: &Path) {
+        if let Ok(mut v) = self.0.lock() {
+            v.push(path.to_path_buf());
+        }
+    }
+
+    /// Unregisters a path (renamed into place or removed).
+    pub fn remove(&self, path: &Path) {
+        if let Ok(mut v) = self.0.lock() {
+            v.retain(|p| p != path);
+        }
+    }
+
+    /// Removes every registered file and directory from the disk; returns how many were.
+    pub fn remove_all(&self) -> usize {
+        let paths: Vec<PathBuf> = match self.0.lock() {
+            Ok(mut v) => std::mem::take(&mut *v),
+            Err(_) => return 0,
+        };
+        paths
+            .iter()
+            .filter(|p| {
+                if p.is_dir() {
+                    fs::remove_dir_all(p).is_ok()
+                } else {
+                    fs::remove_file(p).is_ok()
+                }
+            })
+            .count()
+    }
+}
+
+/// The process's temporary files and directories being written, for [`remove_in_flight`].
+static IN_FLIGHT: Registry = Registry::new();
+
+/// Registers a temporary path (file or directory) as in flight.
+pub fn in_flight(path: &Path) {
+    IN_FLIGHT.add(path);
+}
+
+/// Unregisters a temporary path (it was renamed into place or removed).
+pub fn landed(path: &Path) {
+    IN_FLIGHT.remove(path);
+}
+
+/// Removes every temporary file and directory of this process still in flight (for an
+/// interrupt handler, just before the process exits); returns how many were removed.
+pub fn remove_in_flight() -> usize {
+    IN_FLIGHT.remove_all()
+}
+
+/// What a non-regular file is, for messages.
+fn kind_of(meta: &fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+        if t.is_block_device() || t.is_char_device() {
+            return "a device";
+        }
+    }
+    if meta.is_dir() {
+        "a directory"
+    } else if meta.file_type().is_symlink() {
+        "a symbolic link"
+    } else {
+        "not a regular file"
+    }
+}
+
+/// The path to write for `path`: itself when it does not exist or is a regular file, the
+/// target of a symbolic link when that is a regular file or does not exist; an error otherwise.
+pub fn writable_target(path: &Path) -> Result<PathBuf, RenderError> {
+    let refuse = |kind| RenderError::NotRegularFile {
+        path: path.to_path_buf(),
+        kind,
+    };
+    match fs::symlink_metadata(path) {
+        Err(_) => Ok(path.to_path_buf()),
+        Ok(meta) if meta.file_type().is_symlink() => match fs::metadata(path) {
+            Ok(target) if target.is_file() => {
+                fs::canonicalize(path).map_err(|source| RenderError::Io {
+                    path: path.to_path_buf(),
+                    source,
+                })
+            }
+            Ok(target) => Err(refuse(kind_of(&target))),
+            // A dangling link: its target does not exist yet; write through to it.
+            Err(_) => fs::read_link(path)
+                .map(|t| {
+                    if t.is_absolute() {
+                        t
+                    } else {
+                        path.parent().unwrap_or(Path::new("")).join(t)
+                    }
+                })
+                .map_err(|source| RenderError::Io {
+                    path: path.to_path_buf(),
+                    source,
+                }),
+        },
+        Ok(meta) if meta.is_file() => Ok(path.to_path_buf()),
+        Ok(meta) => Err(refuse(kind_of(&meta))),
+    }
+}
 
 /// Write `bytes` to `path` atomically: the bytes go to a temporary file in the same directory
 /// (so the rename cannot cross file systems), are flushed to disk, and the temporary file is then
@@ -19,7 +153,10 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
         path: path.to_path_buf(),
         source,
     };
+    let target = writable_target(path)?;
+    let path = target.as_path();
     let tmp = temp_sibling(path)?;
+    in_flight(&tmp);
     let result = (|| {
         let mut file = fs::OpenOptions::new()
             .write(true)
@@ -30,6 +167,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
         drop(file);
         fs::rename(&tmp, path)
     })();
+    landed(&tmp);
     if let Err(e) = result {
         // Best effort: the temporary file may not exist if creating it was what failed.
         let _ = fs::remove_file(&tmp);
@@ -98,9 +236,57 @@ mod tests {
         assert!(matches!(err, RenderError::Io { .. }));
         assert!(err.to_string().contains("out.txt"));
         assert!(entries(dir.path()).is_empty());
-        // No file name at all.
+        // No file name at all: `/` is a directory, refused before a temporary name is made.
         let err = write_atomic(Path::new("/"), b"x").unwrap_err();
-        assert!(matches!(err, RenderError::NoFileName { .. }));
+        assert!(matches!(err, RenderError::NotRegularFile { .. }));
+        assert!(matches!(
+            temp_sibling(Path::new("/")),
+            Err(RenderError::NoFileName { .. })
+        ));
+    }
+
+    #[test]
+    fn non_regular_paths_are_refused_and_links_followed() {
+        let dir = tempfile::tempdir().unwrap();
+        let sub = dir.path().join("sub");
+        fs::create_dir(&sub).unwrap();
+        let err = write_atomic(&sub, b"x").unwrap_err();
+        assert!(err.to_string().contains("a directory"), "{err}");
+        #[cfg(unix)]
+        {
+            // A link to a regular file writes the target and keeps the link.
+            let target = dir.path().join("target.txt");
+            fs::write(&target, b"old").unwrap();
+            let link = dir.path().join("link.txt");
+            std::os::unix::fs::symlink(&target, &link).unwrap();
+            write_atomic(&link, b"new").unwrap();
+            assert_eq!(fs::read(&target).unwrap(), b"new");
+            assert!(fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink());
+            // A link to a directory, and a device, are refused.
+            let dlink = dir.path().join("dlink");
+            std::os::unix::fs::symlink(&sub, &dlink).unwrap();
+            assert!(write_atomic(&dlink, b"x").is_err());
+            let err = write_atomic(Path::new("/dev/null"), b"x").unwrap_err();
+            assert!(err.to_string().contains("a device"), "{err}");
+        }
+    }
+
+    #[test]
+    fn in_flight_paths_are_removed_on_request() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join(".x.tmp");
+        let sub = dir.path().join(".staging");
+        fs::write(&file, b"half").unwrap();
+        fs::create_dir(&sub).unwrap();
+        fs::write(sub.join("a.png"), b"half").unwrap();
+        let registry = Registry::new();
+        registry.add(&file);
+        registry.add(&sub);
+        assert_eq!(registry.remove_all(), 2);
+        assert!(entries(dir.path()).is_empty());
     }
 
     #[test]
