@@ -19,6 +19,9 @@ use surface::{fit, measure_g1, Fit, InteriorParameters, Mesh};
 
 use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
+use crate::limits::{
+    self, check_f64, check_memory, check_usize, BETA_RANGE, C_RANGE, SAMPLING_RANGE,
+};
 use crate::output::write_result;
 
 /// How many fallback faces and degenerate edges the terminal summary lists by name.
@@ -56,6 +59,11 @@ pub struct FitArgs {
     /// and write the welded triangle mesh to `--mesh-out`.
     #[arg(long, default_value_t = 4)]
     tess: usize,
+    /// Exit with status 1 when anything was not as asked: a repaired file, a fallback face, a
+    /// degenerate edge, a curve that fell back to the chord choice, an optimization that did
+    /// not converge (all are counted in the summary either way).
+    #[arg(long)]
+    strict: bool,
     /// Where to write the tessellation, in the format its extension names (.obj, .ply, .off,
     /// .stl, .glb, .m): positions and normals; PLY and glTF also get vertex colours by Gaussian
     /// curvature (the testbed's KColor), PLY the curvatures as properties `gaussian`, `mean`.
@@ -65,11 +73,34 @@ pub struct FitArgs {
 
 /// Runs the experiment.
 pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
+    check_f64(
+        "beta",
+        args.beta,
+        &BETA_RANGE,
+        "the interior points move by ~1/β",
+    )?;
+    check_f64(
+        "c",
+        args.c,
+        &C_RANGE,
+        "the cross-boundary field changes by c along an edge",
+    )?;
+    check_usize("tess", args.tess, &SAMPLING_RANGE)?;
+    if let Some(r) = args.input.resolution {
+        check_memory(
+            &format!("--data {} --resolution {r}", args.input.data),
+            limits::dataset_faces(&args.input.data, r) * limits::FIT_BYTES_PER_FACE as u128,
+        )?;
+    }
     let t0 = Instant::now();
     let loaded = load(&args.input)?;
     for note in &loaded.notes {
         eprintln!("  {note}");
     }
+    let repaired = loaded
+        .prepared
+        .as_ref()
+        .is_some_and(|p| !p.repaired.report.is_clean());
     let mesh = loaded.mesh;
     let t_read = t0.elapsed().as_secs_f64();
     let options = MethodOptions {
@@ -115,6 +146,10 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         write_result(Some(out), text.as_bytes())?;
     }
     if let Some(path) = &args.mesh_out {
+        check_memory(
+            &format!("--tess {}", args.tess),
+            limits::tessellation_bytes(fitted.patches.len() as u128, args.tess),
+        )?;
         let t3 = Instant::now();
         let tess = surface::tessellate(&fitted.bezier_patches(), args.tess)
             .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;
@@ -191,6 +226,22 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         faces as f64 / t_fit.max(1e-12),
         t_g1
     );
+    let departures = [
+        (usize::from(repaired), "repaired input"),
+        (fitted.face_fallbacks.len(), "fallback faces"),
+        (fitted.degenerate_edges.len(), "degenerate edges"),
+        (fitted.fallbacks, "curves fallen back to chord"),
+        (fitted.unconverged, "unconverged optimizations"),
+    ];
+    let found: Vec<String> = departures
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+    if args.strict && !found.is_empty() {
+        eprintln!("strict: {}", found.join(", "));
+        return Ok(ExitCode::from(1));
+    }
     Ok(ExitCode::SUCCESS)
 }
 

@@ -12,6 +12,7 @@ mod estimation;
 mod fit;
 mod input;
 mod interior;
+mod limits;
 mod output;
 mod realmesh;
 mod ring;

@@ -189,6 +189,16 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         );
     };
     let t = Instant::now();
+    crate::limits::check_usize("sampling", args.sampling, &crate::limits::SAMPLING_RANGE)?;
+    let faces = crate::limits::dataset_faces("ring", args.resolution);
+    crate::limits::check_memory(
+        &format!(
+            "--resolution {} --sampling {}",
+            args.resolution, args.sampling
+        ),
+        faces * crate::limits::FIT_BYTES_PER_FACE as u128 * 5
+            + 5 * crate::limits::tessellation_bytes(3 * faces, args.sampling),
+    )?;
     let data = surface::dataset_by_name("ring", Some(args.resolution))
         .map_err(|e| ExperimentError::Usage(e.to_string()))?;
     let mesh = &data.mesh;

@@ -200,8 +200,8 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     ensure_dir(&args.out)?;
     match args.shard {
         Some(s) => {
-            let shard =
-                json!({"shard": [s.index, s.count], "tasks_total": all.len(), "results": results});
+            let shard = json!({"shard": [s.index, s.count], "tasks_total": all.len(),
+                               "options": options_json(args.interior), "results": results});
             let mut text = serde_json::to_string_pretty(&shard)
                 .map_err(|e| ExperimentError::Usage(format!("cannot serialize: {e}")))?;
             text.push('\n');
@@ -217,9 +217,15 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
                 path.display()
             );
         }
-        None => write_report(&args.out, results)?,
+        None => write_report(&args.out, &options_json(args.interior), results)?,
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The options every task of a run shares: what a shard records and `merge` compares.
+fn options_json(interior: surface::fairing::InteriorChoice) -> Value {
+    json!({"interior": interior.to_string(), "sampling": SAMPLING,
+           "beta": surface::shirman_sequin::DEFAULT_BETA, "c": surface::shirman_sequin::DEFAULT_C})
 }
 
 /// Joins shard files into the report.
@@ -240,6 +246,7 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
     paths.sort();
     let total = tasks().len();
     let mut results: Vec<Option<Value>> = vec![None; total];
+    let mut options: Option<(PathBuf, Value)> = None;
     for p in &paths {
         let text = std::fs::read_to_string(p).map_err(|source| ExperimentError::Read {
             path: p.clone(),
@@ -248,6 +255,17 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         let v: Value = serde_json::from_str(&text).map_err(|e| {
             ExperimentError::Usage(format!("{}: not a shard report: {e}", p.display()))
         })?;
+        // Shards of different runs must not be joined: their options must agree.
+        let these = v["options"].clone();
+        match &options {
+            None => options = Some((p.clone(), these)),
+            Some((first, o)) if *o != these => return Err(ExperimentError::Usage(format!(
+                "{}: options {these} differ from {}'s {o}: these shards come from different runs",
+                p.display(),
+                first.display()
+            ))),
+            Some(_) => {}
+        }
         for r in v["results"].as_array().into_iter().flatten() {
             let k = r["index"]
                 .as_u64()
@@ -283,7 +301,8 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
             missing.join(", ")
         )));
     }
-    write_report(&args.out, results.into_iter().flatten().collect())?;
+    let options = options.map(|(_, o)| o).unwrap_or(Value::Null);
+    write_report(&args.out, &options, results.into_iter().flatten().collect())?;
     eprintln!(
         "merge: {} shard file(s), {total} tasks → {}",
         paths.len(),
@@ -292,16 +311,16 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn write_report(out: &Path, results: Vec<Value>) -> Result<(), ExperimentError> {
+fn write_report(out: &Path, options: &Value, results: Vec<Value>) -> Result<(), ExperimentError> {
     let report = json!({"experiment": "sweep", "sampling": SAMPLING, "beta": surface::shirman_sequin::DEFAULT_BETA,
-                        "c": surface::shirman_sequin::DEFAULT_C, "results": results});
+                        "c": surface::shirman_sequin::DEFAULT_C, "options": options, "results": results});
     let mut text = serde_json::to_string_pretty(&report)
         .map_err(|e| ExperimentError::Usage(format!("cannot serialize: {e}")))?;
     text.push('\n');
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let mut md = String::new();
     let _ = writeln!(md, "# Sweep: data sets × boundary curves × solvers\n");
-    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` (or shards joined by `merge`). Every data set at its default resolution, the modified Shirman–Séquin scheme with β = 1/3, c = 1, tessellated at s = {SAMPLING}, measured against the true surface.\n");
+    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` (or shards joined by `merge`). Every data set at its default resolution, the modified Shirman–Séquin scheme with β = 1/3, c = 1, tessellated at s = {SAMPLING}, measured against the true surface. Options: `{options}`.\n");
     let _ = writeln!(md, "| task | faces | position max | normal RMS (°) | K RMS | H RMS | G1 (rad) | κ error max | shortest α | fallbacks | fit (ms) |");
     let _ = writeln!(
         md,
