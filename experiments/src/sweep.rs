@@ -259,11 +259,13 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         let these = v["options"].clone();
         match &options {
             None => options = Some((p.clone(), these)),
-            Some((first, o)) if *o != these => return Err(ExperimentError::Usage(format!(
+            Some((first, o)) if *o != these => {
+                return Err(ExperimentError::Usage(format!(
                 "{}: options {these} differ from {}'s {o}: these shards come from different runs",
                 p.display(),
                 first.display()
-            ))),
+            )))
+            }
             Some(_) => {}
         }
         for r in v["results"].as_array().into_iter().flatten() {
