@@ -87,12 +87,20 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
     let mut out = String::new();
     let mut answered = Vec::new();
     let mut bad = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
+    // Lines are split on bytes: a line that is not UTF-8 gets its own error, the others are
+    // answered.
+    for (i, bytes) in text.split(|b| *b == b'\n').enumerate() {
         let line = i + 1;
-        if raw.trim().is_empty() {
-            continue;
-        }
-        let record = match parse_line(raw) {
+        let bytes = bytes.strip_suffix(b"\r").unwrap_or(bytes);
+        let parsed = match std::str::from_utf8(bytes) {
+            Ok(raw) if raw.trim().is_empty() => continue,
+            Ok(raw) => parse_line(raw),
+            Err(e) => Err((
+                Value::String(String::from_utf8_lossy(bytes).into_owned()),
+                format!("not UTF-8: {e}"),
+            )),
+        };
+        let record = match parsed {
             Ok((input, problem)) => {
                 let choices = methods
                     .iter()
@@ -157,18 +165,18 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
     })
 }
 
-fn read_input(path: Option<&Path>) -> Result<String, ExperimentError> {
-    let mut text = String::new();
+fn read_input(path: Option<&Path>) -> Result<Vec<u8>, ExperimentError> {
+    let mut text = Vec::new();
     match path {
         Some(p) => {
-            text = std::fs::read_to_string(p).map_err(|source| ExperimentError::Read {
+            text = std::fs::read(p).map_err(|source| ExperimentError::Read {
                 path: p.to_path_buf(),
                 source,
             })?
         }
         None => {
             std::io::stdin()
-                .read_to_string(&mut text)
+                .read_to_end(&mut text)
                 .map_err(|source| ExperimentError::Read {
                     path: "<stdin>".into(),
                     source,

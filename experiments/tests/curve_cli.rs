@@ -128,3 +128,34 @@ fn merge_refuses_an_incomplete_set_of_shards() {
     assert_eq!(code, 2, "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_line_that_is_not_utf8_gets_its_own_error_and_the_others_answers() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_experiments"))
+        .args(["curve", "--methods", "chord"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(b"{\"t0\":[1,0],\"t1\":[1,0],\"k0\":0,\"k1\":0}\n\xff\xfe bad\n{\"t0\":[0.6,0.8],\"t1\":[0.6,-0.8],\"k0\":-1.0,\"k1\":-1.0}\n")
+        .expect("writes");
+    let out = child.wait_with_output().expect("finishes");
+    assert_eq!(out.status.code(), Some(1));
+    let lines: Vec<serde_json::Value> = String::from_utf8(out.stdout)
+        .expect("utf-8")
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("json"))
+        .collect();
+    assert_eq!(lines.len(), 3);
+    assert!(lines[0]["methods"]["chord"].is_object());
+    assert!(lines[1]["error"]
+        .as_str()
+        .expect("error")
+        .contains("not UTF-8"));
+    assert!(lines[2]["methods"]["chord"].is_object());
+}
