@@ -73,9 +73,9 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.out.display())))?;
     write_result(Some(&args.out), &bytes)?;
     for note in &loaded.notes {
-        eprintln!("  {note}");
+        say!("  {note}");
     }
-    eprintln!(
+    say!(
         "convert: {} ({} vertices, {} faces) → {} ({} bytes, {}) in {:.3} s",
         args.input.data,
         mesh.num_vertices(),

@@ -82,6 +82,9 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
         .map(|m| method_by_name(m.trim(), &options))
         .collect::<Result<_, _>>()
         .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    if let (Some(i), Some(o)) = (&args.input, &args.output) {
+        crate::output::refuse_overwriting_input(o, &i.to_string_lossy())?;
+    }
     let text = read_input(args.input.as_deref())?;
 
     let mut out = String::new();
@@ -149,14 +152,14 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
         .flat_map(|a| a.choices.iter())
         .filter(|c| c.2.fallback)
         .count();
-    eprintln!(
+    say!(
         "curve: {} problems answered, {} with errors, {} fallbacks to chord",
         answered.len(),
         bad.len(),
         fallbacks
     );
     for (line, e) in &bad {
-        eprintln!("  line {line}: {e}");
+        say!("  line {line}: {e}");
     }
     Ok(if bad.is_empty() {
         ExitCode::SUCCESS

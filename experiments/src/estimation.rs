@@ -380,7 +380,7 @@ fn export(meshes: &[StudyMesh], dir: &Path) -> Result<(), ExperimentError> {
             exact.to_string().as_bytes(),
         )?;
     }
-    eprintln!(
+    say!(
         "estimation: exported {} meshes to {}",
         meshes.len(),
         dir.display()
@@ -448,7 +448,7 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
         Ok(text) => serde_json::from_str(&text)
             .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.golden.display())))?,
         Err(e) => {
-            eprintln!(
+            say!(
                 "estimation: no golden numbers ({}: {e}); libigl columns left empty",
                 args.golden.display()
             );
@@ -461,7 +461,7 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
     for (i, m) in meshes.iter().enumerate() {
         let ours = measure(m);
         let theirs = golden_rows(&golden, &m.name);
-        eprintln!(
+        say!(
             "  {:<26} {:>7} vertices, h = {:.4}: {} normal RMS {:.3}°, K RMS {:.3e}, H RMS {:.3e}",
             m.name,
             m.mesh.num_vertices(),
@@ -677,7 +677,7 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
             .as_bytes(),
     )?;
     write_result(Some(&out.join("report.md")), md.as_bytes())?;
-    eprintln!(
+    say!(
         "estimation: {} meshes in {:.1} s → {}; goal missed on {:?}",
         meshes.len(),
         t0.elapsed().as_secs_f64(),

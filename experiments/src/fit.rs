@@ -95,7 +95,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t0 = Instant::now();
     let loaded = load(&args.input)?;
     for note in &loaded.notes {
-        eprintln!("  {note}");
+        say!("  {note}");
     }
     let repaired = loaded
         .prepared
@@ -121,7 +121,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
     let t_fit = t1.elapsed().as_secs_f64();
     if args.interior != InteriorChoice::Default {
-        eprintln!(
+        say!(
             "  interior {}: {} faces, {} converged, {} kept at defaults, energy {:.4e} → {:.4e}",
             args.interior,
             stats.faces,
@@ -136,6 +136,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t_g1 = t2.elapsed().as_secs_f64();
 
     if let Some(out) = &args.out {
+        crate::output::refuse_overwriting_input(out, &args.input.data)?;
         let mut text = String::new();
         for (i, p) in fitted.patches.iter().enumerate() {
             let pts: Vec<[f64; 3]> = p.iter().map(|q| [q.x, q.y, q.z]).collect();
@@ -166,7 +167,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         let bytes = meshio::write_bytes(&raw, format, &meshio::WriteOptions::new())
             .map_err(|e| ExperimentError::Usage(format!("{}: {e}", path.display())))?;
         write_result(Some(path), &bytes)?;
-        eprintln!(
+        say!(
             "  tessellation: s = {}, {} vertices, {} triangles, {} seam welds, in {:.3} s → {}",
             args.tess,
             tess.positions.len(),
@@ -177,7 +178,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         );
     }
     let faces = mesh.num_faces();
-    eprintln!(
+    say!(
         "fit: {} ({} vertices, {} edges, {} faces), curves {}, β = {}, c = {}",
         args.input.data,
         mesh.num_vertices(),
@@ -187,12 +188,12 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         args.beta,
         args.c
     );
-    eprintln!(
+    say!(
         "  G1 defect: interior {:.3e} rad, exterior {:.3e} rad; interpolation: position {:.3e}, normal {:.3e} rad",
         g1.interior_max, g1.exterior_max, g1.position_error, g1.normal_error
     );
     if !fitted.face_fallbacks.is_empty() {
-        eprintln!(
+        say!(
             "  fallback: {} faces fitted C0 ({} edges touch them; G1 defect there: interior {:.3e} rad, exterior {:.3e} rad)",
             fitted.face_fallbacks.len(),
             g1.fallback_edges,
@@ -200,26 +201,28 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             g1.fallback_exterior_max
         );
         for fb in fitted.face_fallbacks.iter().take(FALLBACKS_LISTED) {
-            eprintln!("    face {}: {}", fb.face, fb.reason);
+            say!("    face {}: {}", fb.face, fb.reason);
         }
         if fitted.face_fallbacks.len() > FALLBACKS_LISTED {
-            eprintln!("    … ({} in all)", fitted.face_fallbacks.len());
+            say!("    … ({} in all)", fitted.face_fallbacks.len());
         }
     }
     if !fitted.degenerate_edges.is_empty() {
-        eprintln!(
+        say!(
             "  degenerate edges: {} fitted with straight cubics",
             fitted.degenerate_edges.len()
         );
         for d in fitted.degenerate_edges.iter().take(FALLBACKS_LISTED) {
-            eprintln!("    edge {}: {}", d.edge, d.error);
+            say!("    edge {}: {}", d.edge, d.error);
         }
     }
-    eprintln!(
+    say!(
         "  curves: {} fallbacks to chord, {} unconverged optimizations, {} flipped tangents",
-        fitted.fallbacks, fitted.unconverged, fitted.flipped_tangents
+        fitted.fallbacks,
+        fitted.unconverged,
+        fitted.flipped_tangents
     );
-    eprintln!(
+    say!(
         "  time: read {:.3} s, fit {:.3} s ({:.0} triangles/s), G1 {:.3} s",
         t_read,
         t_fit,
@@ -239,7 +242,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         .map(|(n, what)| format!("{n} {what}"))
         .collect();
     if args.strict && !found.is_empty() {
-        eprintln!("strict: {}", found.join(", "));
+        say!("strict: {}", found.join(", "));
         return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)

@@ -4,6 +4,23 @@
 //! experiments and each one's `--help` its options and defaults. Experiments write their results
 //! atomically (temporary file, then rename) so an interrupted run never leaves half a file.
 
+/// `eprintln!` that never panics: a closed or broken standard error loses the message, not the
+/// run (results are files; the exit status still tells).
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
+/// `eprint!` that never panics (see `say!`).
+macro_rules! say_inline {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 mod convert;
 mod curve;
 mod datasets;
@@ -72,7 +89,7 @@ fn main() -> ExitCode {
     // flight, so an interrupted run leaves the previous results as they were and nothing else.
     let _ = ctrlc::set_handler(|| {
         let removed = render::remove_in_flight();
-        eprintln!("interrupted: removed {removed} temporary files and directories");
+        say!("interrupted: removed {removed} temporary files and directories");
         std::process::exit(130);
     });
     let cli = Cli::parse();
@@ -91,7 +108,7 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {e}");
+            say!("error: {e}");
             ExitCode::from(2)
         }
     }

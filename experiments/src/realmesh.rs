@@ -165,7 +165,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                    "notes": loaded.notes, "load_time_seconds": t_load,
                    "methods": per_method}),
         );
-        eprintln!(
+        say!(
             "  {name}: {} faces, {} notes",
             mesh.num_faces(),
             loaded.notes.len()
@@ -258,7 +258,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             .as_bytes(),
     )?;
     write_result(Some(&out.join("report.md")), md.as_bytes())?;
-    eprintln!(
+    say!(
         "realmesh: {} meshes in {:.1} s → {}",
         files.len(),
         t_all.elapsed().as_secs_f64(),

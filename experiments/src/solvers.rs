@@ -310,7 +310,7 @@ pub fn run(args: &SolversArgs) -> Result<std::process::ExitCode, ExperimentError
         total_time,
     );
     write_result(Some(&out.join("report.md")), md.as_bytes())?;
-    eprintln!(
+    say!(
         "solvers: {} problems × {} adapters in {:.2} s; written to {}",
         problems.len(),
         kinds.len(),

@@ -187,7 +187,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     let mut results = Vec::with_capacity(mine.len());
     for (done, (k, t)) in mine.iter().enumerate() {
         if tty {
-            eprint!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
+            say_inline!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
         }
         let mut v = run_task(t, args.interior)?;
         v["interior"] = json!(args.interior.to_string());
@@ -195,7 +195,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         results.push(v);
     }
     if tty {
-        eprintln!();
+        say!();
     }
     ensure_dir(&args.out)?;
     match args.shard {
@@ -209,7 +209,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
                 .out
                 .join(format!("shard-{}-of-{}.json", s.index, s.count));
             write_result(Some(&path), text.as_bytes())?;
-            eprintln!(
+            say!(
                 "sweep: shard {}/{}: {} tasks → {}",
                 s.index,
                 s.count,
@@ -305,7 +305,7 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
     }
     let options = options.map(|(_, o)| o).unwrap_or(Value::Null);
     write_report(&args.out, &options, results.into_iter().flatten().collect())?;
-    eprintln!(
+    say!(
         "merge: {} shard file(s), {total} tasks → {}",
         paths.len(),
         args.out.join("report.md").display()
