@@ -1,5 +1,6 @@
-//! From a file's raw mesh to a mesh ready to fit: repaired ([`surface::repair`]) and completed
-//! by an estimator where the file lacks normals or shape tensors.
+//! From a file's raw mesh to a mesh ready to fit: moved into a working frame (unit bounding box,
+//! [`surface::Frame`]: coordinates from 1e-100 to 1e100 work), repaired ([`surface::repair`])
+//! and completed by an estimator where the file lacks normals or shape tensors.
 //!
 //! # What is kept and what is estimated
 //!
@@ -59,6 +60,9 @@ pub enum PrepareError {
     /// Nothing usable could be built from the faces.
     #[error(transparent)]
     Repair(#[from] RepairError),
+    /// The coordinates cannot be brought into a working frame.
+    #[error(transparent)]
+    Frame(#[from] surface::FrameError),
     /// The file has no (usable) normals and no estimation was asked for.
     #[error("the file gives no usable vertex normals and `--estimate none` was asked: name an estimator (jet, quadric, rusinkiewicz, …)")]
     NoNormals,
@@ -67,8 +71,11 @@ pub enum PrepareError {
 /// A prepared mesh and the record of what was done to it.
 #[derive(Clone, Debug)]
 pub struct Prepared {
-    /// The mesh.
+    /// The mesh, in the working frame [`Prepared::frame`] (bounding box centred at the origin,
+    /// largest side 1): map results back with the frame for output.
     pub mesh: Mesh,
+    /// The working frame: `world = frame.center + frame.scale · working`.
+    pub frame: surface::Frame,
     /// The repair's record (its `mesh` field is the repaired mesh before estimation).
     pub repaired: Repaired,
     /// The estimator's record, when one ran.
@@ -113,7 +120,9 @@ pub fn prepare(
     replace_normals: bool,
 ) -> Result<Prepared, PrepareError> {
     let t0 = std::time::Instant::now();
-    let repaired = repair(raw, &RepairOptions::default())?;
+    let frame = surface::Frame::of_points(&raw.positions)?;
+    let work = frame.raw_to_work(raw);
+    let repaired = repair(&work, &RepairOptions::default())?;
     let repair_time_seconds = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
     let mut mesh = repaired.mesh.clone();
@@ -155,6 +164,7 @@ pub fn prepare(
     };
     Ok(Prepared {
         mesh,
+        frame,
         repaired,
         estimate,
         estimated,

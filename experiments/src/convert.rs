@@ -50,7 +50,9 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
         })?;
     let loaded = load(&args.input)?;
     crate::output::refuse_overwriting_input(&args.out, &args.input.data)?;
-    let mesh = &loaded.mesh;
+    let mut world = loaded.mesh.clone();
+    loaded.frame.mesh_to_world(&mut world);
+    let mesh = &world;
     let mut raw = surface::repair::mesh_to_raw(mesh, true);
     if format.name() == "ply" && mesh.vertices().iter().all(|v| v.curvature_known) {
         let (k, h): (Vec<f64>, Vec<f64>) = mesh

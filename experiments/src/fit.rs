@@ -102,6 +102,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         .as_ref()
         .is_some_and(|p| !p.repaired.report.is_clean());
     let mesh = loaded.mesh;
+    let frame = loaded.frame;
     let t_read = t0.elapsed().as_secs_f64();
     let options = MethodOptions {
         dbhs_pick: args.dbhs_pick,
@@ -139,7 +140,11 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         crate::output::refuse_overwriting_input(out, &args.input.data)?;
         let mut text = String::new();
         for (i, p) in fitted.patches.iter().enumerate() {
-            let pts: Vec<[f64; 3]> = p.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let pts: Vec<[f64; 3]> = p
+                .iter()
+                .map(|q| frame.to_world(q))
+                .map(|q| [q.x, q.y, q.z])
+                .collect();
             let rec = json!({"type": "BezierTriangle", "degree": 4, "points": pts,
                               "face": i / 3, "subpatch": i % 3});
             let _ = writeln!(text, "{rec}");
@@ -152,8 +157,9 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             limits::tessellation_bytes(fitted.patches.len() as u128, args.tess),
         )?;
         let t3 = Instant::now();
-        let tess = surface::tessellate(&fitted.bezier_patches(), args.tess)
+        let mut tess = surface::tessellate(&fitted.bezier_patches(), args.tess)
             .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;
+        frame.tessellation_to_world(&mut tess);
         crate::output::refuse_overwriting_input(path, &args.input.data)?;
         let format = meshio::format_for_path(path)
             .filter(|f| f.can_write())
@@ -190,7 +196,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     );
     say!(
         "  G1 defect: interior {:.3e} rad, exterior {:.3e} rad; interpolation: position {:.3e}, normal {:.3e} rad",
-        g1.interior_max, g1.exterior_max, g1.position_error, g1.normal_error
+        g1.interior_max, g1.exterior_max, g1.position_error * frame.scale, g1.normal_error
     );
     if !fitted.face_fallbacks.is_empty() {
         say!(

@@ -34,6 +34,8 @@ pub struct InputArgs {
 pub struct Loaded {
     /// The mesh, every vertex with a normal and (unless `--estimate none`) a shape tensor.
     pub mesh: Mesh,
+    /// The working frame of the mesh (identity for a data set): `world = center + scale · mesh`.
+    pub frame: surface::Frame,
     /// What was done to a file (repairs, estimation, notes), one line each.
     pub notes: Vec<String>,
     /// The repair and estimation record of a file (`None` for a data set).
@@ -65,6 +67,7 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         ));
         return Ok(Loaded {
             mesh: prepared.mesh.clone(),
+            frame: prepared.frame,
             notes,
             prepared: Some(prepared),
         });
@@ -77,6 +80,7 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
     })?;
     Ok(Loaded {
         mesh: data.mesh,
+        frame: surface::Frame::identity(),
         notes: Vec::new(),
         prepared: None,
     })

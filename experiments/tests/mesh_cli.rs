@@ -215,3 +215,53 @@ fn an_interrupted_study_leaves_the_old_results_and_nothing_else() {
         assert!(!out.join("report.md").exists() || out.join("report.json").exists());
     }
 }
+
+#[test]
+fn coordinates_from_1e_minus_100_to_1e154_fit_the_same() {
+    let raw = meshio::read_file(root().join("data/meshes/bunny.ply")).unwrap();
+    let (dir, _) = tmp("x");
+    let mut summaries = Vec::new();
+    for scale in [1.0, 1e154, 1e-100] {
+        let mut text = String::new();
+        for p in &raw.positions {
+            text.push_str(&format!(
+                "v {:e} {:e} {:e}\n",
+                p.x * scale,
+                p.y * scale,
+                p.z * scale
+            ));
+        }
+        for f in raw.polygons.iter() {
+            text.push_str(&format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1));
+        }
+        let path = dir.path().join(format!("bunny-{scale:e}.obj"));
+        std::fs::write(&path, text).unwrap();
+        let out = dir.path().join(format!("bunny-{scale:e}.jsonl"));
+        let (code, err) = run(&[
+            "fit",
+            "--data",
+            path.to_str().unwrap(),
+            "--curves",
+            "optimized",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{scale:e}: {err}");
+        let first = std::fs::read_to_string(&out).unwrap();
+        let rec: serde_json::Value = serde_json::from_str(first.lines().next().unwrap()).unwrap();
+        let x = rec["points"][0][0].as_f64().unwrap();
+        // The first control point is the first face's first vertex, in the file's units.
+        assert!(
+            (x / (f64::from(raw.positions[raw.polygons.get(0)[0]].x as f32) * scale) - 1.0).abs()
+                < 1e-6
+        );
+        let fallback = err
+            .lines()
+            .find(|l| l.contains("fallback:"))
+            .map(str::to_string);
+        summaries.push(fallback);
+    }
+    // The fit is similarity-invariant: the same fallback faces at every scale.
+    assert_eq!(summaries[0], summaries[1]);
+    assert_eq!(summaries[0], summaries[2]);
+}

@@ -8,6 +8,7 @@
 //!   indices, vertex fans, walks;
 //! * [`repair`] — a file's raw mesh to a valid mesh by stated, counted rules;
 //! * [`fallback`] — the C0 macro-patch of a face the scheme cannot fit;
+//! * [`frame`] — the working frame of a user's mesh (unit bounding box), and the way back;
 //! * [`testbed_format`] — the testbed's "semi-dstruct" mesh format (Lounsbery et al. 1990,
 //!   Figure 2), read and written;
 //! * [`datasets`] — analytic reference surfaces with exact closest points and curvatures, and
@@ -33,6 +34,7 @@ pub mod datasets;
 pub mod fairing;
 pub mod fallback;
 pub mod fit;
+pub mod frame;
 pub mod g1;
 pub mod interior;
 pub mod mesh;
@@ -50,6 +52,7 @@ pub use datasets::{
 pub use fit::{
     face_curves, fit, fit_into, DegenerateEdge, FaceFallback, FaceFallbackReason, Fit, FitError,
 };
+pub use frame::{Frame, FrameError};
 pub use g1::{measure as measure_g1, Boundary, G1Report};
 pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
 pub use metrics::{compare as compare_with_truth, SurfaceErrors};
