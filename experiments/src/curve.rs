@@ -152,11 +152,23 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
         .flat_map(|a| a.choices.iter())
         .filter(|c| c.2.fallback)
         .count();
+    let overshooting = answered
+        .iter()
+        .flat_map(|a| a.choices.iter().map(move |c| (a, c)))
+        .filter(|(a, c)| curve_json(&a.problem, c.2.alpha).contains_key("overshoots_chord"))
+        .count();
+    let unconverged = answered
+        .iter()
+        .flat_map(|a| a.choices.iter())
+        .filter(|c| c.2.report.as_ref().is_some_and(|r| !r.converged()))
+        .count();
     say!(
-        "curve: {} problems answered, {} with errors, {} fallbacks to chord",
+        "curve: {} problems answered, {} with errors, {} fallbacks to chord, {} unconverged optimizations, {} curves overshooting their chord",
         answered.len(),
         bad.len(),
-        fallbacks
+        fallbacks,
+        unconverged,
+        overshooting
     );
     for (line, e) in &bad {
         say!("  line {line}: {e}");
@@ -239,8 +251,23 @@ fn curve_json(problem: &UnitProblem, alpha: [f64; 2]) -> Map<String, Value> {
         "curvature_variation".into(),
         json_number(c.curvature_variation()),
     );
+    // A curve that runs past an end of its chord (antiparallel or backward tangents) is
+    // flagged: `x(t)` of the unit-chord cubic leaves [0, 1] at one of OVERSHOOT_SAMPLES points.
+    let overshoot = (0..=OVERSHOOT_SAMPLES).any(|i| {
+        let x = c.eval(i as f64 / OVERSHOOT_SAMPLES as f64).x;
+        !(-OVERSHOOT_TOL..=1.0 + OVERSHOOT_TOL).contains(&x)
+    });
+    if overshoot {
+        m.insert("overshoots_chord".into(), json!(true));
+    }
     m
 }
+
+/// Samples of `x(t)` checked for leaving the chord's slab (a cubic's `x(t)` has at most two
+/// extrema, which 64 samples place to within 1/64 of the parameter).
+const OVERSHOOT_SAMPLES: usize = 64;
+/// Rounding allowance at the chord's ends, in chord lengths.
+const OVERSHOOT_TOL: f64 = 1e-12;
 
 /// A finite number, or null (JSON has no infinity: a cusp's curvature variation is unbounded).
 fn json_number(x: f64) -> Value {
