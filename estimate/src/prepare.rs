@@ -13,7 +13,7 @@
 //!   curvature-based curve constructions refuse it, `chord` runs).
 
 use meshio::RawMesh;
-use surface::repair::{repair, RepairError, RepairOptions, Repaired};
+use surface::repair::{repair, RepairError, RepairOptions, RepairReport, Repaired};
 use surface::Mesh;
 
 use crate::{apply, estimator_by_name, EstimateSummary, Estimator, UnknownEstimator};
@@ -76,8 +76,14 @@ pub struct Prepared {
     pub mesh: Mesh,
     /// The working frame: `world = frame.center + frame.scale · working`.
     pub frame: surface::Frame,
-    /// The repair's record (its `mesh` field is the repaired mesh before estimation).
-    pub repaired: Repaired,
+    /// What the repair did.
+    pub report: RepairReport,
+    /// True when every vertex's normal came from the file.
+    pub normals_given: bool,
+    /// For each mesh face, the file's face (polygon) it came from.
+    pub face_source: Vec<usize>,
+    /// For each mesh vertex, the file's vertex it came from.
+    pub vertex_source: Vec<usize>,
     /// The estimator's record, when one ran.
     pub estimate: Option<EstimateSummary>,
     /// What was estimated: `"normals and curvature"`, `"curvature"`, `"normals"` or `"nothing"`.
@@ -91,7 +97,7 @@ pub struct Prepared {
 impl Prepared {
     /// One line per thing a user should know (repairs, estimation and its fallbacks).
     pub fn summary_lines(&self) -> Vec<String> {
-        let mut out = self.repaired.report.summary_lines();
+        let mut out = self.report.summary_lines();
         if let Some(e) = &self.estimate {
             let counts: Vec<String> = e
                 .fallback_counts
@@ -122,20 +128,26 @@ pub fn prepare(
     let t0 = std::time::Instant::now();
     let frame = surface::Frame::of_points(&raw.positions)?;
     let work = frame.raw_to_work(raw);
-    let repaired = repair(&work, &RepairOptions::default())?;
+    let Repaired {
+        mut mesh,
+        normals_given,
+        face_source,
+        vertex_source,
+        report,
+    } = repair(&work, &RepairOptions::default())?;
+    drop(work);
     let repair_time_seconds = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
-    let mut mesh = repaired.mesh.clone();
     let curvature_given = mesh.vertices().iter().all(|v| v.curvature_known);
     let (estimate, estimated) = match choice {
         EstimateChoice::None => {
-            if !repaired.normals_given {
+            if !normals_given {
                 return Err(PrepareError::NoNormals);
             }
             (None, "nothing")
         }
         EstimateChoice::With(est) => {
-            let keep = repaired.normals_given && !replace_normals;
+            let keep = normals_given && !replace_normals;
             if curvature_given && keep {
                 (None, "nothing")
             } else if curvature_given {
@@ -165,7 +177,10 @@ pub fn prepare(
     Ok(Prepared {
         mesh,
         frame,
-        repaired,
+        report,
+        normals_given,
+        face_source,
+        vertex_source,
         estimate,
         estimated,
         repair_time_seconds,

@@ -97,10 +97,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     for note in &loaded.notes {
         say!("  {note}");
     }
-    let repaired = loaded
-        .prepared
-        .as_ref()
-        .is_some_and(|p| !p.repaired.report.is_clean());
+    let repaired = loaded.repairs.as_ref().is_some_and(|r| !r.is_clean());
     let mesh = loaded.mesh;
     let frame = loaded.frame;
     let t_read = t0.elapsed().as_secs_f64();

@@ -4,7 +4,8 @@
 
 use std::path::Path;
 
-use estimate::{EstimateChoice, Prepared};
+use estimate::EstimateChoice;
+use surface::repair::RepairReport;
 use surface::Mesh;
 
 use crate::error::ExperimentError;
@@ -38,8 +39,8 @@ pub struct Loaded {
     pub frame: surface::Frame,
     /// What was done to a file (repairs, estimation, notes), one line each.
     pub notes: Vec<String>,
-    /// The repair and estimation record of a file (`None` for a data set).
-    pub prepared: Option<Prepared>,
+    /// What the repair did to a file (`None` for a data set).
+    pub repairs: Option<RepairReport>,
 }
 
 /// Loads `--data`: an existing file is read as a mesh; otherwise the name is a data set.
@@ -66,10 +67,10 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
             t_read, prepared.repair_time_seconds, prepared.estimate_time_seconds
         ));
         return Ok(Loaded {
-            mesh: prepared.mesh.clone(),
+            mesh: prepared.mesh,
             frame: prepared.frame,
             notes,
-            prepared: Some(prepared),
+            repairs: Some(prepared.report),
         });
     }
     let data = surface::dataset_by_name(&args.data, args.resolution).map_err(|e| {
@@ -82,6 +83,6 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         mesh: data.mesh,
         frame: surface::Frame::identity(),
         notes: Vec::new(),
-        prepared: None,
+        repairs: None,
     })
 }

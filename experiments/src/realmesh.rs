@@ -108,9 +108,9 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
         let t_load = t.elapsed().as_secs_f64();
         let mesh = &loaded.mesh;
         let repairs = loaded
-            .prepared
+            .repairs
             .as_ref()
-            .map(|p| p.repaired.report.summary_lines())
+            .map(|r| r.summary_lines())
             .unwrap_or_default();
         let mut per_method = Map::new();
         for method in ["chord", "dbhs", "optimized"] {
