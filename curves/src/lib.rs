@@ -20,6 +20,7 @@ pub mod analytic;
 pub mod chord;
 pub mod cubicbez;
 pub mod dbhs;
+pub mod jsonl;
 pub mod method;
 pub mod optimized;
 pub mod poly;

@@ -22,10 +22,10 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use curves::{method_by_name, CurveChoice, CurveMethod, DbhsPick, MethodOptions, UnitProblem};
-use nalgebra::Vector2;
+use curves::jsonl::{self, LineAnswer};
+use curves::{method_by_name, CurveMethod, DbhsPick, MethodOptions};
 use render::{CurveFigure, CurvePanel};
-use serde_json::{json, Map, Value};
+use serde_json::{json, Value};
 use solver::{SolveOptions, SolverKind};
 
 use crate::error::ExperimentError;
@@ -56,14 +56,6 @@ pub struct CurveArgs {
     plot: Option<PathBuf>,
 }
 
-/// One input line that was read successfully.
-struct Answered {
-    line: usize,
-    input: Value,
-    problem: UnitProblem,
-    choices: Vec<(&'static str, bool, CurveChoice)>,
-}
-
 /// Runs the experiment; `Ok` carries the exit code (1 if some lines were bad).
 pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
     let defaults = MethodOptions::default();
@@ -91,41 +83,19 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
     let mut answered = Vec::new();
     let mut bad = Vec::new();
     // Lines are split on bytes: a line that is not UTF-8 gets its own error, the others are
-    // answered.
+    // answered (`curves::jsonl`).
     for (i, bytes) in text.split(|b| *b == b'\n').enumerate() {
         let line = i + 1;
-        let bytes = bytes.strip_suffix(b"\r").unwrap_or(bytes);
-        let parsed = match std::str::from_utf8(bytes) {
-            Ok(raw) if raw.trim().is_empty() => continue,
-            Ok(raw) => parse_line(raw),
-            Err(e) => Err((
-                Value::String(String::from_utf8_lossy(bytes).into_owned()),
-                format!("not UTF-8: {e}"),
-            )),
-        };
-        let record = match parsed {
-            Ok((input, problem)) => {
-                let choices = methods
-                    .iter()
-                    .map(|m| (m.name(), m.enumerates_solutions(), m.construct(&problem)))
-                    .collect();
-                let a = Answered {
-                    line,
-                    input,
-                    problem,
-                    choices,
-                };
-                let v = answer_json(&a);
+        let record = match jsonl::answer_line(line, bytes, &methods) {
+            None => continue,
+            Some(Ok(a)) => {
+                let v = jsonl::answer_json(&a);
                 answered.push(a);
                 v
             }
-            Err((input, error)) => {
-                bad.push((line, error.clone()));
-                let mut m = Map::new();
-                m.insert("line".into(), json!(line));
-                m.insert("input".into(), input);
-                m.insert("error".into(), json!(error));
-                Value::Object(m)
+            Some(Err((error, record))) => {
+                bad.push((line, error));
+                record
             }
         };
         out.push_str(&record.to_string());
@@ -155,7 +125,7 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
     let overshooting = answered
         .iter()
         .flat_map(|a| a.choices.iter().map(move |c| (a, c)))
-        .filter(|(a, c)| curve_json(&a.problem, c.2.alpha).contains_key("overshoots_chord"))
+        .filter(|(a, c)| jsonl::curve_json(&a.problem, c.2.alpha).contains_key("overshoots_chord"))
         .count();
     let unconverged = answered
         .iter()
@@ -201,113 +171,7 @@ fn read_input(path: Option<&Path>) -> Result<Vec<u8>, ExperimentError> {
     Ok(text)
 }
 
-/// Parses one line; on failure returns what can be echoed as the input and the message.
-fn parse_line(raw: &str) -> Result<(Value, UnitProblem), (Value, String)> {
-    let value: Value = serde_json::from_str(raw)
-        .map_err(|e| (Value::String(raw.to_string()), format!("bad JSON: {e}")))?;
-    let problem = problem_from(&value).map_err(|e| (value.clone(), e))?;
-    Ok((value, problem))
-}
-
-fn problem_from(v: &Value) -> Result<UnitProblem, String> {
-    let obj = v
-        .as_object()
-        .ok_or_else(|| "expected a JSON object with t0, t1, k0, k1".to_string())?;
-    let field = |name: &str| {
-        obj.get(name)
-            .ok_or_else(|| format!("missing field `{name}`"))
-    };
-    let vec2 = |name: &str| -> Result<Vector2<f64>, String> {
-        let arr = field(name)?
-            .as_array()
-            .filter(|a| a.len() == 2)
-            .ok_or_else(|| format!("`{name}` must be an array of two numbers"))?;
-        let c = |i: usize| {
-            arr[i]
-                .as_f64()
-                .ok_or_else(|| format!("`{name}` must be an array of two numbers"))
-        };
-        Ok(Vector2::new(c(0)?, c(1)?))
-    };
-    let num = |name: &str| -> Result<f64, String> {
-        field(name)?
-            .as_f64()
-            .ok_or_else(|| format!("`{name}` must be a number"))
-    };
-    UnitProblem::new(vec2("t0")?, vec2("t1")?, num("k0")?, num("k1")?).map_err(|e| e.to_string())
-}
-
-/// `{"alpha", "points", "kappa", "curvature_variation"}` of the unit curve for `alpha`.
-fn curve_json(problem: &UnitProblem, alpha: [f64; 2]) -> Map<String, Value> {
-    let c = problem.curve(alpha);
-    let mut m = Map::new();
-    m.insert("alpha".into(), json!(alpha));
-    m.insert(
-        "points".into(),
-        json!(c.points.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>()),
-    );
-    m.insert("kappa".into(), json!(problem.end_curvatures(alpha)));
-    m.insert(
-        "curvature_variation".into(),
-        json_number(c.curvature_variation()),
-    );
-    // A curve that runs past an end of its chord (antiparallel or backward tangents) is
-    // flagged: `x(t)` of the unit-chord cubic leaves [0, 1] at one of OVERSHOOT_SAMPLES points.
-    let overshoot = (0..=OVERSHOOT_SAMPLES).any(|i| {
-        let x = c.eval(i as f64 / OVERSHOOT_SAMPLES as f64).x;
-        !(-OVERSHOOT_TOL..=1.0 + OVERSHOOT_TOL).contains(&x)
-    });
-    if overshoot {
-        m.insert("overshoots_chord".into(), json!(true));
-    }
-    m
-}
-
-/// Samples of `x(t)` checked for leaving the chord's slab (a cubic's `x(t)` has at most two
-/// extrema, which 64 samples place to within 1/64 of the parameter).
-const OVERSHOOT_SAMPLES: usize = 64;
-/// Rounding allowance at the chord's ends, in chord lengths.
-const OVERSHOOT_TOL: f64 = 1e-12;
-
-/// A finite number, or null (JSON has no infinity: a cusp's curvature variation is unbounded).
-fn json_number(x: f64) -> Value {
-    if x.is_finite() {
-        json!(x)
-    } else {
-        Value::Null
-    }
-}
-
-fn answer_json(a: &Answered) -> Value {
-    let mut methods = Map::new();
-    for (name, enumerates, choice) in &a.choices {
-        let mut m = Map::new();
-        if *enumerates {
-            let sols: Vec<Value> = choice
-                .candidates
-                .as_slice()
-                .iter()
-                .map(|alpha| Value::Object(curve_json(&a.problem, *alpha)))
-                .collect();
-            m.insert("solutions".into(), Value::Array(sols));
-            m.insert("chosen".into(), json!(choice.chosen));
-            m.insert("fallback".into(), json!(choice.fallback));
-        } else if choice.fallback {
-            m.insert("fallback".into(), json!(true));
-        }
-        m.extend(curve_json(&a.problem, choice.alpha));
-        if let Some(report) = &choice.report {
-            m.insert(
-                "report".into(),
-                serde_json::to_value(report).unwrap_or(Value::Null),
-            );
-        }
-        methods.insert((*name).to_string(), Value::Object(m));
-    }
-    json!({"line": a.line, "input": a.input, "methods": methods})
-}
-
-fn problem_label(a: &Answered) -> String {
+fn problem_label(a: &LineAnswer) -> String {
     a.input
         .get("name")
         .and_then(Value::as_str)
@@ -315,7 +179,7 @@ fn problem_label(a: &Answered) -> String {
         .unwrap_or_else(|| format!("line {}", a.line))
 }
 
-fn file_stem(a: &Answered) -> String {
+fn file_stem(a: &LineAnswer) -> String {
     let name: String = problem_label(a)
         .chars()
         .map(|c| {
@@ -333,7 +197,7 @@ fn fmt_pair(x: [f64; 2]) -> String {
     format!("({:.4}, {:.4})", x[0], x[1])
 }
 
-fn panels(a: &Answered) -> Vec<CurvePanel> {
+fn panels(a: &LineAnswer) -> Vec<CurvePanel> {
     let p = &a.problem;
     let targets = [p.k0, p.k1];
     let panel = |title: String, alpha: [f64; 2]| CurvePanel {
@@ -373,7 +237,11 @@ fn panels(a: &Answered) -> Vec<CurvePanel> {
     out
 }
 
-fn write_plots(dir: &Path, answered: &[Answered], args: &CurveArgs) -> Result<(), ExperimentError> {
+fn write_plots(
+    dir: &Path,
+    answered: &[LineAnswer],
+    args: &CurveArgs,
+) -> Result<(), ExperimentError> {
     ensure_dir(dir)?;
     let mut md = String::new();
     md.push_str("# Boundary curves for unit-chord problems\n\n");
@@ -421,7 +289,7 @@ fn write_plots(dir: &Path, answered: &[Answered], args: &CurveArgs) -> Result<()
                 var
             ));
         }
-        records.push(answer_json(a));
+        records.push(jsonl::answer_json(a));
     }
     md.push('\n');
     for a in answered {
@@ -462,63 +330,4 @@ fn write_plots(dir: &Path, answered: &[Answered], args: &CurveArgs) -> Result<()
     write_result(Some(&dir.join("report.json")), json_text.as_bytes())?;
     write_result(Some(&dir.join("report.md")), md.as_bytes())?;
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn bad_lines_are_named() {
-        let err = |s: &str| parse_line(s).expect_err("bad line").1;
-        assert!(err("{").starts_with("bad JSON"));
-        assert_eq!(
-            err(r#"{"t0":[1,0],"t1":[1,0],"k0":0}"#),
-            "missing field `k1`"
-        );
-        assert_eq!(
-            err(r#"{"t0":[1,0,0],"t1":[1,0],"k0":0,"k1":0}"#),
-            "`t0` must be an array of two numbers"
-        );
-        assert!(err(r#"{"t0":[2,0],"t1":[1,0],"k0":0,"k1":0}"#).contains("expected a unit vector"));
-        assert_eq!(
-            err(r#"{"t0":[1,0],"t1":[1,0],"k0":"x","k1":0}"#),
-            "`k0` must be a number"
-        );
-        assert!(err("[1, 2]").starts_with("expected a JSON object"));
-        // JSON has no NaN; such a line is bad JSON.
-        assert!(err(r#"{"t0":[NaN,0],"t1":[1,0],"k0":0,"k1":0}"#).starts_with("bad JSON"));
-    }
-
-    #[test]
-    fn answers_keep_extra_fields_and_list_dbhs_solutions() {
-        let (input, problem) = parse_line(
-            r#"{"name":"arc","t0":[0.9950041652780258,0.09983341664682815],"t1":[0.9950041652780258,-0.09983341664682815],"k0":-0.2,"k1":-0.2}"#,
-        )
-        .expect("valid");
-        let opts = MethodOptions::default();
-        let methods: Vec<_> = ["chord", "dbhs"]
-            .iter()
-            .map(|m| method_by_name(m, &opts).expect("known"))
-            .collect();
-        let a = Answered {
-            line: 1,
-            input,
-            problem,
-            choices: methods
-                .iter()
-                .map(|m| (m.name(), m.enumerates_solutions(), m.construct(&problem)))
-                .collect(),
-        };
-        let v = answer_json(&a);
-        assert_eq!(v["input"]["name"], "arc");
-        assert_eq!(v["methods"]["chord"]["alpha"], json!([1.0, 1.0]));
-        let d = &v["methods"]["dbhs"];
-        assert_eq!(d["solutions"].as_array().map(Vec::len), Some(3));
-        assert_eq!(d["chosen"], json!(1));
-        assert_eq!(d["fallback"], json!(false));
-        let k = d["kappa"].as_array().expect("kappa");
-        assert!((k[0].as_f64().expect("number") + 0.2).abs() < 1e-9);
-        assert_eq!(d["points"].as_array().map(Vec::len), Some(4));
-    }
 }

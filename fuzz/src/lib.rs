@@ -56,6 +56,24 @@ fn pipeline(bytes: &[u8]) -> bool {
     }
 }
 
+fn curve_line(bytes: &[u8]) -> bool {
+    thread_local! {
+        static METHODS: Vec<Box<dyn curves::CurveMethod>> = curves::REGISTRY
+            .iter()
+            .filter_map(|e| curves::method_by_name(e.name, &curves::MethodOptions::default()).ok())
+            .collect();
+    }
+    METHODS.with(
+        |methods| match curves::jsonl::answer_line(1, bytes, methods) {
+            Some(Ok(a)) => {
+                let _ = curves::jsonl::answer_json(&a).to_string();
+                true
+            }
+            _ => false,
+        },
+    )
+}
+
 /// Every target.
 pub static TARGETS: &[Target] = &[
     Target {
@@ -89,6 +107,11 @@ pub static TARGETS: &[Target] = &[
         run: |b| meshio::read_bytes(Path::new("input"), b).is_ok(),
     },
     Target {
+        name: "curve-line",
+        description: "one line of the curve command's JSON Lines protocol, answered by every construction with its measures",
+        run: curve_line,
+    },
+    Target {
         name: "pipeline",
         description:
             "read by content, repair, estimate (default estimator), fit with optimized curves",
@@ -109,6 +132,7 @@ pub fn seeds(target: &str) -> Vec<Vec<u8>> {
         "pipeline" | "sniff" => std::fs::read_dir(&root)
             .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
             .unwrap_or_default(),
+        "curve-line" => vec![root.join("curve")],
         t => vec![root.join(t)],
     };
     let mut files: Vec<PathBuf> = dirs
