@@ -252,33 +252,20 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
             path: p.clone(),
             source,
         })?;
-        let v: Value = serde_json::from_str(&text).map_err(|e| {
-            ExperimentError::Usage(format!("{}: not a shard report: {e}", p.display()))
-        })?;
+        let shard = experiments::shard::read_shard(&text, total)
+            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", p.display())))?;
         // Shards of different runs must not be joined: their options must agree.
-        let these = v["options"].clone();
+        let these = shard.options.clone();
         match &options {
             None => options = Some((p.clone(), these)),
-            Some((first, o)) if *o != these => {
-                return Err(ExperimentError::Usage(format!(
+            Some((first, o)) if *o != these => return Err(ExperimentError::Usage(format!(
                 "{}: options {these} differ from {}'s {o}: these shards come from different runs",
                 p.display(),
                 first.display()
-            )))
-            }
+            ))),
             Some(_) => {}
         }
-        for r in v["results"].as_array().into_iter().flatten() {
-            let k = r["index"]
-                .as_u64()
-                .map(|k| k as usize)
-                .filter(|k| *k < total)
-                .ok_or_else(|| {
-                    ExperimentError::Usage(format!(
-                        "{}: a result without a valid task index",
-                        p.display()
-                    ))
-                })?;
+        for (k, r) in shard.results {
             if results[k].is_some() {
                 return Err(ExperimentError::Usage(format!(
                     "{}: task {k} ({}) appears in more than one shard",
@@ -286,7 +273,7 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
                     r["task"]
                 )));
             }
-            results[k] = Some(r.clone());
+            results[k] = Some(r);
         }
     }
     let missing: Vec<String> = results

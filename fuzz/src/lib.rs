@@ -112,6 +112,13 @@ pub static TARGETS: &[Target] = &[
         run: curve_line,
     },
     Target {
+        name: "shard",
+        description: "a sweep shard file as merge reads it",
+        run: |b| {
+            std::str::from_utf8(b).is_ok_and(|t| experiments::shard::read_shard(t, 20).is_ok())
+        },
+    },
+    Target {
         name: "pipeline",
         description:
             "read by content, repair, estimate (default estimator), fit with optimized curves",
