@@ -100,6 +100,8 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let repaired = loaded.repairs.as_ref().is_some_and(|r| !r.is_clean());
     let mesh = loaded.mesh;
     let frame = loaded.frame;
+    let face_source = loaded.face_source;
+    let vertex_source = loaded.vertex_source;
     let t_read = t0.elapsed().as_secs_f64();
     let options = MethodOptions {
         dbhs_pick: args.dbhs_pick,
@@ -204,7 +206,26 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             g1.fallback_exterior_max
         );
         for fb in fitted.face_fallbacks.iter().take(FALLBACKS_LISTED) {
-            say!("    face {}: {}", fb.face, fb.reason);
+            // In the file's numbering where the mesh came from a file (0-based).
+            let v = mesh.faces()[fb.face].map(|i| {
+                vertex_source
+                    .as_ref()
+                    .and_then(|s| s.get(i).copied())
+                    .unwrap_or(i)
+            });
+            let file_face = face_source
+                .as_ref()
+                .and_then(|s| s.get(fb.face))
+                .map(|f| format!(", file face {f}"))
+                .unwrap_or_default();
+            say!(
+                "    face {} (file vertices {}, {}, {}{file_face}): {}",
+                fb.face,
+                v[0],
+                v[1],
+                v[2],
+                fb.reason
+            );
         }
         if fitted.face_fallbacks.len() > FALLBACKS_LISTED {
             say!("    … ({} in all)", fitted.face_fallbacks.len());

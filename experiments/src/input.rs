@@ -41,6 +41,10 @@ pub struct Loaded {
     pub notes: Vec<String>,
     /// What the repair did to a file (`None` for a data set).
     pub repairs: Option<RepairReport>,
+    /// For each mesh face, the file's face it came from (`None` for a data set).
+    pub face_source: Option<Vec<usize>>,
+    /// For each mesh vertex, the file's vertex it came from (`None` for a data set).
+    pub vertex_source: Option<Vec<usize>>,
 }
 
 /// Loads `--data`: an existing file is read as a mesh; otherwise the name is a data set.
@@ -71,6 +75,8 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
             frame: prepared.frame,
             notes,
             repairs: Some(prepared.report),
+            face_source: Some(prepared.face_source),
+            vertex_source: Some(prepared.vertex_source),
         });
     }
     let data = surface::dataset_by_name(&args.data, args.resolution).map_err(|e| {
@@ -84,5 +90,7 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         frame: surface::Frame::identity(),
         notes: Vec::new(),
         repairs: None,
+        face_source: None,
+        vertex_source: None,
     })
 }

@@ -258,11 +258,13 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         let these = shard.options.clone();
         match &options {
             None => options = Some((p.clone(), these)),
-            Some((first, o)) if *o != these => return Err(ExperimentError::Usage(format!(
+            Some((first, o)) if *o != these => {
+                return Err(ExperimentError::Usage(format!(
                 "{}: options {these} differ from {}'s {o}: these shards come from different runs",
                 p.display(),
                 first.display()
-            ))),
+            )))
+            }
             Some(_) => {}
         }
         for (k, r) in shard.results {
