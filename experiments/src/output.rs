@@ -65,6 +65,13 @@ impl Staged {
     /// Starts a result directory at `out` (which may exist: it is replaced on commit, but must be
     /// a directory, not a file, a device or a link to one).
     pub fn begin(out: &Path) -> Result<Self, ExperimentError> {
+        Self::begin_keeping(out, |_| false)
+    }
+
+    /// [`Staged::begin`], carrying over (copying into the staging directory) the files of the
+    /// existing directory whose names `keep` accepts — the shard files of a sweep, which other
+    /// runs wrote and the swap must not lose.
+    pub fn begin_keeping(out: &Path, keep: impl Fn(&str) -> bool) -> Result<Self, ExperimentError> {
         if let Ok(meta) = std::fs::symlink_metadata(out) {
             if !meta.is_dir() {
                 return Err(ExperimentError::Usage(format!(
@@ -83,11 +90,25 @@ impl Staged {
         }
         ensure_dir(&staging)?;
         render::io::in_flight(&staging);
-        Ok(Staged {
+        let staged = Staged {
             final_dir: out.to_path_buf(),
             staging,
             committed: false,
-        })
+        };
+        if let Ok(entries) = std::fs::read_dir(out) {
+            for e in entries.flatten() {
+                let name = e.file_name().to_string_lossy().into_owned();
+                if keep(&name) && e.path().is_file() {
+                    std::fs::copy(e.path(), staged.staging.join(&name)).map_err(|source| {
+                        ExperimentError::Write {
+                            path: staged.staging.join(&name),
+                            source,
+                        }
+                    })?;
+                }
+            }
+        }
+        Ok(staged)
     }
 
     /// Where to write the files now.

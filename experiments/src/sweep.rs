@@ -21,7 +21,7 @@ use solver::SolverKind;
 use surface::{compare_with_truth, fit, measure_g1, tessellate, InteriorParameters};
 
 use crate::error::ExperimentError;
-use crate::output::{ensure_dir, write_result};
+use crate::output::{ensure_dir, write_result, Staged};
 use crate::ring::curve_stats;
 
 /// Data sets of the sweep, in order.
@@ -217,9 +217,18 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
                 path.display()
             );
         }
-        None => write_report(&args.out, &options_json(args.interior), results)?,
+        None => {
+            let staged = Staged::begin_keeping(&args.out, is_shard)?;
+            write_report(staged.path(), &options_json(args.interior), results)?;
+            staged.commit()?;
+        }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// A shard file's name (`shard-i-of-n.json`): carried over when a report is swapped in.
+fn is_shard(name: &str) -> bool {
+    name.starts_with("shard-") && name.ends_with(".json")
 }
 
 /// The options every task of a run shares: what a shard records and `merge` compares.
@@ -237,11 +246,7 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
     let mut paths: Vec<PathBuf> = read_dir
         .filter_map(Result::ok)
         .map(|e| e.path())
-        .filter(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("shard-") && n.ends_with(".json"))
-        })
+        .filter(|p| p.file_name().and_then(|n| n.to_str()).is_some_and(is_shard))
         .collect();
     paths.sort();
     let total = tasks().len();
@@ -293,7 +298,13 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         )));
     }
     let options = options.map(|(_, o)| o).unwrap_or(Value::Null);
-    write_report(&args.out, &options, results.into_iter().flatten().collect())?;
+    let staged = Staged::begin_keeping(&args.out, is_shard)?;
+    write_report(
+        staged.path(),
+        &options,
+        results.into_iter().flatten().collect(),
+    )?;
+    staged.commit()?;
     say!(
         "merge: {} shard file(s), {total} tasks → {}",
         paths.len(),
