@@ -11,35 +11,26 @@ use std::time::Instant;
 use curves::{method_by_name, MethodOptions, UnitProblem, REGISTRY};
 use nalgebra::Vector2;
 
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use fixtures::SplitMix64 as Rng;
 
 fn curvature(rng: &mut Rng) -> f64 {
-    match (rng.next() * 6.0) as usize {
+    match (rng.next_f64() * 6.0) as usize {
         0 => 0.0,
-        1 => 10f64.powf(60.0 * rng.next() - 30.0) * if rng.next() < 0.5 { -1.0 } else { 1.0 },
-        _ => 20.0 * rng.next() - 10.0,
+        1 => {
+            10f64.powf(60.0 * rng.next_f64() - 30.0) * if rng.next_f64() < 0.5 { -1.0 } else { 1.0 }
+        }
+        _ => 20.0 * rng.next_f64() - 10.0,
     }
 }
 
 fn tangent(rng: &mut Rng, other: Option<Vector2<f64>>) -> Vector2<f64> {
-    let special = rng.next();
+    let special = rng.next_f64();
     match (special, other) {
         (s, Some(t)) if s < 0.1 => t,      // parallel
         (s, Some(t)) if s < 0.2 => -t,     // antiparallel
         (s, _) if s < 0.3 => Vector2::x(), // along the chord
         _ => {
-            let a = (rng.next() - 0.5) * std::f64::consts::PI * 1.9;
+            let a = (rng.next_f64() - 0.5) * std::f64::consts::PI * 1.9;
             Vector2::new(a.cos(), a.sin())
         }
     }
@@ -55,7 +46,7 @@ fn main() {
         .iter()
         .filter_map(|e| method_by_name(e.name, &options).ok())
         .collect();
-    let mut rng = Rng(20_261_129);
+    let mut rng = Rng::new(20_261_129);
     let mut times = Vec::with_capacity(n);
     let mut worst: Option<(f64, [f64; 6])> = None;
     for _ in 0..n {

@@ -62,6 +62,24 @@ struct Piece {
     error: f64,
 }
 
+impl Piece {
+    /// Rules one piece applies: the whole and its two halves.
+    const RULES: usize = 3;
+
+    /// The piece `[a, b]`: its value from the two halves, its error against the whole.
+    fn new<F: Fn(f64) -> f64>(f: &F, a: f64, b: f64) -> Self {
+        let m = 0.5 * (a + b);
+        let whole = gauss(f, a, b);
+        let (l, r) = (gauss(f, a, m), gauss(f, m, b));
+        Piece {
+            a,
+            b,
+            value: l + r,
+            error: (l + r - whole).abs(),
+        }
+    }
+}
+
 impl PartialEq for Piece {
     fn eq(&self, other: &Self) -> bool {
         self.error.total_cmp(&other.error).is_eq()
@@ -103,16 +121,8 @@ pub fn integrate_bounded<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, rel_tol: f64) 
                 a + h * (i + 1) as f64
             },
         );
-        let m = 0.5 * (x + y);
-        let whole = gauss(&f, x, y);
-        let (l, r) = (gauss(&f, x, m), gauss(&f, m, y));
-        rules += 3;
-        heap.push(Piece {
-            a: x,
-            b: y,
-            value: l + r,
-            error: (l + r - whole).abs(),
-        });
+        heap.push(Piece::new(&f, x, y));
+        rules += Piece::RULES;
     }
     loop {
         let (total, error) = heap
@@ -125,7 +135,7 @@ pub fn integrate_bounded<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, rel_tol: f64) 
                 capped: false,
             };
         }
-        if rules + 4 > MAX_RULES {
+        if rules + 2 * Piece::RULES > MAX_RULES {
             return Integral {
                 value: total,
                 capped: true,
@@ -139,16 +149,8 @@ pub fn integrate_bounded<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, rel_tol: f64) 
         };
         let m = 0.5 * (worst.a + worst.b);
         for (x, y) in [(worst.a, m), (m, worst.b)] {
-            let c = 0.5 * (x + y);
-            let whole = gauss(&f, x, y);
-            let (l, r) = (gauss(&f, x, c), gauss(&f, c, y));
-            rules += 3;
-            heap.push(Piece {
-                a: x,
-                b: y,
-                value: l + r,
-                error: (l + r - whole).abs(),
-            });
+            heap.push(Piece::new(&f, x, y));
+            rules += Piece::RULES;
         }
         if m <= worst.a || m >= worst.b {
             // The interval cannot be split further in floating point: accept what there is.

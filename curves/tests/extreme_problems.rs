@@ -10,18 +10,7 @@ use nalgebra::Vector2;
 /// Problems in the test suite (the benchmark runs 10⁶).
 const PROBLEMS: usize = 3000;
 
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use fixtures::SplitMix64 as Rng;
 
 #[test]
 fn every_extreme_problem_is_answered_without_nan() {
@@ -31,23 +20,23 @@ fn every_extreme_problem_is_answered_without_nan() {
         .filter_map(|e| method_by_name(e.name, &options).ok())
         .collect();
     assert_eq!(methods.len(), REGISTRY.len());
-    let mut rng = Rng(7);
+    let mut rng = Rng::new(7);
     let mut answered = 0;
     for _ in 0..PROBLEMS {
-        let mut curvature = || match (rng.next() * 6.0) as usize {
+        let mut curvature = || match (rng.next_f64() * 6.0) as usize {
             0 => 0.0,
-            1 => 10f64.powf(60.0 * rng.next() - 30.0),
-            _ => 20.0 * rng.next() - 10.0,
+            1 => 10f64.powf(60.0 * rng.next_f64() - 30.0),
+            _ => 20.0 * rng.next_f64() - 10.0,
         };
         let (k0, k1) = (curvature(), -curvature());
-        let a = (rng.next() - 0.5) * 3.0;
+        let a = (rng.next_f64() - 0.5) * 3.0;
         let t0 = Vector2::new(a.cos(), a.sin());
-        let t1 = match (rng.next() * 4.0) as usize {
+        let t1 = match (rng.next_f64() * 4.0) as usize {
             0 => t0,
             1 => -t0,
             2 => Vector2::x(),
             _ => {
-                let b = (rng.next() - 0.5) * 3.0;
+                let b = (rng.next_f64() - 0.5) * 3.0;
                 Vector2::new(b.cos(), b.sin())
             }
         };

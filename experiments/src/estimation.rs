@@ -103,20 +103,6 @@ struct StudyMesh {
     h: f64,
 }
 
-/// SplitMix64: a tiny deterministic generator (the study's meshes are fixed).
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 fn mean_edge(mesh: &Mesh) -> f64 {
     let v = mesh.vertices();
     let total: f64 = mesh
@@ -129,7 +115,7 @@ fn mean_edge(mesh: &Mesh) -> f64 {
 
 /// The irregular version of a data set's mesh (module docs).
 fn jittered(mesh: &Mesh, surface: &dyn AnalyticSurface, seed: u64) -> Mesh {
-    let mut rng = SplitMix(seed);
+    let mut rng = fixtures::SplitMix64::new(seed);
     let mut out = mesh.clone();
     let shortest: Vec<f64> = (0..mesh.num_vertices())
         .map(|v| {
@@ -147,8 +133,8 @@ fn jittered(mesh: &Mesh, surface: &dyn AnalyticSurface, seed: u64) -> Mesh {
             .try_normalize(1e-9);
         let t1 = t1.unwrap_or_else(|| n.cross(&Vector3::x()).normalize());
         let t2 = n.cross(&t1);
-        let angle = std::f64::consts::TAU * rng.next();
-        let len = JITTER * shortest[v].min(1.0) * rng.next();
+        let angle = std::f64::consts::TAU * rng.next_f64();
+        let len = JITTER * shortest[v].min(1.0) * rng.next_f64();
         let q = vert.data.p + (t1 * angle.cos() + t2 * angle.sin()) * len;
         vert.data = surface.closest(&q).data;
     }
