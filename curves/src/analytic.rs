@@ -2,7 +2,7 @@
 //! benchmarks and sample problems of the curve layer. (The surface crate's data sets build whole
 //! meshes on these.)
 //!
-//! Normals point outward and the shape tensor follows DESIGN.md: `κn(d) = dᵀ S d`, positive where
+//! Normals point outward and the shape tensor follows docs/conventions.md: `κn(d) = dᵀ S d`, positive where
 //! the surface bends towards `n`, so convex parts of closed surfaces have negative curvatures.
 
 use nalgebra::{Matrix3, Point3, Vector3};

@@ -159,7 +159,7 @@ impl CubicBez<2> {
         (cross2(&d1, &d3) * n2 - 3.0 * cross2(&d1, &d2) * d1.dot(&d2)) / (n2 * n2 * n2)
     }
 
-    /// Curvature variation `∫ (dκ/ds)² ds = ∫₀¹ (dκ/ds)² |f'| dt` (DESIGN.md's fairness measure
+    /// Curvature variation `∫ (dκ/ds)² ds = ∫₀¹ (dκ/ds)² |f'| dt` (the fairness measure of docs/conventions.md
     /// for boundary curves), by adaptive quadrature.
     pub fn curvature_variation(&self) -> f64 {
         quadrature::integrate(

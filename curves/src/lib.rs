@@ -12,7 +12,7 @@
 //! * [`optimized`] — Mann's trade-off between tangent length and end curvature, minimized by any
 //!   adapter of the `solver` crate (objective in the `cost` crate).
 //!
-//! Conventions are those of the workspace's DESIGN notes: signed curvature is positive where a
+//! Conventions are those of `docs/conventions.md`: signed curvature is positive where a
 //! plane curve turns left (about the plane normal `w`), normal curvature `κn(d) = dᵀ S d` is
 //! positive where the surface bends towards its normal, `α = 1` is one third of the chord.
 

@@ -1,7 +1,7 @@
 //! The planar boundary-curve problem: from the data at the two ends of a mesh edge to a
 //! unit-chord problem in the plane, and from a unit-chord solution back to a cubic in space.
 //!
-//! # Construction (DESIGN.md, "Geometry")
+//! # Construction (docs/conventions.md, "Geometry")
 //!
 //! For the edge from vertex `a` to vertex `b` with positions `p`, unit normals `n` and shape
 //! tensors `S` (normal curvature `κn(d) = dᵀ S d` for unit tangent `d`; `κn > 0` where the

@@ -2,7 +2,7 @@
 //! write the patches as JSON Lines.
 //!
 //! Each output line is one record, `{"type": "BezierTriangle", "degree": 4, "points":
-//! [[x, y, z], …15], "face": f, "subpatch": e}` (points in DESIGN.md's row order; sub-patch `e`
+//! [[x, y, z], …15], "face": f, "subpatch": e}` (points in the row order of docs/conventions.md; sub-patch `e`
 //! of face `f` spans the face's corners `e`, `e + 1` and the split point). stderr gets the G1
 //! defect, the interpolation error, the curve statistics and the time of each stage.
 

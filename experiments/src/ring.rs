@@ -3,7 +3,7 @@
 //!
 //! Five surfaces: the true ring (a torus, R = 1, r = 0.4), the sampled triangulation (flat
 //! triangles), and the modified Shirman–Séquin surface with `chord`, `dbhs` and `optimized`
-//! boundary curves. Each is tessellated, measured against the torus (DESIGN.md's quality
+//! boundary curves. Each is tessellated, measured against the torus (docs/conventions.md's quality
 //! measures), rendered from three views shaded, coloured by Gaussian curvature (the testbed's
 //! KColor) and by distance to the true surface (the testbed's Radial), and written as PLY and
 //! OBJ. Figure 2: the boundary curves of the two edges where the constructions differ most.
@@ -619,7 +619,7 @@ fn markdown(
             );
         }
     }
-    let _ = writeln!(md, "\nFiles: `report.json`; `<surface>.ply` for every surface (binary, Gaussian-curvature colours, K as quality: MeshLab shows it); `optimized.obj`; `patches-optimized.jsonl` (quartic nets, DESIGN.md row order; the other surfaces' nets come from `experiments -- fit --curves chord|dbhs --out FILE`).");
+    let _ = writeln!(md, "\nFiles: `report.json`; `<surface>.ply` for every surface (binary, Gaussian-curvature colours, K as quality: MeshLab shows it); `optimized.obj`; `patches-optimized.jsonl` (quartic nets, the row order of docs/conventions.md; the other surfaces' nets come from `experiments -- fit --curves chord|dbhs --out FILE`).");
     md
 }
 

@@ -1,4 +1,4 @@
-//! A small CPU rasterizer for shaded triangle meshes (no GPU, no crate that fits: DESIGN.md).
+//! A small CPU rasterizer for shaded triangle meshes (no GPU, no crate that fits: docs/conventions.md).
 //!
 //! Perspective camera, z-buffer, clipping against the near plane (Sutherland–Hodgman on one
 //! plane), perspective-correct interpolation of normals, colours and positions (weights

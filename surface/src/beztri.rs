@@ -6,7 +6,7 @@
 //! "Triangular Bézier patches"). Corner `u` (`(1,0,0)`) is `b_{n00}`, corner `v` is `b_{0n0}`,
 //! corner `w` is `b_{00n}`.
 //!
-//! # Control-net order (DESIGN.md)
+//! # Control-net order (docs/conventions.md)
 //!
 //! Rows `k = 0..n`; within a row `i` runs from `n − k` down to 0 (and `j = n − k − i` up).
 //! Row 0 is the edge from the `u` corner to the `v` corner. The position of `b_{ijk}` is
@@ -34,7 +34,7 @@
 //! M = r_uv·n, N = r_vv·n` (do Carmo, *Differential Geometry of Curves and Surfaces*, §3-3):
 //! `K = (LN − M²)/(EG − F²)`, `H = (EN − 2FM + GL)/(2(EG − F²))`. Since `II(a)/I(a)` is the
 //! normal component of a surface curve's curvature vector, it is positive where the surface bends
-//! towards `n`: the DESIGN.md sign (a paraboloid `z = x² + y²` with upward normal has `K = 4`,
+//! towards `n`: the docs/conventions.md sign (a paraboloid `z = x² + y²` with upward normal has `K = 4`,
 //! `H = 2` at its apex). The world shape tensor is `S = J I⁻¹ II I⁻¹ Jᵀ` with `J = [r_u r_v]`,
 //! so that `dᵀ S d = II(a)/I(a)` for `d = J a/|J a|`, and `S n = 0`.
 
@@ -138,7 +138,7 @@ pub struct Curvature {
     pub normal: Vector3<f64>,
     /// Gaussian curvature `K`.
     pub gaussian: f64,
-    /// Mean curvature `H = (κ1 + κ2)/2`, DESIGN.md sign.
+    /// Mean curvature `H = (κ1 + κ2)/2`, docs/conventions.md sign.
     pub mean: f64,
     /// Principal curvatures `κ1 ≤ κ2`.
     pub principal: [f64; 2],

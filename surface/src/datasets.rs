@@ -82,7 +82,7 @@ pub struct SurfacePoint {
     pub data: VertexData,
     /// Distance from the query point, positive outside (along `n`).
     pub signed_distance: f64,
-    /// Principal curvatures `κ1 ≤ κ2` (DESIGN.md sign).
+    /// Principal curvatures `κ1 ≤ κ2` (docs/conventions.md sign).
     pub principal: [f64; 2],
 }
 

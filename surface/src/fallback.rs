@@ -3,7 +3,7 @@
 //!
 //! Used where [`crate::shirman_sequin::macro_patch`] fails (a corner cross vector that does not
 //! point into the patch, a zero end derivative, non-finite points) and for faces of zero area.
-//! Same layout as the regular macro-patch: three quartics over the centroid split, in DESIGN.md
+//! Same layout as the regular macro-patch: three quartics over the centroid split, in docs/conventions.md
 //! row order, sub-patch `e` over `(V_e, V_{e+1}, S)`.
 //!
 //! # Construction

@@ -122,7 +122,7 @@ pub struct Fit {
     pub degenerate_edges: Vec<DegenerateEdge>,
     /// Faces fitted with the fallback patch (module docs), in face order.
     pub face_fallbacks: Vec<FaceFallback>,
-    /// Three quartic nets per face (DESIGN.md row order): net `3f + e` is sub-patch `e` of face
+    /// Three quartic nets per face (the row order of docs/conventions.md): net `3f + e` is sub-patch `e` of face
     /// `f`, over the corners `(V_e, V_{e+1}, S)` of the face. Fixed-size arrays, so a fit of a
     /// million triangles makes no per-patch allocation (about 1.1 kB per triangle).
     pub patches: Vec<QuarticNet>,

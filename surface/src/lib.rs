@@ -25,7 +25,7 @@
 //! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
 //!   position, normal, Gaussian and mean curvature.
 //!
-//! Conventions (DESIGN.md): normal curvature `κn(d) = dᵀ S d` is positive where the surface
+//! Conventions (docs/conventions.md): normal curvature `κn(d) = dᵀ S d` is positive where the surface
 //! bends towards its normal, so the unit sphere with outward normals has `κn = −1`, Gaussian
 //! curvature `K = +1` and mean curvature `H = (κ1 + κ2)/2 = −1`.
 

@@ -1,4 +1,4 @@
-//! Quality measures of a tessellated surface against the true surface (DESIGN.md, "Quality
+//! Quality measures of a tessellated surface against the true surface (docs/conventions.md, "Quality
 //! measures"): position error (distance of samples to the true surface), normal error (angle to
 //! the true normal at the closest point), and Gaussian and mean curvature errors. Every sample
 //! (tessellation vertex) counts once.

@@ -12,7 +12,7 @@
 //! normals `n_i`. Exterior edge `e` runs from `V_e` to `V_{e+1}` (indices mod 3) and carries the
 //! cubic `V_e, E_e¹, E_e², V_{e+1}` (shared with the neighbouring triangle). Sub-patch `e` is the
 //! quartic over the domain triangle `(V_e, V_{e+1}, S)` of the centroid split; its net, in rows
-//! parallel to the exterior edge (DESIGN.md row order, corners `b400 = V_e`, `b040 = V_{e+1}`,
+//! parallel to the exterior edge (the row order of docs/conventions.md, corners `b400 = V_e`, `b040 = V_{e+1}`,
 //! `b004 = S`):
 //!
 //! ```text
@@ -92,7 +92,7 @@
 use curves::{CubicBez3, VertexData};
 use nalgebra::{Point3, Vector3};
 
-/// A quartic triangular Bézier net in DESIGN.md's row order (15 points).
+/// A quartic triangular Bézier net in the row order of docs/conventions.md (15 points).
 pub type QuarticNet = [Point3<f64>; 15];
 
 /// Below this sine the construction's perpendiculars are undefined (a zero-length end
