@@ -115,21 +115,28 @@ fn s_shaped_data() {
 
 #[test]
 fn zero_curvature_at_one_end_is_linear() {
-    // k0 = 0: E0 fixes α1 = 3 d0 / c, then E1 gives α0; exactly one solution.
-    let p = unit(0.3, -0.2, 0.0, -1.0);
-    let c = curves::cross2(&p.t0, &p.t1);
-    let (d0, d1) = (-p.t0.y, -p.t1.y);
-    let a1 = 3.0 * d0 / c;
-    let a0 = -(6.0 * d1 + p.k1 * a1 * a1) / (2.0 * c);
+    // k0 = 0: E0 fixes α1 = 3 d0 / c, then E1 gives α0 = −(6 d1 + k1 α1²) / (2c); exactly one
+    // solution when both are positive, none otherwise. Tangents at 0.3 and −0.2 rad: c < 0 and
+    // α1 = 1.85, so α0 > 0 exactly when k1 > −6 d1 / α1² ≈ −0.349.
+    let closed_form = |p: &UnitProblem| {
+        let c = curves::cross2(&p.t0, &p.t1);
+        let (d0, d1) = (-p.t0.y, -p.t1.y);
+        let a1 = 3.0 * d0 / c;
+        (-(6.0 * d1 + p.k1 * a1 * a1) / (2.0 * c), a1)
+    };
+    let p = unit(0.3, -0.2, 0.0, 0.5);
+    let (a0, a1) = closed_form(&p);
+    assert!(a0 > 0.0 && a1 > 0.0, "{a0} {a1}");
     let sols = dbhs::solve(&p);
-    if a0 > 0.0 && a1 > 0.0 {
-        assert_eq!(sols.len(), 1);
-        let s = sols.get(0).expect("one");
-        assert!((s.alpha[0] - a0).abs() < CLOSED_FORM * a0);
-        assert!((s.alpha[1] - a1).abs() < CLOSED_FORM * a1);
-    } else {
-        assert!(sols.is_empty());
-    }
+    assert_eq!(sols.len(), 1, "{sols:?}");
+    let s = sols.get(0).expect("one");
+    assert!((s.alpha[0] - a0).abs() < CLOSED_FORM * a0);
+    assert!((s.alpha[1] - a1).abs() < CLOSED_FORM * a1);
+    assert_matches_targets(&p, s.alpha);
+    // k1 = −1: the closed form's α0 is negative, and there is no solution.
+    let p = unit(0.3, -0.2, 0.0, -1.0);
+    assert!(closed_form(&p).0 < 0.0);
+    assert!(dbhs::solve(&p).is_empty());
 }
 
 #[test]

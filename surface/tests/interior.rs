@@ -210,3 +210,65 @@ fn corner_objectives_jacobian_matches_finite_differences_and_vanishes() {
         }
     }
 }
+
+/// The chain rule of the corner measures on inputs where it does not vanish: random vertex
+/// data and vectors `A(x), B(x), …` that depend on the six parameters through random linear and
+/// quadratic terms. (On the scheme's own nets the Jacobian vanishes identically, so only this
+/// test can catch a wrong derivative.)
+#[test]
+fn corner_measure_gradients_match_finite_differences_where_they_do_not_vanish() {
+    use nalgebra::{Matrix3, SVector, Vector3};
+    use surface::interior::{normal_curvature_with_gradient, twist_with_gradient, WithGradient};
+    /// Central differences with step 1e-6 on O(1) quantities: truncation 1e-12, rounding 1e-10.
+    const FD: f64 = 1e-7;
+    const STEP: f64 = 1e-6;
+    let mut seed = 12345u64;
+    let mut rnd = move || {
+        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+        ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    };
+    for _ in 0..50 {
+        let n = Vector3::new(rnd(), rnd(), rnd() + 2.0).normalize();
+        let p = Matrix3::identity() - n * n.transpose();
+        let m = Matrix3::from_fn(|_, _| rnd());
+        let vd =
+            curves::VertexData::new(nalgebra::Point3::origin(), n, p * (m + m.transpose()) * p);
+        // A vector field of x: v0 + L x + (xᵀ x) q.
+        let mut field = || {
+            let v0 = Vector3::new(rnd(), rnd(), rnd()) + Vector3::x() * 2.0;
+            let l: [Vector3<f64>; 6] = std::array::from_fn(|_| Vector3::new(rnd(), rnd(), rnd()));
+            let q = Vector3::new(rnd(), rnd(), rnd()) * 0.3;
+            move |x: &SVector<f64, 6>| -> WithGradient {
+                let v =
+                    v0 + (0..6).map(|k| l[k] * x[k]).sum::<Vector3<f64>>() + q * x.norm_squared();
+                (v, std::array::from_fn(|k| l[k] + q * (2.0 * x[k])))
+            }
+        };
+        let (fa, fb, fc) = (field(), field(), field());
+        let x = SVector::<f64, 6>::from_fn(|_, _| rnd() * 0.5);
+        type Measure<'a> = Box<dyn Fn(&SVector<f64, 6>) -> (f64, [f64; 6]) + 'a>;
+        let measures: [Measure; 2] = [
+            Box::new(|x| normal_curvature_with_gradient(&vd, &fa(x), &fb(x))),
+            Box::new(|x| twist_with_gradient(&vd, &fa(x), &fb(x), &fc(x))),
+        ];
+        for f in &measures {
+            let (_, g) = f(&x);
+            assert!(
+                g.iter().any(|v| v.abs() > 1e-3),
+                "a gradient that vanishes tests nothing"
+            );
+            for k in 0..6 {
+                let mut xp = x;
+                let mut xm = x;
+                xp[k] += STEP;
+                xm[k] -= STEP;
+                let fd = (f(&xp).0 - f(&xm).0) / (2.0 * STEP);
+                assert!(
+                    (fd - g[k]).abs() < FD * g[k].abs().max(1.0),
+                    "∂{k}: {fd} vs {}",
+                    g[k]
+                );
+            }
+        }
+    }
+}
