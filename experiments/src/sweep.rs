@@ -181,7 +181,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     let mine: Vec<(usize, &Task)> = all
         .iter()
         .enumerate()
-        .filter(|(k, _)| args.shard.is_none_or(|s| k % s.count == s.index))
+        .filter(|(k, _)| in_shard(args.shard, *k))
         .collect();
     let tty = std::io::stderr().is_terminal();
     let mut results = Vec::with_capacity(mine.len());
@@ -224,6 +224,12 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// True when task `k` belongs to `shard` (every task when there is no shard): round-robin over
+/// the fixed task order, so shard membership depends only on the task's index.
+fn in_shard(shard: Option<Shard>, k: usize) -> bool {
+    shard.is_none_or(|s| k % s.count == s.index)
 }
 
 /// A shard file's name (`shard-i-of-n.json`): carried over when a report is swapped in.
@@ -362,11 +368,15 @@ mod tests {
         for count in 1..=7 {
             let mut seen = vec![0; n];
             for index in 0..count {
-                for k in (0..n).filter(|k| k % count == index) {
-                    seen[k] += 1;
+                for (k, slot) in seen.iter_mut().enumerate() {
+                    if in_shard(Some(Shard { index, count }), k) {
+                        *slot += 1;
+                    }
                 }
             }
-            assert!(seen.iter().all(|c| *c == 1));
+            // Every task in exactly one shard, and in the unsharded run.
+            assert!(seen.iter().all(|c| *c == 1), "{count}: {seen:?}");
+            assert!((0..n).all(|k| in_shard(None, k)));
         }
         assert_eq!("2/5".parse::<Shard>(), Ok(Shard { index: 2, count: 5 }));
         assert!("5/5".parse::<Shard>().is_err());
