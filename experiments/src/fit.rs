@@ -14,7 +14,7 @@ use std::time::Instant;
 use curves::{method_by_name, DbhsPick, MethodOptions};
 use serde_json::json;
 use solver::SolverKind;
-use surface::fairing::{choose_interior, InteriorChoice, InteriorStats};
+use surface::fairing::{InteriorChoice, InteriorStats};
 use surface::{fit, measure_g1, Fit, InteriorParameters, Mesh};
 
 use crate::error::ExperimentError;
@@ -117,8 +117,9 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t1 = Instant::now();
     let fitted = fit(&mesh, method.as_ref(), &|_| params)
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
-    let (fitted, stats) = refit_interior(&mesh, method.as_ref(), fitted, args.interior)
-        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
+    let (fitted, stats) =
+        refit_interior(&mesh, method.as_ref(), fitted, args.interior, args.solver)
+            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
     let t_fit = t1.elapsed().as_secs_f64();
     if args.interior != InteriorChoice::Default {
         say!(
@@ -279,8 +280,9 @@ pub fn refit_interior(
     method: &dyn curves::CurveMethod,
     first: Fit,
     choice: InteriorChoice,
+    solver: SolverKind,
 ) -> Result<(Fit, InteriorStats), surface::FitError> {
-    let (params, stats) = choose_interior(mesh, &first, choice);
+    let (params, stats) = surface::fairing::choose_interior_with(mesh, &first, choice, solver);
     if choice == InteriorChoice::Default {
         return Ok((first, stats));
     }

@@ -174,9 +174,14 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
             InteriorChoice::ThinPlate,
             InteriorChoice::Membrane,
         ] {
-            let (f, stats) =
-                crate::fit::refit_interior(&data.mesh, method.as_ref(), first.clone(), choice)
-                    .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+            let (f, stats) = crate::fit::refit_interior(
+                &data.mesh,
+                method.as_ref(),
+                first.clone(),
+                choice,
+                solver::SolverKind::ExactPenalty,
+            )
+            .map_err(|e| ExperimentError::Usage(e.to_string()))?;
             let g1 = surface::measure_g1(&data.mesh, &f, 9);
             let tess = surface::tessellate(&f.bezier_patches(), 4)
                 .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;

@@ -233,7 +233,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
             method_by_name(name, &options).map_err(|e| ExperimentError::Usage(e.to_string()))?;
         let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
             .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
-        let (f, _) = crate::fit::refit_interior(mesh, m.as_ref(), f, args.interior)
+        let (f, _) = crate::fit::refit_interior(mesh, m.as_ref(), f, args.interior, args.solver)
             .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
         let fit_time = t.elapsed().as_secs_f64();
         let g1 = measure_g1(mesh, &f, 9);

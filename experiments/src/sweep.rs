@@ -147,8 +147,14 @@ fn run_task(
     let t_fit = Instant::now();
     let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
-    let (f, _) = crate::fit::refit_interior(mesh, m.as_ref(), f, interior)
-        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
+    let (f, _) = crate::fit::refit_interior(
+        mesh,
+        m.as_ref(),
+        f,
+        interior,
+        t.solver.unwrap_or(SolverKind::ExactPenalty),
+    )
+    .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
     let fit_time = t_fit.elapsed().as_secs_f64();
     let g1 = measure_g1(mesh, &f, 9);
     let cs = curve_stats(&problems, &f);

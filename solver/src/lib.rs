@@ -60,7 +60,7 @@ pub use error::SolveError;
 pub use exact_penalty::solve_exact_penalty;
 pub use kind::{SolverKind, UnknownSolver};
 pub use lbfgs::{minimize_lbfgs, solve_lbfgs};
-pub use lm::{solve_lm, Dims, LmDims};
+pub use lm::{solve_lm, solve_lm_any, Dims, LmDims};
 pub use options::SolveOptions;
 pub use problem::{HalfSumOfSquares, LeastSquaresProblem, ObjectiveProblem};
 pub use report::{ConvergenceTest, FailureReason, SolveReport, Termination};
@@ -96,5 +96,27 @@ where
         SolverKind::ExactPenalty => solve_exact_penalty(problem, x0, options),
         SolverKind::Lbfgs => solve_lbfgs(problem, x0, options),
         SolverKind::Lm => solve_lm(problem, x0, options),
+    }
+}
+
+/// [`solve`] for problems of any size: Levenberg–Marquardt through [`solve_lm_any`] (dynamic
+/// linear algebra, no bound on the number of residuals), the other adapters as in [`solve`].
+/// Use [`solve`] where its bound holds: its LM path is the faster one on small problems.
+///
+/// # Errors
+/// As [`solve`].
+pub fn solve_any<P, const N: usize, const M: usize>(
+    kind: SolverKind,
+    problem: &P,
+    x0: SVector<f64, N>,
+    options: &SolveOptions,
+) -> Result<Solution<N>, SolveError>
+where
+    P: LeastSquaresProblem<N, M>,
+{
+    match kind {
+        SolverKind::ExactPenalty => solve_exact_penalty(problem, x0, options),
+        SolverKind::Lbfgs => solve_lbfgs(problem, x0, options),
+        SolverKind::Lm => solve_lm_any(problem, x0, options),
     }
 }

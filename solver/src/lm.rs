@@ -33,7 +33,10 @@
 
 use levenberg_marquardt::{LevenbergMarquardt, MinimizationReport, TerminationReason};
 use nalgebra::allocator::{Allocator, Reallocator};
-use nalgebra::{Const, DefaultAllocator, DimMax, DimMaximum, DimMin, Owned, SMatrix, SVector};
+use nalgebra::{
+    Const, DMatrix, DVector, DefaultAllocator, DimMax, DimMaximum, DimMin, Dyn, Owned, SMatrix,
+    SVector, VecStorage, U1,
+};
 use std::cell::{Cell, RefCell};
 use std::time::Instant;
 
@@ -104,24 +107,11 @@ struct Target<'a, P, const N: usize, const M: usize> {
     history: Option<RefCell<Vec<f64>>>,
 }
 
-impl<P, const N: usize, const M: usize>
-    levenberg_marquardt::LeastSquaresProblem<f64, Const<M>, Const<N>> for Target<'_, P, N, M>
+impl<P, const N: usize, const M: usize> Target<'_, P, N, M>
 where
     P: LeastSquaresProblem<N, M>,
 {
-    type ResidualStorage = Owned<f64, Const<M>>;
-    type JacobianStorage = Owned<f64, Const<M>, Const<N>>;
-    type ParameterStorage = Owned<f64, Const<N>>;
-
-    fn set_params(&mut self, y: &SVector<f64, N>) {
-        self.y = *y;
-    }
-
-    fn params(&self) -> SVector<f64, N> {
-        self.y
-    }
-
-    fn residuals(&self) -> Option<SVector<f64, M>> {
+    fn eval_residuals(&self) -> Option<SVector<f64, M>> {
         self.residual_evaluations
             .set(self.residual_evaluations.get() + 1);
         let r = self.problem.residuals(&self.map.to_x(&self.y));
@@ -137,7 +127,7 @@ where
         Some(r)
     }
 
-    fn jacobian(&self) -> Option<SMatrix<f64, M, N>> {
+    fn eval_jacobian(&self) -> Option<SMatrix<f64, M, N>> {
         let count = self.jacobian_evaluations.get();
         if count >= self.max_jacobians {
             self.hit_limit.set(true);
@@ -157,7 +147,70 @@ where
     }
 }
 
-/// Solves `min ½‖r(x)‖² s.t. x ≥ l` with the `levenberg-marquardt` crate.
+/// The fixed-size view of the problem (stack-allocated vectors and matrices): the fast path for
+/// the sizes [`LmDims`] accepts.
+impl<P, const N: usize, const M: usize>
+    levenberg_marquardt::LeastSquaresProblem<f64, Const<M>, Const<N>> for Target<'_, P, N, M>
+where
+    P: LeastSquaresProblem<N, M>,
+{
+    type ResidualStorage = Owned<f64, Const<M>>;
+    type JacobianStorage = Owned<f64, Const<M>, Const<N>>;
+    type ParameterStorage = Owned<f64, Const<N>>;
+
+    fn set_params(&mut self, y: &SVector<f64, N>) {
+        self.y = *y;
+    }
+
+    fn params(&self) -> SVector<f64, N> {
+        self.y
+    }
+
+    fn residuals(&self) -> Option<SVector<f64, M>> {
+        self.eval_residuals()
+    }
+
+    fn jacobian(&self) -> Option<SMatrix<f64, M, N>> {
+        self.eval_jacobian()
+    }
+}
+
+/// The same problem with heap-allocated (dynamically sized) vectors and matrices, for sizes
+/// beyond the fixed-size backend's bound (more than 127 residuals).
+struct DynTarget<'a, P, const N: usize, const M: usize>(Target<'a, P, N, M>);
+
+impl<P, const N: usize, const M: usize> levenberg_marquardt::LeastSquaresProblem<f64, Dyn, Dyn>
+    for DynTarget<'_, P, N, M>
+where
+    P: LeastSquaresProblem<N, M>,
+{
+    type ResidualStorage = VecStorage<f64, Dyn, U1>;
+    type JacobianStorage = VecStorage<f64, Dyn, Dyn>;
+    type ParameterStorage = VecStorage<f64, Dyn, U1>;
+
+    fn set_params(&mut self, y: &DVector<f64>) {
+        self.0.y = SVector::from_iterator(y.iter().copied());
+    }
+
+    fn params(&self) -> DVector<f64> {
+        DVector::from_column_slice(self.0.y.as_slice())
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        self.0
+            .eval_residuals()
+            .map(|r| DVector::from_column_slice(r.as_slice()))
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        self.0
+            .eval_jacobian()
+            .map(|j| DMatrix::from_column_slice(M, N, j.as_slice()))
+    }
+}
+
+/// Solves `min ½‖r(x)‖² s.t. x ≥ l` with the `levenberg-marquardt` crate, fixed-size (stack)
+/// linear algebra: the fast path, for every size up to 127 residuals.
 ///
 /// # Errors
 /// [`SolveError`] for invalid options, a non-finite start, invalid bounds or a start below a bound.
@@ -169,6 +222,45 @@ pub fn solve_lm<P, const N: usize, const M: usize>(
 where
     P: LeastSquaresProblem<N, M>,
     Dims<N, M>: LmDims<N, M>,
+{
+    solve_lm_with(problem, x0, options, |lm, target| {
+        <Dims<N, M> as LmDims<N, M>>::minimize(lm, target)
+    })
+}
+
+/// [`solve_lm`] for problems of any size: the same algorithm and report with heap-allocated
+/// (dynamically sized) linear algebra, so it has no bound on the number of residuals (the
+/// fairing problems have 162 and 180). Slower on small problems than [`solve_lm`], which is the
+/// one to use where its bound holds.
+///
+/// # Errors
+/// As [`solve_lm`].
+pub fn solve_lm_any<P, const N: usize, const M: usize>(
+    problem: &P,
+    x0: SVector<f64, N>,
+    options: &SolveOptions,
+) -> Result<Solution<N>, SolveError>
+where
+    P: LeastSquaresProblem<N, M>,
+{
+    solve_lm_with(problem, x0, options, |lm, target| {
+        let (t, report) = lm.minimize(DynTarget(target));
+        (t.0, report)
+    })
+}
+
+/// The adapter around a minimizer of the crate (fixed-size or dynamic).
+fn solve_lm_with<'p, P, const N: usize, const M: usize>(
+    problem: &'p P,
+    x0: SVector<f64, N>,
+    options: &SolveOptions,
+    minimize: impl FnOnce(
+        &LevenbergMarquardt<f64>,
+        Target<'p, P, N, M>,
+    ) -> (Target<'p, P, N, M>, MinimizationReport<f64>),
+) -> Result<Solution<N>, SolveError>
+where
+    P: LeastSquaresProblem<N, M>,
 {
     let start = Instant::now();
     options.validate()?;
@@ -239,7 +331,7 @@ where
             .record_history
             .then(|| RefCell::new(Vec::with_capacity(16))),
     };
-    let (target, lm_report) = <Dims<N, M> as LmDims<N, M>>::minimize(&lm, target);
+    let (target, lm_report) = minimize(&lm, target);
 
     let (best_cost, best_y) = target.best.get();
     let y = if best_cost.is_finite() {

@@ -326,3 +326,53 @@ fn history_can_be_switched_off() {
         assert!(s.report.converged());
     }
 }
+
+/// A linear least-squares problem with 200 residuals (beyond the fixed-size backend's 127):
+/// `r_i = a_i · x − b_i` with a known exact solution.
+struct Tall;
+
+impl solver::LeastSquaresProblem<2, 200> for Tall {
+    fn residuals(&self, x: &nalgebra::SVector<f64, 2>) -> nalgebra::SVector<f64, 200> {
+        nalgebra::SVector::from_fn(|i, _| {
+            let t = i as f64 / 199.0;
+            // b_i = 3 + 2 t exactly: the optimum is x = (3, 2) with zero residual.
+            x[0] + x[1] * t - (3.0 + 2.0 * t)
+        })
+    }
+
+    fn jacobian(&self, _x: &nalgebra::SVector<f64, 2>) -> nalgebra::SMatrix<f64, 200, 2> {
+        nalgebra::SMatrix::from_fn(|i, k| if k == 0 { 1.0 } else { i as f64 / 199.0 })
+    }
+
+    fn lower_bounds(&self) -> nalgebra::SVector<f64, 2> {
+        nalgebra::SVector::repeat(f64::NEG_INFINITY)
+    }
+}
+
+#[test]
+fn every_adapter_runs_problems_beyond_the_fixed_size_bound() {
+    /// A zero-residual linear problem: every adapter reaches the exact optimum to rounding.
+    const EXACT: f64 = 1e-8;
+    for kind in SolverKind::ALL {
+        let s = solver::solve_any(kind, &Tall, Vector2::new(0.0, 0.0), &opts()).unwrap();
+        assert!(s.report.converged(), "{kind}: {}", s.report.table());
+        assert!(
+            (s.x - Vector2::new(3.0, 2.0)).amax() < EXACT,
+            "{kind}: {}",
+            s.x
+        );
+    }
+}
+
+#[test]
+fn the_dynamic_lm_path_agrees_with_the_fixed_one() {
+    /// Same algorithm, same floating-point operations up to the storage of the matrices.
+    const SAME: f64 = 1e-12;
+    let p = Rosenbrock {
+        lower_x2: f64::NEG_INFINITY,
+    };
+    let fixed = solver::solve_lm(&p, Vector2::new(-1.2, 1.0), &opts()).unwrap();
+    let any = solver::solve_lm_any(&p, Vector2::new(-1.2, 1.0), &opts()).unwrap();
+    assert!((fixed.x - any.x).amax() < SAME, "{} vs {}", fixed.x, any.x);
+    assert_eq!(fixed.report.iterations, any.report.iterations);
+}

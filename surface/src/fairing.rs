@@ -322,6 +322,17 @@ pub fn choose_interior(
     fit: &crate::fit::Fit,
     choice: InteriorChoice,
 ) -> (Vec<InteriorParameters>, InteriorStats) {
+    choose_interior_with(mesh, fit, choice, solver::SolverKind::ExactPenalty)
+}
+
+/// [`choose_interior`] with any solver adapter (`solver::solve_any`: Levenberg–Marquardt runs
+/// the 162- and 180-residual energies through its dynamic-size path).
+pub fn choose_interior_with(
+    mesh: &crate::mesh::Mesh,
+    fit: &crate::fit::Fit,
+    choice: InteriorChoice,
+    kind: solver::SolverKind,
+) -> (Vec<InteriorParameters>, InteriorStats) {
     use rayon::prelude::*;
     let energy = match choice {
         InteriorChoice::Default => {
@@ -354,7 +365,7 @@ pub fn choose_interior(
                 return kept;
             };
             let e0 = problem.objective(&x0);
-            match solver::solve_exact_penalty(&problem, x0, &options) {
+            match solver::solve_any(kind, &problem, x0, &options) {
                 Ok(s) if problem.objective(&s.x) <= e0 => (
                     MacroPatchEnergy::params(&s.x),
                     s.report.converged(),
