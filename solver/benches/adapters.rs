@@ -67,6 +67,11 @@ fn adapters(c: &mut Criterion) {
             })
         });
     }
+    // The dynamic-size LM path on the same 2-unknown problem: what the fixed-size fast path,
+    // which `solve` keeps for the boundary curves, saves.
+    c.bench_function("lm-any-size", |b| {
+        b.iter(|| solver::solve_lm_any(black_box(&p), black_box(Vector2::new(1.0, 1.0)), &options))
+    });
 }
 
 criterion_group!(benches, adapters);
