@@ -73,7 +73,7 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
         .iter()
         .map(|m| method_by_name(m.trim(), &options))
         .collect::<Result<_, _>>()
-        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+        .map_err(ExperimentError::from)?;
     if let (Some(i), Some(o)) = (&args.input, &args.output) {
         crate::output::refuse_overwriting_input(o, &i.to_string_lossy())?;
     }

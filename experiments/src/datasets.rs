@@ -8,7 +8,7 @@ use crate::error::ExperimentError;
 /// Loads a data set at its default resolution; an unknown name is a usage error listing the
 /// known ones.
 pub fn load(name: &str) -> Result<DataSet, ExperimentError> {
-    dataset_by_name(name, None).map_err(|e| ExperimentError::Usage(e.to_string()))
+    dataset_by_name(name, None).map_err(ExperimentError::from)
 }
 
 /// The edge problems of a data set, each with its `(a, b)` vertex pair.

@@ -35,6 +35,21 @@ pub enum ExperimentError {
         /// Why.
         source: estimate::PrepareError,
     },
+    /// A named data set does not exist or its resolution is out of range.
+    #[error(transparent)]
+    DataSet(#[from] surface::DataSetError),
+    /// A curve construction name is not registered.
+    #[error(transparent)]
+    Method(#[from] curves::UnknownMethod),
+    /// An edge's boundary-curve problem is degenerate (names the edge's vertices).
+    #[error(transparent)]
+    Edge(#[from] curves::EdgeError),
+    /// A fit could not be made (a bad parameter, or curvature the data does not have).
+    #[error(transparent)]
+    Fit(#[from] surface::FitError),
+    /// A tessellation could not be made.
+    #[error("tessellation: {0}")]
+    Tess(#[from] surface::TessError),
     /// A command-line setting names something that does not exist.
     #[error("{0}")]
     Usage(String),

@@ -172,7 +172,7 @@ fn study_mesh(
 
 /// The study's meshes, in a fixed order.
 fn study_meshes() -> Result<Vec<StudyMesh>, ExperimentError> {
-    let usage = |e: surface::DataSetError| ExperimentError::Usage(e.to_string());
+    let usage = ExperimentError::from;
     let mut out = Vec::new();
     let mut add = |family: &str, label: String, data: surface::DataSet, seed: u64| {
         let jit = jittered(&data.mesh, data.surface.as_ref(), seed);
@@ -380,8 +380,7 @@ fn fmt(x: Option<Stat>) -> String {
 
 /// The ring study's fitted surfaces from exact and from estimated data.
 fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), ExperimentError> {
-    let data = surface::dataset_by_name("ring", None)
-        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    let data = surface::dataset_by_name("ring", None).map_err(ExperimentError::from)?;
     let truth = data.surface.as_ref();
     let mut estimated = data.mesh.clone();
     let est = default_estimator();
@@ -394,13 +393,11 @@ fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), 
     );
     let mut rows = Vec::new();
     for method in ["chord", "dbhs", "optimized"] {
-        let m = method_by_name(method, &MethodOptions::default())
-            .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+        let m = method_by_name(method, &MethodOptions::default()).map_err(ExperimentError::from)?;
         for (label, mesh) in [("exact", &data.mesh), ("estimated", &estimated)] {
             let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
                 .map_err(|e| ExperimentError::Usage(format!("ring ({label}): {e}")))?;
-            let tess = tessellate(&f.bezier_patches(), 4)
-                .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;
+            let tess = tessellate(&f.bezier_patches(), 4).map_err(ExperimentError::from)?;
             let errs = compare_with_truth(&tess, truth);
             let g1 = measure_g1(mesh, &f, 9);
             let _ = writeln!(

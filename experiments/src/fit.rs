@@ -108,8 +108,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         solver: args.solver,
         ..MethodOptions::default()
     };
-    let method = method_by_name(&args.curves, &options)
-        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    let method = method_by_name(&args.curves, &options).map_err(ExperimentError::from)?;
     let params = InteriorParameters {
         beta: [args.beta; 3],
         c: [args.c; 3],
@@ -158,7 +157,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         )?;
         let t3 = Instant::now();
         let mut tess = surface::tessellate(&fitted.bezier_patches(), args.tess)
-            .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;
+            .map_err(ExperimentError::from)?;
         frame.tessellation_to_world(&mut tess);
         crate::output::refuse_overwriting_input(path, &args.input.data)?;
         let format = meshio::format_for_path(path)

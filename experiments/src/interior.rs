@@ -56,7 +56,7 @@ fn sweep(
     let mut first: Option<Vec<[f64; 3]>> = None;
     for &x in xs {
         let p = params(x);
-        let f = fit(mesh, method, &|_| p).map_err(|e| ExperimentError::Usage(e.to_string()))?;
+        let f = fit(mesh, method, &|_| p).map_err(ExperimentError::from)?;
         let (mut fc, mut ft) = (0.0, 0.0);
         let mut values = Vec::new();
         for (fi, face) in mesh.faces().iter().enumerate() {
@@ -97,8 +97,8 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
     let cs: Vec<f64> = (0..STEPS)
         .map(|i| 0.25 * 16f64.powf(i as f64 / (STEPS - 1) as f64))
         .collect();
-    let method = method_by_name("optimized", &MethodOptions::default())
-        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    let method =
+        method_by_name("optimized", &MethodOptions::default()).map_err(ExperimentError::from)?;
     let mut charts = Vec::new();
     let mut records = Vec::new();
     let mut md_rows = String::new();
@@ -168,7 +168,7 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
         let first = fit(&data.mesh, method.as_ref(), &|_| {
             InteriorParameters::default()
         })
-        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+        .map_err(ExperimentError::from)?;
         for choice in [
             InteriorChoice::Default,
             InteriorChoice::ThinPlate,
@@ -181,10 +181,10 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
                 choice,
                 solver::SolverKind::ExactPenalty,
             )
-            .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+            .map_err(ExperimentError::from)?;
             let g1 = surface::measure_g1(&data.mesh, &f, 9);
-            let tess = surface::tessellate(&f.bezier_patches(), 4)
-                .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;
+            let tess =
+                surface::tessellate(&f.bezier_patches(), 4).map_err(ExperimentError::from)?;
             let e = surface::compare_with_truth(&tess, data.surface.as_ref());
             let solved = if choice == InteriorChoice::Default {
                 "— | —".to_string()

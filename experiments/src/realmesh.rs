@@ -114,8 +114,8 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             .unwrap_or_default();
         let mut per_method = Map::new();
         for method in ["chord", "dbhs", "optimized"] {
-            let m = method_by_name(method, &MethodOptions::default())
-                .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+            let m =
+                method_by_name(method, &MethodOptions::default()).map_err(ExperimentError::from)?;
             let t = Instant::now();
             let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
                 .map_err(|e| ExperimentError::Usage(format!("{}: {e}", path.display())))?;
@@ -153,8 +153,8 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                        "fit_time_seconds": t_fit}),
             );
             if method == "optimized" {
-                let tess = tessellate(&f.bezier_patches(), SAMPLING)
-                    .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;
+                let tess =
+                    tessellate(&f.bezier_patches(), SAMPLING).map_err(ExperimentError::from)?;
                 let (lo, hi) = bbox(&tess.positions);
                 shots.push((name.clone(), tess, (hi - lo).norm()));
             }

@@ -171,7 +171,7 @@ fn flat_triangles(mesh: &Mesh, s: usize) -> Result<Tessellation, ExperimentError
             BezierTriangle::new(1, vec![v[f[0]].data.p, v[f[1]].data.p, v[f[2]].data.p]).ok()
         })
         .collect();
-    tessellate(&patches, s).map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))
+    tessellate(&patches, s).map_err(ExperimentError::from)
 }
 
 fn errors_json(e: &SurfaceErrors) -> Value {
@@ -199,8 +199,8 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         faces * crate::limits::FIT_BYTES_PER_FACE as u128 * 5
             + 5 * crate::limits::tessellation_bytes(3 * faces, args.sampling),
     )?;
-    let data = surface::dataset_by_name("ring", Some(args.resolution))
-        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    let data =
+        surface::dataset_by_name("ring", Some(args.resolution)).map_err(ExperimentError::from)?;
     let mesh = &data.mesh;
     let truth: &dyn AnalyticSurface = data.surface.as_ref();
     let (big, small) = (
@@ -215,7 +215,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
             BoundaryProblem::new((a, b), &mesh.vertices()[a].data, &mesh.vertices()[b].data)
         })
         .collect::<Result<_, _>>()
-        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+        .map_err(ExperimentError::from)?;
     stage("data", t);
 
     // Fits.
@@ -229,8 +229,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     let mut method_records = Map::new();
     for name in METHODS {
         let t = Instant::now();
-        let m =
-            method_by_name(name, &options).map_err(|e| ExperimentError::Usage(e.to_string()))?;
+        let m = method_by_name(name, &options).map_err(ExperimentError::from)?;
         let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
             .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
         let (f, _) = crate::fit::refit_interior(mesh, m.as_ref(), f, args.interior, args.solver)
@@ -287,8 +286,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         errors: fe,
     });
     for (name, f, _, _) in &fits {
-        let tess = tessellate(&f.bezier_patches(), args.sampling)
-            .map_err(|e| ExperimentError::Usage(format!("tessellation: {e}")))?;
+        let tess = tessellate(&f.bezier_patches(), args.sampling).map_err(ExperimentError::from)?;
         let errors = compare_with_truth(&tess, truth);
         surfaces.push(Surface {
             name,

@@ -126,15 +126,13 @@ fn run_task(
     interior: surface::fairing::InteriorChoice,
 ) -> Result<Value, ExperimentError> {
     let start = Instant::now();
-    let data = surface::dataset_by_name(t.dataset, None)
-        .map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    let data = surface::dataset_by_name(t.dataset, None).map_err(ExperimentError::from)?;
     let mesh = &data.mesh;
     let options = MethodOptions {
         solver: t.solver.unwrap_or(SolverKind::ExactPenalty),
         ..MethodOptions::default()
     };
-    let m =
-        method_by_name(t.curves, &options).map_err(|e| ExperimentError::Usage(e.to_string()))?;
+    let m = method_by_name(t.curves, &options).map_err(ExperimentError::from)?;
     let problems: Vec<BoundaryProblem> = mesh
         .edges()
         .iter()
