@@ -14,8 +14,8 @@ use std::time::Instant;
 use curves::{method_by_name, DbhsPick, MethodOptions};
 use serde_json::json;
 use solver::SolverKind;
-use surface::fairing::{InteriorChoice, InteriorStats};
-use surface::{fit, measure_g1, Fit, InteriorParameters, Mesh};
+use surface::fairing::InteriorChoice;
+use surface::{fit, measure_g1, InteriorParameters};
 
 use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
@@ -116,9 +116,14 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t1 = Instant::now();
     let fitted = fit(&mesh, method.as_ref(), &|_| params)
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
-    let (fitted, stats) =
-        refit_interior(&mesh, method.as_ref(), fitted, args.interior, args.solver)
-            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
+    let (fitted, stats) = surface::fairing::refit_interior(
+        &mesh,
+        method.as_ref(),
+        fitted,
+        args.interior,
+        args.solver,
+    )
+    .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
     let t_fit = t1.elapsed().as_secs_f64();
     if args.interior != InteriorChoice::Default {
         say!(
@@ -270,23 +275,6 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// Refits `mesh` with interior parameters chosen by `choice` from the curves of a first fit
-/// (the curves do not depend on β and c, so they are reused).
-pub fn refit_interior(
-    mesh: &Mesh,
-    method: &dyn curves::CurveMethod,
-    first: Fit,
-    choice: InteriorChoice,
-    solver: SolverKind,
-) -> Result<(Fit, InteriorStats), surface::FitError> {
-    let (params, stats) = surface::fairing::choose_interior_with(mesh, &first, choice, solver);
-    if choice == InteriorChoice::Default {
-        return Ok((first, stats));
-    }
-    let refit = fit(mesh, method, &|f| params[f])?;
-    Ok((refit, stats))
 }
 
 /// A tessellation as a raw mesh for the writers: positions, normals, colours by Gaussian

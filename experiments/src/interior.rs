@@ -174,7 +174,7 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
             InteriorChoice::ThinPlate,
             InteriorChoice::Membrane,
         ] {
-            let (f, stats) = crate::fit::refit_interior(
+            let (f, stats) = surface::fairing::refit_interior(
                 &data.mesh,
                 method.as_ref(),
                 first.clone(),

@@ -35,7 +35,6 @@ mod realmesh;
 mod ring;
 mod ring_render;
 mod solvers;
-mod stats;
 mod sweep;
 
 use std::process::ExitCode;

@@ -25,7 +25,7 @@ use surface::{
 
 use crate::error::ExperimentError;
 use crate::output::{write_result, Staged};
-use crate::stats::median;
+use surface::curve_stats::CurveStats;
 
 /// The constructions compared, in the order of the seeds' Figure 5.
 const METHODS: [&str; 3] = ["chord", "dbhs", "optimized"];
@@ -66,52 +66,6 @@ struct Surface {
     /// Draw with per-face normals (the flat triangulation).
     flat: bool,
     errors: SurfaceErrors,
-}
-
-/// Statistics of one construction's boundary curves over all edges (unit-chord measures).
-#[derive(Default)]
-pub struct CurveStats {
-    /// Largest |κ − k| at a curve end.
-    pub end_curvature_error_max: f64,
-    /// RMS of |κ − k| over all curve ends.
-    pub end_curvature_error_rms: f64,
-    /// Shortest end-derivative length α.
-    pub shortest_alpha: f64,
-    /// Largest ∫(dκ/ds)² ds.
-    pub curvature_variation_max: f64,
-    /// Median ∫(dκ/ds)² ds.
-    pub curvature_variation_median: f64,
-    /// Edges that fell back to the chord curve.
-    pub fallbacks: usize,
-    /// Edges whose optimization did not converge.
-    pub unconverged: usize,
-}
-
-/// Curve measures of a fit's edge curves, from the edges' unit problems.
-pub fn curve_stats(problems: &[BoundaryProblem], fit: &Fit) -> CurveStats {
-    let mut s = CurveStats {
-        shortest_alpha: f64::INFINITY,
-        fallbacks: fit.fallbacks,
-        unconverged: fit.unconverged,
-        ..CurveStats::default()
-    };
-    let mut sq = 0.0;
-    let mut vars = Vec::with_capacity(problems.len());
-    for (p, a) in problems.iter().zip(&fit.alphas) {
-        let k = p.unit.end_curvatures(*a);
-        for (got, want) in k.iter().zip([p.unit.k0, p.unit.k1]) {
-            let e = (got - want).abs();
-            s.end_curvature_error_max = s.end_curvature_error_max.max(e);
-            sq += e * e;
-        }
-        s.shortest_alpha = s.shortest_alpha.min(a[0].min(a[1]));
-        let v = p.unit.curve(*a).curvature_variation();
-        s.curvature_variation_max = s.curvature_variation_max.max(v);
-        vars.push(v);
-    }
-    s.end_curvature_error_rms = (sq / (2 * problems.len().max(1)) as f64).sqrt();
-    s.curvature_variation_median = median(vars);
-    s
 }
 
 /// The true torus, tessellated on a fine grid with exact normals and curvatures.
@@ -207,15 +161,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         surface::datasets::RING_MAJOR_RADIUS,
         surface::datasets::RING_TUBE_RADIUS,
     );
-    let problems: Vec<BoundaryProblem> = mesh
-        .edges()
-        .iter()
-        .map(|e| {
-            let [a, b] = e.vertices;
-            BoundaryProblem::new((a, b), &mesh.vertices()[a].data, &mesh.vertices()[b].data)
-        })
-        .collect::<Result<_, _>>()
-        .map_err(ExperimentError::from)?;
+    let problems = surface::curve_stats::edge_problems(mesh)?;
     stage("data", t);
 
     // Fits.
@@ -232,11 +178,12 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         let m = method_by_name(name, &options).map_err(ExperimentError::from)?;
         let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
             .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
-        let (f, _) = crate::fit::refit_interior(mesh, m.as_ref(), f, args.interior, args.solver)
-            .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
+        let (f, _) =
+            surface::fairing::refit_interior(mesh, m.as_ref(), f, args.interior, args.solver)
+                .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
         let fit_time = t.elapsed().as_secs_f64();
         let g1 = measure_g1(mesh, &f, 9);
-        let cs = curve_stats(&problems, &f);
+        let cs = surface::curve_stats::curve_stats(&problems, &f);
         method_records.insert(
             name.to_string(),
             json!({

@@ -23,7 +23,7 @@ use solver::{solve, ConvergenceTest, SolveOptions, SolveReport, SolverKind, Term
 use crate::datasets::edge_problems;
 use crate::error::ExperimentError;
 use crate::output::{write_result, Staged};
-use crate::stats::median;
+use surface::metrics::median;
 
 /// Two adapters "agree" on a problem when their optima differ by at most this in α (max norm):
 /// the standard for well-conditioned problems.

@@ -15,14 +15,13 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use curves::{method_by_name, BoundaryProblem, MethodOptions};
+use curves::{method_by_name, MethodOptions};
 use serde_json::{json, Value};
 use solver::SolverKind;
 use surface::{compare_with_truth, fit, measure_g1, tessellate, InteriorParameters};
 
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, write_result, Staged};
-use crate::ring::curve_stats;
 
 /// Data sets of the sweep, in order.
 const DATASETS: [&str; 4] = ["ring", "sphere", "capsule", "octa"];
@@ -133,19 +132,12 @@ fn run_task(
         ..MethodOptions::default()
     };
     let m = method_by_name(t.curves, &options).map_err(ExperimentError::from)?;
-    let problems: Vec<BoundaryProblem> = mesh
-        .edges()
-        .iter()
-        .map(|e| {
-            let [a, b] = e.vertices;
-            BoundaryProblem::new((a, b), &mesh.vertices()[a].data, &mesh.vertices()[b].data)
-        })
-        .collect::<Result<_, _>>()
+    let problems = surface::curve_stats::edge_problems(mesh)
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
     let t_fit = Instant::now();
     let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
-    let (f, _) = crate::fit::refit_interior(
+    let (f, _) = surface::fairing::refit_interior(
         mesh,
         m.as_ref(),
         f,
@@ -155,7 +147,7 @@ fn run_task(
     .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
     let fit_time = t_fit.elapsed().as_secs_f64();
     let g1 = measure_g1(mesh, &f, 9);
-    let cs = curve_stats(&problems, &f);
+    let cs = surface::curve_stats::curve_stats(&problems, &f);
     let tess = tessellate(&f.bezier_patches(), SAMPLING)
         .map_err(|e| ExperimentError::Usage(format!("{}: tessellation: {e}", t.id())))?;
     let errors = compare_with_truth(&tess, data.surface.as_ref());

@@ -391,3 +391,21 @@ pub fn choose_interior_with(
     }
     (per_face.into_iter().map(|p| p.0).collect(), stats)
 }
+
+/// `mesh` fitted again with the interior parameters `choice` picks per face from a first fit
+/// `first` (the defaults return `first` as it is). The boundary curves do not depend on β and
+/// c, so the refit rebuilds the same curves and only the interiors change.
+pub fn refit_interior(
+    mesh: &crate::mesh::Mesh,
+    method: &dyn curves::CurveMethod,
+    first: crate::fit::Fit,
+    choice: InteriorChoice,
+    kind: solver::SolverKind,
+) -> Result<(crate::fit::Fit, InteriorStats), crate::fit::FitError> {
+    let (params, stats) = choose_interior_with(mesh, &first, choice, kind);
+    if choice == InteriorChoice::Default {
+        return Ok((first, stats));
+    }
+    let refit = crate::fit::fit(mesh, method, &|f| params[f])?;
+    Ok((refit, stats))
+}

@@ -30,6 +30,7 @@
 //! curvature `K = +1` and mean curvature `H = (κ1 + κ2)/2 = −1`.
 
 pub mod beztri;
+pub mod curve_stats;
 pub mod datasets;
 pub mod fairing;
 pub mod fallback;

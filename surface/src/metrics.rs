@@ -9,6 +9,22 @@ use serde::Serialize;
 use crate::datasets::AnalyticSurface;
 use crate::tessellate::Tessellation;
 
+/// The median of the finite values (the mean of the two middle ones for an even count), NaN if
+/// there are none.
+pub fn median(mut v: Vec<f64>) -> f64 {
+    v.retain(|x| x.is_finite());
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
 /// Errors of a tessellation against an analytic surface.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct SurfaceErrors {
@@ -67,6 +83,14 @@ pub fn compare(tess: &Tessellation, truth: &dyn AnalyticSurface) -> SurfaceError
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn medians() {
+        assert_eq!(median(vec![3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(vec![4.0, 1.0, 2.0, 3.0]), 2.5);
+        assert_eq!(median(vec![f64::NAN, 5.0]), 5.0);
+        assert!(median(vec![]).is_nan());
+    }
     use crate::datasets::Sphere;
     use nalgebra::{Matrix3, Point3};
 
