@@ -1,4 +1,5 @@
-//! Headless plotting and rendering: curve and curvature plots now, shaded meshes later.
+//! Headless plotting and rendering: curve and curvature plots, line charts and histograms,
+//! shaded meshes by a CPU rasterizer, colour maps, picture composites, binary PLY.
 //!
 //! Everything here draws without a display or system fonts: text uses the DejaVu Sans font
 //! bundled with the workspace (`assets/fonts`), registered with plotters from bytes
@@ -9,7 +10,13 @@
 //!   fitting*, Figure 2: one column per boundary-curve construction method, each showing the
 //!   cubic with its control polygon above its signed curvature against normalized arc length,
 //!   together with the straight line joining the target end curvatures. Written as PNG and SVG.
-//! * [`io`] — atomic file output shared by all renderers.
+//! * [`chart`] — line charts (optionally log y, in grids) and grouped bar charts;
+//! * [`shade`] — a z-buffer rasterizer with near-plane clipping, perspective-correct
+//!   interpolation, Blinn–Phong shading and an optional wireframe;
+//! * [`colors`] — diverging and sequential colour maps (Moreland, viridis);
+//! * [`mosaic`] — composites of rendered tiles with a title and a legend;
+//! * [`plyfile`] — binary PLY with colours and a quality value, for MeshLab;
+//! * [`io`] — file output that cannot destroy anything, shared by every writer.
 //! * [`font`] — the bundled font and its one-time registration.
 
 pub mod chart;

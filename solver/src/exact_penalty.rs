@@ -75,7 +75,7 @@ use std::time::Instant;
 use crate::bounds::{project, projected_gradient_norm, validate_start};
 use crate::{
     ConvergenceTest, FailureReason, LeastSquaresProblem, Solution, SolveError, SolveOptions,
-    SolveReport, SolverKind, Termination,
+    SolverKind, Termination,
 };
 
 /// Relative size of the ε-active band around a bound (before shrinking with the projected
@@ -118,35 +118,17 @@ where
     }
     let mut iterations = 0;
 
-    let finish = |x: SVector<f64, N>,
-                  cost: f64,
-                  gnorm: f64,
-                  termination: Termination,
-                  iterations: usize,
-                  cost_evaluations: usize,
-                  gradient_evaluations: usize,
-                  history: Vec<f64>| Solution {
-        x,
-        report: SolveReport {
-            solver: SolverKind::ExactPenalty,
-            termination,
-            iterations,
-            cost_evaluations,
-            gradient_evaluations,
-            initial_cost,
-            final_cost: cost,
-            final_gradient_norm: gnorm,
-            x: x.iter().copied().collect(),
-            cost_history: history,
-            time_seconds: start.elapsed().as_secs_f64(),
-        },
+    let reporter = crate::report::Reporter {
+        solver: SolverKind::ExactPenalty,
+        initial_cost,
+        start,
     };
 
     if !cost.is_finite() {
         let termination = Termination::Failure {
             reason: FailureReason::NonFiniteCost,
         };
-        return Ok(finish(
+        return Ok(reporter.solution(
             x,
             cost,
             f64::NAN,
@@ -318,7 +300,7 @@ where
         }
     };
     let gnorm = projected_gradient_norm(&x, &g, &lower);
-    Ok(finish(
+    Ok(reporter.solution(
         x,
         cost,
         gnorm,

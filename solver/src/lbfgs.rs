@@ -46,7 +46,7 @@ use std::time::Instant;
 use crate::bounds::{projected_gradient_norm, validate_start, SquareMap};
 use crate::{
     ConvergenceTest, FailureReason, HalfSumOfSquares, LeastSquaresProblem, ObjectiveProblem,
-    Solution, SolveError, SolveOptions, SolveReport, SolverKind, Termination,
+    Solution, SolveError, SolveOptions, SolverKind, Termination,
 };
 
 /// Factor applied to `function_tolerance` for L-BFGS: one quasi-Newton iteration's decrease
@@ -127,44 +127,17 @@ where
     let y0 = map.to_y(&x0);
     let initial_cost = problem.value(&x0);
 
-    let report = |x: SVector<f64, N>,
-                  final_cost: f64,
-                  final_gradient_norm: f64,
-                  termination: Termination,
-                  iterations: usize,
-                  cost_evaluations: usize,
-                  gradient_evaluations: usize,
-                  cost_history: Vec<f64>| Solution {
-        x,
-        report: SolveReport {
-            solver: SolverKind::Lbfgs,
-            termination,
-            iterations,
-            cost_evaluations,
-            gradient_evaluations,
-            initial_cost,
-            final_cost,
-            final_gradient_norm,
-            x: x.iter().copied().collect(),
-            cost_history,
-            time_seconds: start.elapsed().as_secs_f64(),
-        },
+    let reporter = crate::report::Reporter {
+        solver: SolverKind::Lbfgs,
+        initial_cost,
+        start,
     };
 
     if !initial_cost.is_finite() {
         let termination = Termination::Failure {
             reason: FailureReason::NonFiniteCost,
         };
-        return Ok(report(
-            x0,
-            initial_cost,
-            f64::NAN,
-            termination,
-            0,
-            1,
-            0,
-            Vec::new(),
-        ));
+        return Ok(reporter.solution(x0, initial_cost, f64::NAN, termination, 0, 1, 0, Vec::new()));
     }
 
     // argmin's cost test is absolute; restarts from the best point with the tolerance rescaled to
@@ -191,7 +164,7 @@ where
                         message: e.to_string(),
                     },
                 };
-                return Ok(report(
+                return Ok(reporter.solution(
                     x0,
                     initial_cost,
                     f64::NAN,
@@ -220,7 +193,7 @@ where
             };
             let x = map.to_x(&y_start);
             let c = problem.value(&x);
-            return Ok(report(
+            return Ok(reporter.solution(
                 x,
                 c,
                 f64::NAN,
@@ -307,7 +280,7 @@ where
             },
         },
     };
-    Ok(report(
+    Ok(reporter.solution(
         x,
         final_cost,
         gnorm_x,

@@ -43,7 +43,7 @@ use std::time::Instant;
 use crate::bounds::{projected_gradient_norm, validate_start, SquareMap};
 use crate::{
     ConvergenceTest, FailureReason, LeastSquaresProblem, Solution, SolveError, SolveOptions,
-    SolveReport, SolverKind, Termination,
+    SolverKind, Termination,
 };
 
 /// Size given to each residual at a trial point where the model is not finite.
@@ -270,43 +270,16 @@ where
     let y0 = map.to_y(&x0);
     let initial_cost = problem.cost(&x0);
 
-    let report = |x: SVector<f64, N>,
-                  final_cost: f64,
-                  final_gradient_norm: f64,
-                  termination: Termination,
-                  iterations: usize,
-                  cost_evaluations: usize,
-                  gradient_evaluations: usize,
-                  cost_history: Vec<f64>| Solution {
-        x,
-        report: SolveReport {
-            solver: SolverKind::Lm,
-            termination,
-            iterations,
-            cost_evaluations,
-            gradient_evaluations,
-            initial_cost,
-            final_cost,
-            final_gradient_norm,
-            x: x.iter().copied().collect(),
-            cost_history,
-            time_seconds: start.elapsed().as_secs_f64(),
-        },
+    let reporter = crate::report::Reporter {
+        solver: SolverKind::Lm,
+        initial_cost,
+        start,
     };
     if !initial_cost.is_finite() {
         let termination = Termination::Failure {
             reason: FailureReason::NonFiniteCost,
         };
-        return Ok(report(
-            x0,
-            initial_cost,
-            f64::NAN,
-            termination,
-            0,
-            1,
-            0,
-            Vec::new(),
-        ));
+        return Ok(reporter.solution(x0, initial_cost, f64::NAN, termination, 0, 1, 0, Vec::new()));
     }
 
     let patience = options.max_iterations.max(1).saturating_mul(4);
@@ -431,7 +404,7 @@ where
         }
         None => Vec::new(),
     };
-    Ok(report(
+    Ok(reporter.solution(
         x,
         final_cost,
         gnorm_x,

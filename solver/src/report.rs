@@ -290,3 +290,47 @@ impl Serialize for SolveReport {
         s.end()
     }
 }
+
+/// Builds the [`crate::Solution`]s of one run of an adapter: every adapter reports the same
+/// fields the same way (one builder instead of one closure per adapter).
+pub(crate) struct Reporter {
+    /// The adapter.
+    pub solver: SolverKind,
+    /// `½‖r(x0)‖²`.
+    pub initial_cost: f64,
+    /// When the run started (for `time_seconds`).
+    pub start: std::time::Instant,
+}
+
+impl Reporter {
+    /// The solution at `x` with its report.
+    #[allow(clippy::too_many_arguments)] // the report's fields, named at every call
+    pub(crate) fn solution<const N: usize>(
+        &self,
+        x: nalgebra::SVector<f64, N>,
+        final_cost: f64,
+        final_gradient_norm: f64,
+        termination: Termination,
+        iterations: usize,
+        cost_evaluations: usize,
+        gradient_evaluations: usize,
+        cost_history: Vec<f64>,
+    ) -> crate::Solution<N> {
+        crate::Solution {
+            x,
+            report: SolveReport {
+                solver: self.solver,
+                termination,
+                iterations,
+                cost_evaluations,
+                gradient_evaluations,
+                initial_cost: self.initial_cost,
+                final_cost,
+                final_gradient_norm,
+                x: x.iter().copied().collect(),
+                cost_history,
+                time_seconds: self.start.elapsed().as_secs_f64(),
+            },
+        }
+    }
+}
