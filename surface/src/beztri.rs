@@ -146,6 +146,52 @@ pub struct Curvature {
     pub shape: Matrix3<f64>,
 }
 
+/// The Bernstein weights of position and the five partials at one domain point, for every
+/// control point of a degree-`n` net: `b(u, v) = Σ_c w_c[0] b_c`, `∂b/∂u = Σ_c w_c[1] b_c`, …
+/// (order `p, du, dv, duu, duv, dvv`). Evaluating a patch at a point then costs six weighted
+/// sums and no allocation; a tessellation computes the table once per (degree, sample) and
+/// shares it by every patch ([`BezierTriangle::derivatives_with`]).
+///
+/// The weights are the derivatives of the basis nets (one control point 1, the others 0)
+/// computed by the blossom ([`BezierTriangle::derivatives`]), so they are exactly what the
+/// general evaluation gives, by linearity.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SampleWeights {
+    degree: usize,
+    /// At `(u, v)`.
+    pub at: (f64, f64),
+    weights: Vec<[f64; 6]>,
+}
+
+impl SampleWeights {
+    /// The weights of a degree-`n` net at `(u, v)` (`w = 1 − u − v`).
+    pub fn new(degree: usize, u: f64, v: f64) -> Self {
+        let m = num_points(degree);
+        let weights = (0..m)
+            .map(|c| {
+                let mut pts = vec![Point3::origin(); m];
+                pts[c] = Point3::new(1.0, 0.0, 0.0);
+                let d = BezierTriangle {
+                    degree,
+                    points: pts,
+                }
+                .derivatives(u, v);
+                [d.p.x, d.du.x, d.dv.x, d.duu.x, d.duv.x, d.dvv.x]
+            })
+            .collect();
+        SampleWeights {
+            degree,
+            at: (u, v),
+            weights,
+        }
+    }
+
+    /// The degree of the nets the weights are for.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+}
+
 /// A triangular Bézier patch of degree `n ≥ 0` in space.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BezierTriangle {
@@ -256,6 +302,28 @@ impl BezierTriangle {
             duv: self.directional(at, &[eu, ev]),
             dvv: self.directional(at, &[ev, ev]),
         }
+    }
+
+    /// [`BezierTriangle::derivatives`] at the point of precomputed `weights` (same degree), by
+    /// six weighted sums; `None` when the degrees differ.
+    pub fn derivatives_with(&self, weights: &SampleWeights) -> Option<Derivatives> {
+        if weights.degree != self.degree {
+            return None;
+        }
+        let mut acc = [Vector3::zeros(); 6];
+        for (b, w) in self.points.iter().zip(&weights.weights) {
+            for (a, wk) in acc.iter_mut().zip(w) {
+                *a += b.coords * *wk;
+            }
+        }
+        Some(Derivatives {
+            p: Point3::from(acc[0]),
+            du: acc[1],
+            dv: acc[2],
+            duu: acc[3],
+            duv: acc[4],
+            dvv: acc[5],
+        })
     }
 
     /// Unit normal `(r_u × r_v)/|r_u × r_v|` at `(u, v)`; `None` at a singular point
@@ -526,6 +594,37 @@ mod tests {
         });
         let k = warped.curvature(0.3, 0.3).unwrap();
         assert!(k.gaussian.abs() < EXACT && k.mean.abs() < EXACT);
+    }
+
+    #[test]
+    fn precomputed_weights_give_the_blossom_derivatives() {
+        /// Weighted sums against de Casteljau steps: rounding of a few dozen operations.
+        const SAME: f64 = 1e-12;
+        let p = cubic();
+        for (u, v) in [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (0.2, 0.3),
+            (0.25, 0.75),
+            (1.0 / 3.0, 1.0 / 3.0),
+        ] {
+            let w = SampleWeights::new(3, u, v);
+            let a = p.derivatives_with(&w).expect("same degree");
+            let b = p.derivatives(u, v);
+            assert!((a.p - b.p).norm() < SAME);
+            for (x, y) in [
+                (a.du, b.du),
+                (a.dv, b.dv),
+                (a.duu, b.duu),
+                (a.duv, b.duv),
+                (a.dvv, b.dvv),
+            ] {
+                assert!((x - y).norm() < SAME * y.norm().max(1.0), "{x} vs {y}");
+            }
+        }
+        assert!(p
+            .derivatives_with(&SampleWeights::new(4, 0.1, 0.1))
+            .is_none());
     }
 
     #[test]

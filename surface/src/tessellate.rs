@@ -31,7 +31,7 @@ use curves::VertexData;
 use meshio::MeshFormat;
 use nalgebra::{Matrix3, Point3, Vector3};
 
-use crate::beztri::{BezierTriangle, Curvature};
+use crate::beztri::{BezierTriangle, Curvature, SampleWeights};
 use crate::mesh::{bounding_size, Mesh, MeshError, Vertex};
 
 /// Boundary samples closer than this fraction of the model size are welded: far above the
@@ -133,11 +133,42 @@ impl Tessellation {
     }
 }
 
+/// A multiply–rotate hash (FxHash's) for grid cells: the cells are small integer triples from
+/// our own samples, not adversarial keys, and SipHash cost a quarter of a tessellation.
+#[derive(Clone, Copy, Default)]
+struct CellHasher(u64);
+
+impl std::hash::Hasher for CellHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for b in bytes {
+            self.write_u64(u64::from(*b));
+        }
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn write_i64(&mut self, x: i64) {
+        self.write_u64(x as u64);
+    }
+
+    fn write_usize(&mut self, x: usize) {
+        self.write_u64(x as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+type CellMap = HashMap<[i64; 3], Vec<usize>, std::hash::BuildHasherDefault<CellHasher>>;
+
 /// Spatial hash of boundary vertices for welding.
 struct Welder {
     cell: f64,
     tol: f64,
-    grid: HashMap<[i64; 3], Vec<usize>>,
+    grid: CellMap,
 }
 
 impl Welder {
@@ -147,10 +178,22 @@ impl Welder {
 
     fn find(&self, p: &Point3<f64>, positions: &[Point3<f64>]) -> Option<usize> {
         let k = self.key(p);
+        // The cell is twice the tolerance, so the ball of radius `tol` around `p` meets, along
+        // each axis, only `p`'s cell and the neighbour on the side of the nearer face: eight
+        // cells, not twenty-seven.
+        let side = |c: f64| {
+            let f = c / self.cell;
+            if f - f.floor() < 0.5 {
+                -1
+            } else {
+                1
+            }
+        };
+        let (sx, sy, sz) = (side(p.x), side(p.y), side(p.z));
         let mut best: Option<(f64, usize)> = None;
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
+        for dx in [0, sx] {
+            for dy in [0, sy] {
+                for dz in [0, sz] {
                     let Some(list) = self.grid.get(&[k[0] + dx, k[1] + dy, k[2] + dz]) else {
                         continue;
                     };
@@ -174,10 +217,14 @@ impl Welder {
 
 fn geometry(
     patch: &BezierTriangle,
+    weights: Option<&SampleWeights>,
     index: usize,
     (u, v, w): (f64, f64, f64),
 ) -> Result<(Curvature, bool), TessError> {
-    if let Some(c) = patch.curvature(u, v) {
+    let fast = weights
+        .and_then(|wt| patch.derivatives_with(wt))
+        .and_then(|d| crate::beztri::curvature_of(&d));
+    if let Some(c) = fast.or_else(|| patch.curvature(u, v)) {
         return Ok((c, false));
     }
     let third = 1.0 / 3.0;
@@ -204,15 +251,34 @@ pub fn tessellate(patches: &[BezierTriangle], s: usize) -> Result<Tessellation, 
     let mut welder = Welder {
         cell: 2.0 * tol,
         tol,
-        grid: HashMap::new(),
+        grid: CellMap::default(),
     };
     let mut out = Tessellation::default();
     let local = |i: usize, j: usize| -> usize {
         // Position of sample (i, j, s − i − j) in the per-patch table, rows by j.
         j * (s + 1) - j * j.saturating_sub(1) / 2 + i
     };
+    // Bernstein weights of every sample, per degree present, computed once and shared by all
+    // patches (the patches of one scheme share a degree).
+    let mut tables: HashMap<usize, Vec<SampleWeights>> = HashMap::new();
+    for patch in patches {
+        tables.entry(patch.degree()).or_insert_with(|| {
+            let mut t = Vec::with_capacity((s + 1) * (s + 2) / 2);
+            for j in 0..=s {
+                for i in 0..=s - j {
+                    t.push(SampleWeights::new(
+                        patch.degree(),
+                        i as f64 / s as f64,
+                        j as f64 / s as f64,
+                    ));
+                }
+            }
+            t
+        });
+    }
+    let mut ids = vec![0usize; (s + 1) * (s + 2) / 2];
     for (pi, patch) in patches.iter().enumerate() {
-        let mut ids = vec![0usize; (s + 1) * (s + 2) / 2];
+        let table = tables.get(&patch.degree());
         for j in 0..=s {
             for i in 0..=s - j {
                 let k = s - i - j;
@@ -221,8 +287,11 @@ pub fn tessellate(patches: &[BezierTriangle], s: usize) -> Result<Tessellation, 
                     j as f64 / s as f64,
                     k as f64 / s as f64,
                 );
-                let p = patch.eval(u, v, w);
-                let (c, nudged) = geometry(patch, pi, (u, v, w))?;
+                let weights = table.and_then(|t| t.get(local(i, j)));
+                let p = weights
+                    .and_then(|wt| patch.derivatives_with(wt))
+                    .map_or_else(|| patch.eval(u, v, w), |d| d.p);
+                let (c, nudged) = geometry(patch, weights, pi, (u, v, w))?;
                 out.singular_samples += usize::from(nudged);
                 let on_boundary = i == 0 || j == 0 || k == 0;
                 let existing = if on_boundary {
