@@ -208,14 +208,9 @@ fn scan(p: &UnitProblem, lo: f64, hi: f64, n: usize) -> Vec<(f64, f64)> {
 
 #[test]
 fn finds_every_solution_the_brute_force_scan_finds() {
-    // Deterministic pseudo-random problems (an LCG, so the test needs no seed handling).
-    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
-    let mut next = || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    // Deterministic pseudo-random problems (the workspace's test generator, fixed seed).
+    let mut rng = fixtures::SplitMix64::new(0x2545_f491_4f6c_dd1d);
+    let mut next = || rng.next_f64();
     let (lo, hi, n) = (1e-3, 1e2, 40_000);
     let mut counts = [0usize; 5];
     let mut checked = 0;

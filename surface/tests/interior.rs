@@ -164,13 +164,8 @@ fn corner_objectives_jacobian_matches_finite_differences_and_vanishes() {
     use surface::interior::CornerObjectives;
     /// The Jacobian is a sum of terms that cancel (β²/β², β/β); what is left is rounding.
     const VANISHES: f64 = 1e-8;
-    let mut state: u64 = 12345;
-    let mut rnd = || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = fixtures::SplitMix64::new(12345);
+    let mut rnd = || rng.next_f64();
     for name in ["ring", "sphere", "capsule"] {
         let data = dataset_by_name(name, None).unwrap();
         let m = method_by_name("optimized", &MethodOptions::default()).unwrap();
@@ -222,11 +217,8 @@ fn corner_measure_gradients_match_finite_differences_where_they_do_not_vanish() 
     /// Central differences with step 1e-6 on O(1) quantities: truncation 1e-12, rounding 1e-10.
     const FD: f64 = 1e-7;
     const STEP: f64 = 1e-6;
-    let mut seed = 12345u64;
-    let mut rnd = move || {
-        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
-        ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    };
+    let mut rng = fixtures::SplitMix64::new(12345);
+    let mut rnd = move || rng.uniform(-1.0, 1.0);
     for _ in 0..50 {
         let n = Vector3::new(rnd(), rnd(), rnd() + 2.0).normalize();
         let p = Matrix3::identity() - n * n.transpose();

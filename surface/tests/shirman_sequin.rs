@@ -180,23 +180,15 @@ fn appendix_b_chiyokura_kimura() {
 }
 
 /// Deterministic pseudo-random numbers in [0, 1).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+/// The workspace's one test generator.
+use fixtures::SplitMix64 as Lcg;
 
 fn random_params(seed: u64, faces: usize) -> Vec<InteriorParameters> {
-    let mut rng = Lcg(seed);
+    let mut rng = Lcg::new(seed);
     (0..faces)
         .map(|_| InteriorParameters {
-            beta: std::array::from_fn(|_| 0.2 + 0.6 * rng.next()),
-            c: std::array::from_fn(|_| 0.5 + 1.5 * rng.next()),
+            beta: std::array::from_fn(|_| 0.2 + 0.6 * rng.next_f64()),
+            c: std::array::from_fn(|_| 0.5 + 1.5 * rng.next_f64()),
         })
         .collect()
 }
@@ -240,18 +232,18 @@ fn g1_on_curved_data_for_every_construction() {
 fn g1_with_perturbed_normals() {
     for (i, name) in ["sphere", "ring", "capsule"].iter().enumerate() {
         let mut data = dataset_by_name(name, None).unwrap();
-        let mut rng = Lcg(99 + i as u64);
+        let mut rng = Lcg::new(99 + i as u64);
         for v in data.mesh.vertices_mut() {
             // Tilt each normal by up to 0.05 rad about a random tangent axis (larger tilts fold
             // the projected edges of the capsule's thinnest triangles over each other, where no
             // G1 construction of this form exists and `fit` reports the face).
             let axis = v.data.n.cross(&Vector3::new(
-                rng.next() - 0.5,
-                rng.next() - 0.5,
-                rng.next() - 0.5,
+                rng.next_f64() - 0.5,
+                rng.next_f64() - 0.5,
+                rng.next_f64() - 0.5,
             ));
             if axis.norm() > 1e-6 {
-                let rot = Rotation3::new(axis.normalize() * 0.05 * rng.next());
+                let rot = Rotation3::new(axis.normalize() * 0.05 * rng.next_f64());
                 v.data.n = rot * v.data.n;
                 v.data.shape = rot.matrix() * v.data.shape * rot.matrix().transpose();
             }
@@ -296,13 +288,14 @@ fn g1_with_perturbed_normals() {
 }
 
 fn planar_triangle(seed: u64) -> ([VertexData; 3], Rotation3<f64>, Vector3<f64>) {
-    let mut rng = Lcg(seed);
-    let rot = Rotation3::new(Vector3::new(rng.next(), rng.next(), rng.next()) * 3.0);
-    let shift = Vector3::new(rng.next(), rng.next(), rng.next()) * 10.0 - Vector3::repeat(5.0);
+    let mut rng = Lcg::new(seed);
+    let rot = Rotation3::new(Vector3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) * 3.0);
+    let shift =
+        Vector3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) * 10.0 - Vector3::repeat(5.0);
     let mut pts = [[0.0; 2]; 3];
     loop {
         for p in pts.iter_mut() {
-            *p = [rng.next() * 4.0 - 2.0, rng.next() * 4.0 - 2.0];
+            *p = [rng.next_f64() * 4.0 - 2.0, rng.next_f64() * 4.0 - 2.0];
         }
         let area = (pts[1][0] - pts[0][0]) * (pts[2][1] - pts[0][1])
             - (pts[2][0] - pts[0][0]) * (pts[1][1] - pts[0][1]);
