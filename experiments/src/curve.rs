@@ -23,11 +23,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use curves::jsonl::{self, LineAnswer};
-use curves::{method_by_name, CurveMethod, DbhsPick, MethodOptions};
+use curves::{method_by_name, CurveMethod, MethodOptions};
 use render::{CurveFigure, CurvePanel};
 use serde_json::{json, Value};
-use solver::{SolveOptions, SolverKind};
+use solver::SolveOptions;
 
+use crate::curve_args::CurveOptions;
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, write_result, Staged};
 
@@ -43,13 +44,9 @@ pub struct CurveArgs {
     /// Comma-separated constructions to run (known: chord, dbhs, optimized).
     #[arg(long, value_delimiter = ',', default_value = "chord,dbhs,optimized")]
     methods: Vec<String>,
-    /// Solver of the optimized construction: exact-penalty, lbfgs or lm.
-    #[arg(long, default_value_t = SolverKind::ExactPenalty)]
-    solver: SolverKind,
-    /// Which dBHS solution to take: closest (to α = (1, 1)), longest-short (largest shorter
-    /// tangent), or a solution index in order of increasing α0.
-    #[arg(long, default_value_t = DbhsPick::Closest)]
-    dbhs_pick: DbhsPick,
+    /// The curve constructions' options.
+    #[command(flatten)]
+    curve: CurveOptions,
     /// Directory for Figure-2-style plots (PNG and SVG per problem) with report.md and
     /// report.json.
     #[arg(long)]
@@ -60,13 +57,11 @@ pub struct CurveArgs {
 pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
     let defaults = MethodOptions::default();
     let options = MethodOptions {
-        dbhs_pick: args.dbhs_pick,
-        solver: args.solver,
         solve_options: SolveOptions {
             record_history: true,
             ..defaults.solve_options
         },
-        ..defaults
+        ..args.curve.method_options()
     };
     let methods: Vec<Box<dyn CurveMethod>> = args
         .methods
@@ -256,8 +251,8 @@ fn write_plots(
             .map(|p| format!(" --output {}", p.display()))
             .unwrap_or_default(),
         args.methods.join(","),
-        args.dbhs_pick,
-        args.solver,
+        args.curve.dbhs_pick,
+        args.curve.solver,
         args.plot.as_deref().unwrap_or(dir).display()
     ));
     md.push_str(

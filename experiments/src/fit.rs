@@ -11,12 +11,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use curves::{method_by_name, DbhsPick, MethodOptions};
+use curves::method_by_name;
 use serde_json::json;
-use solver::SolverKind;
 use surface::fairing::InteriorChoice;
 use surface::{fit, measure_g1, InteriorParameters};
 
+use crate::curve_args::CurveOptions;
 use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
 use crate::limits::{
@@ -36,12 +36,9 @@ pub struct FitArgs {
     /// Boundary-curve construction: chord, dbhs or optimized.
     #[arg(long, default_value = "chord")]
     curves: String,
-    /// Solver of the optimized construction.
-    #[arg(long, default_value_t = SolverKind::ExactPenalty)]
-    solver: SolverKind,
-    /// Which dBHS solution to take (closest, longest-short, or an index).
-    #[arg(long, default_value_t = DbhsPick::Closest)]
-    dbhs_pick: DbhsPick,
+    /// The curve constructions' options.
+    #[command(flatten)]
+    curve: CurveOptions,
     /// β at every corner (1/3: the Shirman–Séquin default, C1 inside each triangle).
     #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_BETA)]
     beta: f64,
@@ -103,11 +100,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let face_source = loaded.face_source;
     let vertex_source = loaded.vertex_source;
     let t_read = t0.elapsed().as_secs_f64();
-    let options = MethodOptions {
-        dbhs_pick: args.dbhs_pick,
-        solver: args.solver,
-        ..MethodOptions::default()
-    };
+    let options = args.curve.method_options();
     let method = method_by_name(&args.curves, &options).map_err(ExperimentError::from)?;
     let params = InteriorParameters {
         beta: [args.beta; 3],
@@ -121,7 +114,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         method.as_ref(),
         fitted,
         args.interior,
-        args.solver,
+        args.curve.solver,
     )
     .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
     let t_fit = t1.elapsed().as_secs_f64();

@@ -23,6 +23,7 @@ macro_rules! say_inline {
 
 mod convert;
 mod curve;
+mod curve_args;
 mod datasets;
 mod error;
 mod estimation;

@@ -14,15 +14,15 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use curves::analytic::torus_point;
-use curves::{method_by_name, BoundaryProblem, DbhsPick, MethodOptions};
+use curves::{method_by_name, BoundaryProblem, MethodOptions};
 use render::{CurveFigure, CurvePanel};
 use serde_json::{json, Map, Value};
-use solver::SolverKind;
 use surface::{
     compare_with_truth, fit, measure_g1, tessellate, AnalyticSurface, BezierTriangle, Fit,
     InteriorParameters, Mesh, SurfaceErrors, Tessellation,
 };
 
+use crate::curve_args::CurveOptions;
 use crate::error::ExperimentError;
 use crate::output::{write_result, Staged};
 use surface::curve_stats::CurveStats;
@@ -43,12 +43,9 @@ pub struct RingArgs {
     /// Tessellation density: segments per patch edge (the testbed's `Tess -s`).
     #[arg(long, default_value_t = 4)]
     sampling: usize,
-    /// Solver of the optimized curves.
-    #[arg(long, default_value_t = SolverKind::ExactPenalty)]
-    solver: SolverKind,
-    /// Which dBHS solution to take (closest, longest-short, or an index).
-    #[arg(long, default_value_t = DbhsPick::Closest)]
-    dbhs_pick: DbhsPick,
+    /// The curve constructions' options.
+    #[command(flatten)]
+    curve: CurveOptions,
     /// Interior parameters of the fitted surfaces: default (β = 1/3, c = 1), thin-plate or
     /// membrane (per-triangle minimizers).
     #[arg(long, default_value_t = surface::fairing::InteriorChoice::Default)]
@@ -166,11 +163,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
 
     // Fits.
     let defaults = MethodOptions::default();
-    let options = MethodOptions {
-        dbhs_pick: args.dbhs_pick,
-        solver: args.solver,
-        ..defaults
-    };
+    let options = args.curve.method_options();
     let mut fits = Vec::new();
     let mut method_records = Map::new();
     for name in METHODS {
@@ -179,7 +172,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
             .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
         let (f, _) =
-            surface::fairing::refit_interior(mesh, m.as_ref(), f, args.interior, args.solver)
+            surface::fairing::refit_interior(mesh, m.as_ref(), f, args.interior, args.curve.solver)
                 .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
         let fit_time = t.elapsed().as_secs_f64();
         let g1 = measure_g1(mesh, &f, 9);
@@ -300,7 +293,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
             "vertices": mesh.num_vertices(), "edges": mesh.num_edges(), "faces": mesh.num_faces(),
         },
         "settings": {
-            "sampling": args.sampling, "solver": args.solver.name(), "dbhs_pick": args.dbhs_pick.to_string(),
+            "sampling": args.sampling, "solver": args.curve.solver.name(), "dbhs_pick": args.curve.dbhs_pick.to_string(),
             "interior": args.interior.to_string(),
             "optimized_weights": [defaults.weights.tangent, defaults.weights.curvature],
             "optimized_alpha_min": defaults.alpha_min,
@@ -482,8 +475,8 @@ fn markdown(
         "Written by `cargo run --release -p experiments -- ring --resolution {} --sampling {} --solver {} --dbhs-pick {} --interior {} --out {}`.\n",
         args.resolution,
         args.sampling,
-        args.solver,
-        args.dbhs_pick,
+        args.curve.solver,
+        args.curve.dbhs_pick,
         args.interior,
         args.out.display()
     );
@@ -499,7 +492,7 @@ fn markdown(
         report["data"]["edges"],
         report["data"]["faces"],
         args.sampling,
-        args.solver
+        args.curve.solver
     );
     let _ = writeln!(md, "## Surfaces against the true ring\n");
     let _ = writeln!(md, "| surface | samples | position max | position RMS | normal max (°) | normal RMS (°) | K RMS | K max | H RMS | H max |");
