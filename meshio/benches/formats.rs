@@ -3,29 +3,11 @@
 #![allow(clippy::expect_used)] // a benchmark on fixed valid data
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use meshio::{format_by_name, RawMesh, WriteOptions};
-use nalgebra::Point3;
+use meshio::{format_by_name, WriteOptions};
 
-/// A triangle grid of `n × n` cells (2n² triangles).
-fn grid(n: usize) -> RawMesh {
-    let mut positions = Vec::with_capacity((n + 1) * (n + 1));
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
-            positions.push(Point3::new(x, y, 0.1 * (6.0 * x).sin() * (5.0 * y).cos()));
-        }
-    }
-    let mut tris = Vec::with_capacity(2 * n * n);
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            let (b, c, d) = (a + 1, a + n + 1, a + n + 2);
-            tris.push([a, b, d]);
-            tris.push([a, d, c]);
-        }
-    }
-    RawMesh::from_triangles(positions, &tris)
-}
+#[path = "../tests/common/mod.rs"]
+mod common;
+use common::grid;
 
 fn bench(c: &mut Criterion) {
     // 708² · 2 ≈ 1.0 · 10⁶ triangles.

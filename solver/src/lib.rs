@@ -93,9 +93,9 @@ where
     Dims<N, M>: LmDims<N, M>,
 {
     match kind {
-        SolverKind::ExactPenalty => solve_exact_penalty(problem, x0, options),
-        SolverKind::Lbfgs => solve_lbfgs(problem, x0, options),
+        // The fixed-size fast path where the bound holds; the rest as for any size.
         SolverKind::Lm => solve_lm(problem, x0, options),
+        other => solve_any(other, problem, x0, options),
     }
 }
 
