@@ -119,54 +119,37 @@ type Grad = [f64; 6];
 /// A vector and its derivatives with respect to the six interior parameters.
 pub type WithGradient = (Vector3<f64>, [Vector3<f64>; 6]);
 
-/// The curvature measure at a corner, `κ = ⟨n, B⟩/|A|² − tᵀ S t` with `t = A/|A|` (the normal
-/// curvature of the patch along the first derivative `A`, with second derivative `B`, minus the
-/// vertex's), and its gradient by the chain rule through `A(x)` and `B(x)`:
-/// `∂κ = ⟨n, ∂B⟩/|A|² − 2⟨n, B⟩⟨A, ∂A⟩/|A|⁴ − 2 tᵀ S ∂t`, `∂t = (∂A − t⟨t, ∂A⟩)/|A|`.
+/// The curvature measure at a corner ([`cost::corner::corner_curvature`]: the patch's normal
+/// curvature along the first derivative `A`, with second derivative `B`, minus the vertex's)
+/// and its gradient in the six parameters by the chain rule, applied once:
+/// `∂κ/∂x_k = ⟨∂κ/∂A, ∂A/∂x_k⟩ + ⟨∂κ/∂B, ∂B/∂x_k⟩`.
 pub fn normal_curvature_with_gradient(
     vd: &VertexData,
     a: &WithGradient,
     b: &WithGradient,
 ) -> (f64, Grad) {
-    let n = vd.n.normalize();
-    let aa = a.0.norm_squared();
-    let t = a.0 / aa.sqrt();
-    let val = n.dot(&b.0) / aa - t.dot(&(vd.shape * t));
-    let g: Grad = std::array::from_fn(|k| {
-        let da = a.1[k];
-        let dt = (da - t * t.dot(&da)) / aa.sqrt();
-        n.dot(&b.1[k]) / aa
-            - 2.0 * n.dot(&b.0) * a.0.dot(&da) / (aa * aa)
-            - 2.0 * t.dot(&(vd.shape * dt))
-    });
-    (val, g)
+    let (val, ga, gb) = cost::corner::corner_curvature(&vd.n.normalize(), &vd.shape, &a.0, &b.0);
+    (
+        val,
+        std::array::from_fn(|k| ga.dot(&a.1[k]) + gb.dot(&b.1[k])),
+    )
 }
 
-/// The twist measure at a corner, `τ = ⟨n, W⟩/(|U||V|) − t_uᵀ S t_v` (the patch's mixed
-/// second derivative `W` against the unit directions of `U`, `V`, minus the vertex's), and its
-/// gradient by the chain rule (product and quotient rules as in
-/// [`normal_curvature_with_gradient`]).
+/// The twist measure at a corner ([`cost::corner::corner_twist`]: the patch's mixed second
+/// derivative `W` against the unit directions of `U`, `V`, minus the vertex's) and its gradient
+/// in the six parameters by the chain rule, applied once.
 pub fn twist_with_gradient(
     vd: &VertexData,
     u: &WithGradient,
     w: &WithGradient,
     tw: &WithGradient,
 ) -> (f64, Grad) {
-    let n = vd.n.normalize();
-    let (lu, lv) = (u.0.norm(), w.0.norm());
-    let (tu, tv) = (u.0 / lu, w.0 / lv);
-    let val = n.dot(&tw.0) / (lu * lv) - tu.dot(&(vd.shape * tv));
-    let g: Grad = std::array::from_fn(|k| {
-        let dlu = tu.dot(&u.1[k]);
-        let dlv = tv.dot(&w.1[k]);
-        let dtu = (u.1[k] - tu * dlu) / lu;
-        let dtv = (w.1[k] - tv * dlv) / lv;
-        n.dot(&tw.1[k]) / (lu * lv)
-            - n.dot(&tw.0) * (dlu * lv + lu * dlv) / (lu * lv).powi(2)
-            - dtu.dot(&(vd.shape * tv))
-            - tu.dot(&(vd.shape * dtv))
-    });
-    (val, g)
+    let (val, gu, gv, gw) =
+        cost::corner::corner_twist(&vd.n.normalize(), &vd.shape, &u.0, &w.0, &tw.0);
+    (
+        val,
+        std::array::from_fn(|k| gu.dot(&u.1[k]) + gv.dot(&w.1[k]) + gw.dot(&tw.1[k])),
+    )
 }
 
 impl CornerObjectives {
