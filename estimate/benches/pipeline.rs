@@ -9,16 +9,14 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use curves::{method_by_name, MethodOptions};
 use estimate::{estimator_by_name, prepare, EstimateChoice, DEFAULT_ESTIMATOR};
-use meshio::{format_by_name, RawMesh, WriteOptions};
+use meshio::{format_by_name, WriteOptions};
 use std::path::Path;
 use surface::{fit, tessellate, InteriorParameters};
 
 fn glb(tess: &surface::Tessellation) -> Vec<u8> {
-    let mut raw = RawMesh::from_triangles(tess.positions.clone(), &tess.faces);
-    raw.normals = Some(tess.normals.clone());
     format_by_name("glb")
         .unwrap()
-        .write(&raw, &WriteOptions::new())
+        .write(&tess.to_raw(), &WriteOptions::new())
         .unwrap()
 }
 

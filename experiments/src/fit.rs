@@ -274,8 +274,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
 /// curvature (diverging map, limit the 95th percentile of |K| so a few spikes do not wash the
 /// picture out) and the curvatures as properties `gaussian`, `mean`.
 pub fn tessellation_to_raw(tess: &surface::Tessellation) -> meshio::RawMesh {
-    let mut raw = meshio::RawMesh::from_triangles(tess.positions.clone(), &tess.faces);
-    raw.normals = Some(tess.normals.clone());
+    let mut raw = tess.to_raw();
     let mut abs: Vec<f64> = tess
         .gaussian
         .iter()
@@ -294,8 +293,5 @@ pub fn tessellation_to_raw(tess: &surface::Tessellation) -> meshio::RawMesh {
             .map(|k| render::colors::diverging(*k, limit))
             .collect(),
     );
-    raw.properties
-        .insert("gaussian".into(), tess.gaussian.clone());
-    raw.properties.insert("mean".into(), tess.mean.clone());
     raw
 }

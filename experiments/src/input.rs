@@ -50,8 +50,10 @@ pub struct Loaded {
 /// Loads `--data`: an existing file is read as a mesh; otherwise the name is a data set.
 pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
     let path = Path::new(&args.data);
+    // A name of a data set is one unless a file of that name exists; anything else with an
+    // extension is a file (whose absence `meshio` reports by name).
     if path.is_file()
-        || surface::dataset_by_name(&args.data, None).is_err() && path.extension().is_some()
+        || !surface::DATASET_NAMES.contains(&args.data.as_str()) && path.extension().is_some()
     {
         let t = std::time::Instant::now();
         let raw = meshio::read_file(path).map_err(ExperimentError::MeshIo)?;

@@ -5,9 +5,6 @@
 
 mod common;
 
-use std::io::Write;
-use std::process::{Command, Stdio};
-
 use common::run;
 
 #[test]
@@ -113,23 +110,12 @@ fn merge_refuses_an_incomplete_set_of_shards() {
 
 #[test]
 fn a_line_that_is_not_utf8_gets_its_own_error_and_the_others_answers() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_experiments"))
-        .args(["curve", "--methods", "chord"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("runs");
-    child
-        .stdin
-        .take()
-        .expect("stdin")
-        .write_all(b"{\"t0\":[1,0],\"t1\":[1,0],\"k0\":0,\"k1\":0}\n\xff\xfe bad\n{\"t0\":[0.6,0.8],\"t1\":[0.6,-0.8],\"k0\":-1.0,\"k1\":-1.0}\n")
-        .expect("writes");
-    let out = child.wait_with_output().expect("finishes");
-    assert_eq!(out.status.code(), Some(1));
-    let lines: Vec<serde_json::Value> = String::from_utf8(out.stdout)
-        .expect("utf-8")
+    let (code, out, _) = run(
+        &["curve", "--methods", "chord"],
+        b"{\"t0\":[1,0],\"t1\":[1,0],\"k0\":0,\"k1\":0}\n\xff\xfe bad\n{\"t0\":[0.6,0.8],\"t1\":[0.6,-0.8],\"k0\":-1.0,\"k1\":-1.0}\n",
+    );
+    assert_eq!(code, 1);
+    let lines: Vec<serde_json::Value> = out
         .lines()
         .map(|l| serde_json::from_str(l).expect("json"))
         .collect();

@@ -124,10 +124,8 @@ impl Tessellation {
     /// Writes positions, normals and triangles as OBJ (curvatures are not part of OBJ; PLY
     /// carries them: [`Tessellation::to_raw`]).
     pub fn write_obj<W: std::io::Write>(&self, mut out: W) -> std::io::Result<()> {
-        let mut raw = meshio::RawMesh::from_triangles(self.positions.clone(), &self.faces);
-        raw.normals = Some(self.normals.clone());
         let bytes = meshio::obj::Obj
-            .write(&raw, &meshio::WriteOptions::new())
+            .write(&self.to_raw(), &meshio::WriteOptions::new())
             .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))?;
         out.write_all(&bytes)
     }

@@ -13,8 +13,9 @@ pub fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
-/// Runs `experiments ARGS` from the repository root with `stdin`: exit code, stdout, stderr.
-pub fn run(args: &[&str], stdin: &str) -> (i32, String, String) {
+/// Runs `experiments ARGS` from the repository root with `stdin` (text or raw bytes): exit
+/// code, stdout, stderr.
+pub fn run(args: &[&str], stdin: impl AsRef<[u8]>) -> (i32, String, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_experiments"))
         .args(args)
         .current_dir(root())
@@ -27,7 +28,7 @@ pub fn run(args: &[&str], stdin: &str) -> (i32, String, String) {
         .stdin
         .take()
         .expect("stdin")
-        .write_all(stdin.as_bytes())
+        .write_all(stdin.as_ref())
         .expect("writes");
     let out = child.wait_with_output().expect("finishes");
     (
