@@ -44,28 +44,9 @@ use nalgebra::{Matrix2, Matrix3, Matrix3x2, Point3, Vector3};
 /// the normal is undefined: the patch is singular there (a collapsed edge or a fold).
 pub const SINGULAR_SINE: f64 = 1e-10;
 
-/// Number of control points of a degree-`n` patch, `(n + 1)(n + 2)/2`.
-pub fn num_points(n: usize) -> usize {
-    (n + 1) * (n + 2) / 2
-}
-
-/// Position of `b_{ijk}` (with `i + j + k = n`) in the control-net order of the module docs:
-/// `k(n + 1) − k(k − 1)/2 + j`.
-pub fn index(n: usize, i: usize, j: usize, k: usize) -> usize {
-    debug_assert_eq!(i + j + k, n);
-    k * (n + 1) - k * k.saturating_sub(1) / 2 + j
-}
-
-/// The multi-indices `(i, j, k)` of degree `n` in control-net order.
-pub fn multi_indices(n: usize) -> Vec<(usize, usize, usize)> {
-    let mut out = Vec::with_capacity(num_points(n));
-    for k in 0..=n {
-        for i in (0..=n - k).rev() {
-            out.push((i, n - k - i, k));
-        }
-    }
-    out
-}
+// The net order (`index`, `multi_indices`, `num_points`) is stated once, in `cost::net`, where
+// the objectives on nets read it.
+pub use cost::net::{index, multi_indices, num_points};
 
 /// Why a patch could not be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

@@ -25,7 +25,9 @@
 
 use nalgebra::{Point3, Vector3};
 
+use crate::fairing::MacroPatchConstruction;
 use crate::shirman_sequin::QuarticNet;
+use cost::corner::{CornerMeasure, CornerOnNet, CornerSet};
 use curves::VertexData;
 
 /// The measures at one corner of one macro-patch.
@@ -102,134 +104,33 @@ pub fn corner_measures(nets: &[QuarticNet; 3], vertices: [&VertexData; 3]) -> [C
 /// Section 4's two objectives for one macro-patch as a least-squares problem in
 /// `(β_0, β_1, β_2, c_0, c_1, c_2)`: residuals 0–2 are `κ_boundary − κn(t)` at the three
 /// corners, residuals 3–8 the normalized twists minus `t_uᵀ S t_v` (start then end sub-patch of
-/// each corner). The Jacobian is the chain rule through the measures' formulas (module docs)
-/// applied to the exact net derivatives, not an assumption that it vanishes: that it does
-/// vanish is then a measured fact (tests, `experiments -- interior`).
-///
-/// The objectives live beside the construction they differentiate rather than in `cost/`,
-/// which cannot see the surface crate.
-#[derive(Clone, Debug)]
-pub struct CornerObjectives {
+/// each corner). The measures are stated on the nets in [`cost::corner::CornerOnNet`] and
+/// composed with the construction ([`crate::fairing::MacroPatchConstruction`]) by
+/// [`cost::Composed`], which applies the chain rule: the Jacobian is computed, not assumed to
+/// vanish, and that it does vanish is then a measured fact (tests, `experiments -- interior`).
+pub type CornerObjectives = cost::Composed<CornerSet<9>, MacroPatchConstruction>;
+
+/// [`CornerObjectives`] of one face (vertex data, edge curves oriented along the face). The
+/// sub-patch `e` is net `e` of the construction, over `(V_e, V_{e+1}, S)` = corners 0, 1, 2.
+pub fn corner_objectives(
     vertices: [VertexData; 3],
     edges: [curves::CubicBez3; 3],
-}
-
-type Grad = [f64; 6];
-
-/// A vector and its derivatives with respect to the six interior parameters.
-pub type WithGradient = (Vector3<f64>, [Vector3<f64>; 6]);
-
-/// The curvature measure at a corner ([`cost::corner::corner_curvature`]: the patch's normal
-/// curvature along the first derivative `A`, with second derivative `B`, minus the vertex's)
-/// and its gradient in the six parameters by the chain rule, applied once:
-/// `∂κ/∂x_k = ⟨∂κ/∂A, ∂A/∂x_k⟩ + ⟨∂κ/∂B, ∂B/∂x_k⟩`.
-pub fn normal_curvature_with_gradient(
-    vd: &VertexData,
-    a: &WithGradient,
-    b: &WithGradient,
-) -> (f64, Grad) {
-    let (val, ga, gb) = cost::corner::corner_curvature(&vd.n.normalize(), &vd.shape, &a.0, &b.0);
-    (
-        val,
-        std::array::from_fn(|k| ga.dot(&a.1[k]) + gb.dot(&b.1[k])),
-    )
-}
-
-/// The twist measure at a corner ([`cost::corner::corner_twist`]: the patch's mixed second
-/// derivative `W` against the unit directions of `U`, `V`, minus the vertex's) and its gradient
-/// in the six parameters by the chain rule, applied once.
-pub fn twist_with_gradient(
-    vd: &VertexData,
-    u: &WithGradient,
-    w: &WithGradient,
-    tw: &WithGradient,
-) -> (f64, Grad) {
-    let (val, gu, gv, gw) =
-        cost::corner::corner_twist(&vd.n.normalize(), &vd.shape, &u.0, &w.0, &tw.0);
-    (
-        val,
-        std::array::from_fn(|k| gu.dot(&u.1[k]) + gv.dot(&w.1[k]) + gw.dot(&tw.1[k])),
-    )
-}
-
-impl CornerObjectives {
-    /// The objectives of one face (vertex data, edge curves oriented along the face).
-    pub fn new(vertices: [VertexData; 3], edges: [curves::CubicBez3; 3]) -> Self {
-        CornerObjectives { vertices, edges }
+) -> CornerObjectives {
+    let np = crate::beztri::num_points(4);
+    let mut measures = Vec::with_capacity(9);
+    let on = |net: usize, corner: usize, measure: CornerMeasure, vd: &VertexData| {
+        CornerOnNet::new(4, net * np, corner, measure, vd.n.normalize(), vd.shape)
+    };
+    // The corners and directions are fixed and valid, so `on` always succeeds; `flatten`
+    // keeps that a matter of types rather than a panic.
+    for (i, vd) in vertices.iter().enumerate() {
+        measures.extend(on(i, 0, CornerMeasure::Curvature { toward: 2 }, vd));
     }
-
-    fn params(x: &nalgebra::SVector<f64, 6>) -> crate::shirman_sequin::InteriorParameters {
-        crate::shirman_sequin::InteriorParameters {
-            beta: [x[0], x[1], x[2]],
-            c: [x[3], x[4], x[5]],
-        }
+    for (i, vd) in vertices.iter().enumerate() {
+        measures.extend(on(i, 0, CornerMeasure::Twist { u: 1, v: 2 }, vd));
+        measures.extend(on((i + 2) % 3, 1, CornerMeasure::Twist { u: 0, v: 2 }, vd));
     }
-
-    /// Residuals and their gradients.
-    fn eval(&self, x: &nalgebra::SVector<f64, 6>) -> Option<([f64; 9], [Grad; 9])> {
-        let v = [&self.vertices[0], &self.vertices[1], &self.vertices[2]];
-        let (nets, d) =
-            crate::shirman_sequin::macro_patch_with_derivatives(v, &self.edges, &Self::params(x))
-                .ok()?;
-        let at = |e: usize, i: usize, j: usize, k: usize| {
-            let idx = crate::beztri::index(4, i, j, k);
-            (nets[e][idx].coords, d[e][idx])
-        };
-        type J = (Vector3<f64>, [Vector3<f64>; 6]);
-        let curvature = |vd: &VertexData, a: J, b: J| normal_curvature_with_gradient(vd, &a, &b);
-        let twist = |vd: &VertexData, u: J, w: J, tw: J| twist_with_gradient(vd, &u, &w, &tw);
-        let lin = |parts: &[(f64, J)]| -> J {
-            let v = parts.iter().map(|(w, p)| p.0 * *w).sum();
-            let d = std::array::from_fn(|k| parts.iter().map(|(w, p)| p.1[k] * *w).sum());
-            (v, d)
-        };
-        let mut r = [0.0; 9];
-        let mut g = [[0.0; 6]; 9];
-        for i in 0..3 {
-            let vd = &self.vertices[i];
-            let s = i;
-            let e = (i + 2) % 3;
-            let (b0, b1, b2) = (at(s, 4, 0, 0), at(s, 3, 0, 1), at(s, 2, 0, 2));
-            let d1 = lin(&[(4.0, b1), (-4.0, b0)]);
-            let d2 = lin(&[(12.0, b2), (-24.0, b1), (12.0, b0)]);
-            (r[i], g[i]) = curvature(vd, d1, d2);
-            let u = lin(&[(4.0, at(s, 3, 1, 0)), (-4.0, b0)]);
-            let w = lin(&[
-                (12.0, at(s, 2, 1, 1)),
-                (-12.0, at(s, 3, 1, 0)),
-                (-12.0, b1),
-                (12.0, b0),
-            ]);
-            (r[3 + 2 * i], g[3 + 2 * i]) = twist(vd, u, d1, w);
-            let c0 = at(e, 0, 4, 0);
-            let ue = lin(&[(4.0, at(e, 1, 3, 0)), (-4.0, c0)]);
-            let ve = lin(&[(4.0, at(e, 0, 3, 1)), (-4.0, c0)]);
-            let we = lin(&[
-                (12.0, at(e, 1, 2, 1)),
-                (-12.0, at(e, 1, 3, 0)),
-                (-12.0, at(e, 0, 3, 1)),
-                (12.0, c0),
-            ]);
-            (r[4 + 2 * i], g[4 + 2 * i]) = twist(vd, ue, ve, we);
-        }
-        Some((r, g))
-    }
-}
-
-impl solver::LeastSquaresProblem<6, 9> for CornerObjectives {
-    fn residuals(&self, x: &nalgebra::SVector<f64, 6>) -> nalgebra::SVector<f64, 9> {
-        self.eval(x)
-            .map(|(r, _)| nalgebra::SVector::from(r))
-            .unwrap_or_else(|| nalgebra::SVector::from_element(f64::NAN))
-    }
-
-    fn jacobian(&self, x: &nalgebra::SVector<f64, 6>) -> nalgebra::SMatrix<f64, 9, 6> {
-        self.eval(x)
-            .map(|(_, g)| nalgebra::SMatrix::from_fn(|i, k| g[i][k]))
-            .unwrap_or_else(|| nalgebra::SMatrix::from_element(f64::NAN))
-    }
-
-    fn lower_bounds(&self) -> nalgebra::SVector<f64, 6> {
-        nalgebra::SVector::from(crate::fairing::LOWER)
-    }
+    // Nine measures always fit nine residuals.
+    let set = CornerSet::new(measures).unwrap_or_default();
+    cost::Composed::new(set, MacroPatchConstruction::new(vertices, edges))
 }
