@@ -136,14 +136,15 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     if let Some(out) = &args.out {
         crate::output::refuse_overwriting_input(out, &args.input.data)?;
         let mut text = String::new();
-        for (i, p) in fitted.patches.iter().enumerate() {
+        let per_face = fitted.layout.patches_per_face();
+        for (i, p) in fitted.nets().enumerate() {
             let pts: Vec<[f64; 3]> = p
                 .iter()
                 .map(|q| frame.to_world(q))
                 .map(|q| [q.x, q.y, q.z])
                 .collect();
-            let rec = json!({"type": "BezierTriangle", "degree": 4, "points": pts,
-                              "face": i / 3, "subpatch": i % 3});
+            let rec = json!({"type": "BezierTriangle", "degree": fitted.layout.degree, "points": pts,
+                              "face": i / per_face, "subpatch": i % per_face});
             let _ = writeln!(text, "{rec}");
         }
         write_result(Some(out), text.as_bytes())?;
@@ -151,7 +152,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     if let Some(path) = &args.mesh_out {
         check_memory(
             &format!("--tess {}", args.tess),
-            limits::tessellation_bytes(fitted.patches.len() as u128, args.tess),
+            limits::tessellation_bytes(fitted.num_patches() as u128, args.tess),
         )?;
         let t3 = Instant::now();
         let mut tess = surface::tessellate(&fitted.bezier_patches(), args.tess)

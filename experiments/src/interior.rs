@@ -60,11 +60,10 @@ fn sweep(
         let (mut fc, mut ft) = (0.0, 0.0);
         let mut values = Vec::new();
         for (fi, face) in mesh.faces().iter().enumerate() {
-            let nets = [
-                f.patches[3 * fi],
-                f.patches[3 * fi + 1],
-                f.patches[3 * fi + 2],
-            ];
+            let nets = std::array::from_fn(|e| {
+                f.quartic_net(3 * fi + e)
+                    .unwrap_or([nalgebra::Point3::origin(); 15])
+            });
             let v = face.map(|i| &mesh.vertices()[i].data);
             for m in corner_measures(&nets, v) {
                 fc += (m.boundary_curvature - m.boundary_target).powi(2);

@@ -121,11 +121,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 .map_err(|e| ExperimentError::Usage(format!("{}: {e}", path.display())))?;
             let t_fit = t.elapsed().as_secs_f64();
             let g1 = measure_g1(mesh, &f, 9);
-            let finite = f
-                .patches
-                .iter()
-                .flatten()
-                .all(|q| q.iter().all(|c| c.is_finite()));
+            let finite = f.points.iter().all(|q| q.iter().all(|c| c.is_finite()));
             let _ = writeln!(
                 md,
                 "| {name} | {} | {} | {} | {method} | {} | {} | {:.1e} | {:.2} | {} | {:.3} |",

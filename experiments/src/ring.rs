@@ -250,7 +250,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     // committed results small.
     for (name, f, _, _) in fits.iter().filter(|f| f.0 == "optimized") {
         let mut text = String::new();
-        for (i, net) in f.patches.iter().enumerate() {
+        for (i, net) in f.nets().enumerate() {
             let pts: Vec<[f64; 3]> = net.iter().map(|q| [q.x, q.y, q.z]).collect();
             let _ = writeln!(
                 text,

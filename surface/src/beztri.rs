@@ -171,6 +171,11 @@ impl SampleWeights {
     pub fn degree(&self) -> usize {
         self.degree
     }
+
+    /// Per control point (net order), the weights of `[p, r_u, r_v, r_uu, r_uv, r_vv]`.
+    pub fn weights(&self) -> &[[f64; 6]] {
+        &self.weights
+    }
 }
 
 /// A triangular Bézier patch of degree `n ≥ 0` in space.

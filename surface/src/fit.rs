@@ -1,5 +1,8 @@
-//! Fitting a mesh with the modified Shirman–Séquin scheme: one boundary curve per mesh edge
-//! (built once, shared by both faces on it), then one macro-patch of three quartics per face.
+//! Fitting a mesh with a surface scheme ([`crate::scheme`]): one boundary curve per mesh edge
+//! (built once, shared by both faces on it; only for schemes with cubic boundaries), then the
+//! scheme's patches per face into one flat buffer laid out by the scheme's
+//! [`Layout`](crate::scheme::Layout). [`fit`] and [`fit_into`] are the modified Shirman–Séquin
+//! scheme with per-face interior parameters; [`fit_scheme`] takes any scheme.
 //!
 //! Both stages are local and run in parallel (rayon) with results collected in mesh order, so
 //! the output is deterministic.
@@ -9,10 +12,11 @@
 //! * An edge whose boundary-curve problem is degenerate (coincident ends, opposite normals, a
 //!   chord along the average normal, a normal along the chord: [`curves::Degeneracy`]) gets the
 //!   straight cubic at thirds of the chord, and is listed in [`Fit::degenerate_edges`].
-//! * A face whose macro-patch cannot be built (a corner cross vector that does not point into
-//!   the patch — folded data, a normal turned against the winding —, a zero end derivative,
-//!   non-finite control points), and every face of zero area, gets
-//!   [`crate::fallback::fallback_patch`]: C0, on the same boundary curves as its neighbours.
+//! * A face whose patches cannot be built (for Shirman–Séquin: a corner cross vector that does
+//!   not point into the patch — folded data, a normal turned against the winding —, a zero end
+//!   derivative; for any scheme: non-finite control points), and every face of zero area, gets
+//!   the scheme's [`Scheme::fallback`] (Shirman–Séquin: [`crate::fallback::fallback_patch`],
+//!   C0 on the same boundary curves as its neighbours).
 //!   It is listed in [`Fit::face_fallbacks`] with the reason; [`crate::g1::measure`] reports
 //!   the edges touching it separately.
 //!
@@ -23,9 +27,10 @@ use curves::{BoundaryProblem, CubicBez3, CurveMethod, EdgeError};
 use rayon::prelude::*;
 
 use crate::beztri::BezierTriangle;
-use crate::fallback::fallback_patch;
 use crate::mesh::Mesh;
-use crate::shirman_sequin::{macro_patch, InteriorParameters, QuarticNet, SchemeError};
+use crate::scheme::shirman_sequin::ShirmanSequin;
+use crate::scheme::{Continuity, FaceInput, Layout, Scheme, CENTROID_SPLIT};
+use crate::shirman_sequin::{InteriorParameters, QuarticNet, SchemeError};
 
 /// Why a face was fitted with the fallback patch.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,10 +109,17 @@ pub enum FitError {
 }
 
 /// A fitted surface.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Fit {
+    /// The scheme's registered name.
+    pub scheme: &'static str,
+    /// How the patches are laid out per face.
+    pub layout: Layout,
+    /// What the scheme promises across boundaries.
+    pub continuity: Continuity,
     /// The boundary curve of each mesh edge, in `mesh.edges()` order, running from
-    /// `edge.vertices[0]` to `edge.vertices[1]`.
+    /// `edge.vertices[0]` to `edge.vertices[1]`. Empty for schemes that make their own
+    /// boundaries ([`Scheme::uses_curves`]).
     pub curves: Vec<CubicBez3>,
     /// End-derivative lengths `[α0, α1]` chosen for each edge (unit-chord form).
     pub alphas: Vec<[f64; 2]>,
@@ -122,10 +134,34 @@ pub struct Fit {
     pub degenerate_edges: Vec<DegenerateEdge>,
     /// Faces fitted with the fallback patch (module docs), in face order.
     pub face_fallbacks: Vec<FaceFallback>,
-    /// Three quartic nets per face (the row order of docs/conventions.md): net `3f + e` is sub-patch `e` of face
-    /// `f`, over the corners `(V_e, V_{e+1}, S)` of the face. Fixed-size arrays, so a fit of a
-    /// million triangles makes no per-patch allocation (about 1.1 kB per triangle).
-    pub patches: Vec<QuarticNet>,
+    /// The control points of every patch, face after face and within a face patch after patch
+    /// ([`Layout::subs`] order), each net in the row order of docs/conventions.md. For
+    /// Shirman–Séquin, net `3f + e` is sub-patch `e` of face `f` over `(V_e, V_{e+1}, S)`. One
+    /// flat buffer, so a fit of a million triangles makes no per-patch allocation (about
+    /// 1.1 kB per triangle for three quartics).
+    pub points: Vec<nalgebra::Point3<f64>>,
+}
+
+impl Default for Fit {
+    /// An empty Shirman–Séquin fit.
+    fn default() -> Self {
+        Fit {
+            scheme: "shirman-sequin",
+            layout: Layout {
+                degree: 4,
+                subs: &CENTROID_SPLIT,
+            },
+            continuity: Continuity::G1,
+            curves: Vec::new(),
+            alphas: Vec::new(),
+            fallbacks: 0,
+            unconverged: 0,
+            flipped_tangents: 0,
+            degenerate_edges: Vec::new(),
+            face_fallbacks: Vec::new(),
+            points: Vec::new(),
+        }
+    }
 }
 
 /// The three edge curves of face `f`, each oriented from the face's corner `l` to `l + 1`
@@ -159,11 +195,35 @@ impl Fit {
         face_curves(mesh, &self.curves, f)
     }
 
-    /// Patch `i` (`3f + e`) as a [`BezierTriangle`].
+    /// Number of patches (faces × patches per face).
+    pub fn num_patches(&self) -> usize {
+        self.points.len() / self.layout.points_per_patch().max(1)
+    }
+
+    /// The control net of patch `i` (patch `s` of face `f` is `i = f · patches_per_face + s`).
+    pub fn net(&self, i: usize) -> Option<&[nalgebra::Point3<f64>]> {
+        let np = self.layout.points_per_patch();
+        self.points.get(i * np..(i + 1) * np)
+    }
+
+    /// Every patch's control net, in order.
+    pub fn nets(&self) -> std::slice::ChunksExact<'_, nalgebra::Point3<f64>> {
+        self.points
+            .chunks_exact(self.layout.points_per_patch().max(1))
+    }
+
+    /// Patch `i` as a fixed-size quartic net, when the layout is of quartics.
+    pub fn quartic_net(&self, i: usize) -> Option<QuarticNet> {
+        (self.layout.degree == 4)
+            .then(|| self.net(i))
+            .flatten()
+            .and_then(|n| n.try_into().ok())
+    }
+
+    /// Patch `i` as a [`BezierTriangle`].
     pub fn patch(&self, i: usize) -> Option<BezierTriangle> {
-        self.patches
-            .get(i)
-            .and_then(|n| BezierTriangle::new(4, n.to_vec()).ok())
+        self.net(i)
+            .and_then(|n| BezierTriangle::new(self.layout.degree, n.to_vec()).ok())
     }
 
     /// For each face, true when it got the fallback patch.
@@ -179,7 +239,7 @@ impl Fit {
 
     /// Every patch as a [`BezierTriangle`], in order (for tessellation and output).
     pub fn bezier_patches(&self) -> Vec<BezierTriangle> {
-        (0..self.patches.len())
+        (0..self.num_patches())
             .filter_map(|i| self.patch(i))
             .collect()
     }
@@ -206,8 +266,36 @@ pub fn fit_into(
     params: &(dyn Fn(usize) -> InteriorParameters + Sync),
     out: &mut Fit,
 ) -> Result<(), FitError> {
+    fit_scheme_into(mesh, &ShirmanSequin::per_face(params), method, out)
+}
+
+/// Fits every face of `mesh` with `scheme`, its boundary curves (if it uses them) from
+/// `method`.
+pub fn fit_scheme(
+    mesh: &Mesh,
+    scheme: &dyn Scheme,
+    method: &dyn CurveMethod,
+) -> Result<Fit, FitError> {
+    let mut out = Fit::default();
+    fit_scheme_into(mesh, scheme, method, &mut out)?;
+    Ok(out)
+}
+
+/// The straight cubic at thirds from `a` to `b`.
+fn straight(a: nalgebra::Point3<f64>, b: nalgebra::Point3<f64>) -> CubicBez3 {
+    CubicBez3::new([a, a + (b - a) / 3.0, a + (b - a) * (2.0 / 3.0), b])
+}
+
+/// [`fit_scheme`] into an existing [`Fit`], reusing its buffers (see [`fit_into`]).
+pub fn fit_scheme_into(
+    mesh: &Mesh,
+    scheme: &dyn Scheme,
+    method: &dyn CurveMethod,
+    out: &mut Fit,
+) -> Result<(), FitError> {
     let verts = mesh.vertices();
-    if method.name() != "chord" {
+    let uses_curves = scheme.uses_curves();
+    if uses_curves && method.name() != "chord" {
         if let Some(v) = verts.iter().position(|v| !v.curvature_known) {
             return Err(FitError::NeedsCurvature {
                 method: method.name(),
@@ -215,15 +303,19 @@ pub fn fit_into(
             });
         }
     }
+    out.scheme = scheme.name();
+    out.layout = scheme.layout();
+    out.continuity = scheme.continuity();
     // Curves, α and per-edge flags are written in place (bit 0: fallback, bit 1: unconverged,
     // bits 2–3: number of flipped tangents), so no intermediate collection is copied.
-    let n_edges = mesh.edges().len();
+    let n_edges = if uses_curves { mesh.edges().len() } else { 0 };
     let Fit {
         curves,
         alphas,
-        patches,
+        points,
         degenerate_edges,
         face_fallbacks,
+        layout,
         ..
     } = &mut *out;
     curves.clear();
@@ -251,13 +343,7 @@ pub fn fit_into(
                         u8::from(choice.fallback) | (u8::from(unconverged) << 1) | (flipped << 2);
                 }
                 Err(error) => {
-                    let (pa, pb) = (verts[a].data.p, verts[b].data.p);
-                    *curve = CubicBez3::new([
-                        pa,
-                        pa + (pb - pa) / 3.0,
-                        pa + (pb - pa) * (2.0 / 3.0),
-                        pb,
-                    ]);
+                    *curve = straight(verts[a].data.p, verts[b].data.p);
                     *alpha = [1.0, 1.0];
                     *flag = 0;
                     *err = Some(error);
@@ -270,47 +356,51 @@ pub fn fit_into(
         .filter_map(|(edge, e)| e.map(|error| DegenerateEdge { edge, error }))
         .collect();
 
-    // Each face writes its three nets straight into the output (no intermediate copies: at a
+    // Each face writes its patches straight into the output (no intermediate copies: at a
     // million faces the nets are a gigabyte, and memory traffic dominates the arithmetic).
-    patches.clear();
-    patches.resize(3 * mesh.num_faces(), [nalgebra::Point3::origin(); 15]);
+    let per_face = layout.points_per_face();
+    points.clear();
+    points.resize(per_face * mesh.num_faces(), nalgebra::Point3::origin());
     let mut reasons: Vec<Option<FaceFallbackReason>> = vec![None; mesh.num_faces()];
-    patches
-        .par_chunks_mut(3)
+    let curves: &[CubicBez3] = curves;
+    points
+        .par_chunks_mut(per_face.max(1))
         .zip(reasons.par_iter_mut())
         .enumerate()
         .try_for_each(|(f, (out, reason))| -> Result<(), FitError> {
             let face = mesh.face(f).map_err(|e| FitError::Mesh(e.to_string()))?;
-            let edges = face_curves(mesh, curves, f).map_err(|e| FitError::Mesh(e.to_string()))?;
-            let corners = [
-                &verts[face[0]].data,
-                &verts[face[1]].data,
-                &verts[face[2]].data,
-            ];
+            let edges = if uses_curves {
+                face_curves(mesh, curves, f).map_err(|e| FitError::Mesh(e.to_string()))?
+            } else {
+                std::array::from_fn(|l| {
+                    straight(verts[face[l]].data.p, verts[face[(l + 1) % 3]].data.p)
+                })
+            };
+            let input = FaceInput {
+                face: f,
+                vertices: [
+                    &verts[face[0]].data,
+                    &verts[face[1]].data,
+                    &verts[face[2]].data,
+                ],
+                edges: &edges,
+            };
             let built = if mesh.is_degenerate_face(f) {
                 Err(FaceFallbackReason::ZeroArea)
             } else {
-                match macro_patch(corners, &edges, &params(f)) {
-                    Ok(nets)
-                        if nets
-                            .iter()
-                            .flatten()
-                            .all(|p| p.iter().all(|c| c.is_finite())) =>
-                    {
-                        Ok(nets)
-                    }
-                    Ok(_) => Err(FaceFallbackReason::NonFinite),
-                    Err(source @ SchemeError::BadParameter { .. }) => {
+                match scheme.build(&input, out) {
+                    Ok(()) if out.iter().all(|p| p.iter().all(|c| c.is_finite())) => Ok(()),
+                    Ok(()) => Err(FaceFallbackReason::NonFinite),
+                    Err(FaceFallbackReason::Scheme(source @ SchemeError::BadParameter { .. })) => {
                         return Err(FitError::Face { face: f, source })
                     }
-                    Err(e) => Err(FaceFallbackReason::Scheme(e)),
+                    Err(e) => Err(e),
                 }
             };
-            let nets = built.unwrap_or_else(|why| {
+            if let Err(why) = built {
                 *reason = Some(why);
-                fallback_patch(&edges)
-            });
-            out.copy_from_slice(&nets);
+                scheme.fallback(&input, out);
+            }
             Ok(())
         })?;
     *face_fallbacks = reasons

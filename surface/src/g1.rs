@@ -1,9 +1,10 @@
-//! The testbed's `G1` module: measured continuity of a fitted surface.
+//! The testbed's `G1` module: measured continuity of a fitted surface, for any scheme.
 //!
-//! Along every boundary shared by two patches — the interior boundaries inside a macro-patch and
-//! the exterior edges between faces — the unit normals of both patches are compared at `samples`
-//! equally spaced points (ends included), and the largest angle is reported with where it
-//! occurred. The angle is `atan2(|n₁ × n₂|, n₁ · n₂)`, accurate near zero where `acos` is not.
+//! Along every boundary shared by two patches — the interior boundaries inside a face (where the
+//! scheme's [`Layout`] splits it) and the exterior edges between faces — the unit normals of both
+//! patches are compared at `samples` equally spaced points (ends included; an exterior edge is
+//! sampled as a whole even when two sub-patches share it), and the largest angle is reported
+//! with where it occurred. The angle is `atan2(|n₁ × n₂|, n₁ · n₂)`, accurate near zero where `acos` is not.
 //! Interpolation is measured at the same time: patch corners against vertex positions and
 //! normals.
 //!
@@ -12,22 +13,23 @@
 //! (`fallback_*`), so the regular figures stay what the scheme guarantees; their corner normals
 //! are left out of the interpolation error.
 
-use nalgebra::Vector3;
+use nalgebra::{Point3, Vector3};
+use rayon::prelude::*;
 
-use crate::beztri::index;
+use crate::beztri::SampleWeights;
 use crate::fit::Fit;
 use crate::mesh::Mesh;
-use crate::shirman_sequin::QuarticNet;
+use crate::scheme::{Bary, Layout};
 
 /// Where a G1 defect was measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Boundary {
-    /// The interior boundary from corner `corner` of face `face` to its split point.
+    /// Interior boundary `boundary` of face `face`, in the order of [`interior_boundaries`].
     Interior {
         /// Face index.
         face: usize,
-        /// Corner index in the face.
-        corner: usize,
+        /// Index into the layout's interior boundaries.
+        boundary: usize,
     },
     /// The exterior edge between two faces.
     Exterior {
@@ -41,7 +43,7 @@ pub enum Boundary {
 pub struct G1Report {
     /// Largest normal angle (radians) along interior boundaries of regular faces.
     pub interior_max: f64,
-    /// Where it occurred.
+    /// Where it occurred (boundary and its parameter from its first end).
     pub interior_at: Option<(Boundary, f64)>,
     /// Largest normal angle (radians) along exterior edges between two regular faces.
     pub exterior_max: f64,
@@ -66,121 +68,284 @@ impl G1Report {
     pub fn max_angle(&self) -> f64 {
         self.interior_max.max(self.exterior_max)
     }
+
+    fn empty() -> Self {
+        G1Report {
+            interior_max: 0.0,
+            interior_at: None,
+            exterior_max: 0.0,
+            exterior_at: None,
+            position_error: 0.0,
+            normal_error: 0.0,
+            undefined_normals: 0,
+            fallback_interior_max: 0.0,
+            fallback_exterior_max: 0.0,
+            fallback_edges: 0,
+        }
+    }
+
+    /// `self` then `later` (a later part of the scan): maxima combine, and where a maximum is
+    /// tied the earlier location is kept, so the parallel scan reports what a sequential one
+    /// would.
+    fn merge(mut self, later: G1Report) -> G1Report {
+        if later.interior_at.is_some()
+            && (self.interior_at.is_none() || later.interior_max > self.interior_max)
+        {
+            self.interior_max = later.interior_max;
+            self.interior_at = later.interior_at;
+        }
+        if later.exterior_at.is_some()
+            && (self.exterior_at.is_none() || later.exterior_max > self.exterior_max)
+        {
+            self.exterior_max = later.exterior_max;
+            self.exterior_at = later.exterior_at;
+        }
+        self.position_error = self.position_error.max(later.position_error);
+        self.normal_error = self.normal_error.max(later.normal_error);
+        self.undefined_normals += later.undefined_normals;
+        self.fallback_interior_max = self.fallback_interior_max.max(later.fallback_interior_max);
+        self.fallback_exterior_max = self.fallback_exterior_max.max(later.fallback_exterior_max);
+        self.fallback_edges += later.fallback_edges;
+        self
+    }
+
+    fn interior(&mut self, d: f64, at: (Boundary, f64)) {
+        if d > self.interior_max || self.interior_at.is_none() {
+            self.interior_max = self.interior_max.max(d);
+            self.interior_at = Some(at);
+        }
+    }
+
+    fn exterior(&mut self, d: f64, at: (Boundary, f64)) {
+        if d > self.exterior_max || self.exterior_at.is_none() {
+            self.exterior_max = self.exterior_max.max(d);
+            self.exterior_at = Some(at);
+        }
+    }
 }
 
 fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     a.cross(b).norm().atan2(a.dot(b))
 }
 
-/// Unit normal of a quartic net at `(u, v, 1 − u − v)`: the cross product of the two first
-/// partials, each from one de Casteljau pass down to degree 1 (no allocation).
-fn normal(net: &QuarticNet, u: f64, v: f64) -> Option<Vector3<f64>> {
-    let w = 1.0 - u - v;
-    // Reduce to the degree-1 net b100, b010, b001 by de Casteljau at (u, v, w).
-    let mut pts: [Vector3<f64>; 15] = std::array::from_fn(|i| net[i].coords);
-    let mut n = 4;
-    while n > 1 {
-        let mut next = [Vector3::zeros(); 15];
-        for k in 0..n {
-            for i in 0..n - k {
-                let j = n - 1 - k - i;
-                next[index(n - 1, i, j, k)] = pts[index(n, i + 1, j, k)] * u
-                    + pts[index(n, i, j + 1, k)] * v
-                    + pts[index(n, i, j, k + 1)] * w;
-            }
-        }
-        pts = next;
-        n -= 1;
-    }
-    // Partials along u and v with w = 1 − u − v: 4(b100 − b001), 4(b010 − b001).
-    let du = pts[index(1, 1, 0, 0)] - pts[index(1, 0, 0, 1)];
-    let dv = pts[index(1, 0, 1, 0)] - pts[index(1, 0, 0, 1)];
-    let c = du.cross(&dv);
-    let len = c.norm();
-    (len > 0.0 && len.is_finite()).then(|| c / len)
+/// The weights of `r_u` and `r_v` of one patch at one local point, per control point.
+#[derive(Clone, Debug)]
+struct Tangents {
+    patch: usize,
+    w: Vec<[f64; 2]>,
 }
 
-/// Position of a quartic net at a corner.
-fn corner(net: &QuarticNet, i: usize) -> nalgebra::Point3<f64> {
-    net[[index(4, 4, 0, 0), index(4, 0, 4, 0), index(4, 0, 0, 4)][i]]
+impl Tangents {
+    fn new(layout: &Layout, patch: usize, local: Bary) -> Self {
+        let sw = SampleWeights::new(layout.degree, local[0], local[1]);
+        Tangents {
+            patch,
+            w: sw.weights().iter().map(|w| [w[1], w[2]]).collect(),
+        }
+    }
+
+    /// Unit normal `r_u × r_v` of the face's patch (no threshold: any non-zero cross product).
+    fn normal(&self, face: &[Point3<f64>], np: usize) -> Option<Vector3<f64>> {
+        let net = face.get(self.patch * np..(self.patch + 1) * np)?;
+        let (mut du, mut dv) = (Vector3::zeros(), Vector3::zeros());
+        for (p, w) in net.iter().zip(&self.w) {
+            du += p.coords * w[0];
+            dv += p.coords * w[1];
+        }
+        let c = du.cross(&dv);
+        let len = c.norm();
+        (len > 0.0 && len.is_finite()).then(|| c / len)
+    }
+}
+
+/// Local barycentric coordinates of the face point `x` in sub-triangle `sub`.
+fn local(sub: &[Bary; 3], x: Bary) -> Option<Bary> {
+    let m = nalgebra::Matrix3::from_fn(|r, c| sub[c][r]);
+    let l = m.try_inverse()? * nalgebra::Vector3::from(x);
+    Some([l[0], l[1], l[2]])
+}
+
+fn lerp(a: Bary, b: Bary, t: f64) -> Bary {
+    std::array::from_fn(|c| a[c] * (1.0 - t) + b[c] * t)
+}
+
+fn same(a: Bary, b: Bary) -> bool {
+    (0..3).all(|c| (a[c] - b[c]).abs() < 1e-12)
+}
+
+/// The boundaries two sub-triangles of `layout` share inside a face: `(patch a, its local edge
+/// from corner l to l + 1, patch b)`, in order of `a`, then `l`. For the centroid split:
+/// `V_1 → S`, `S → V_0`, `V_2 → S`.
+pub fn interior_boundaries(layout: &Layout) -> Vec<(usize, usize, usize)> {
+    let subs = layout.subs;
+    let mut out = Vec::new();
+    for (a, sa) in subs.iter().enumerate() {
+        for l in 0..3 {
+            let (p, q) = (sa[l], sa[(l + 1) % 3]);
+            let partner = subs
+                .iter()
+                .enumerate()
+                .skip(a + 1)
+                .find(|(_, sb)| (0..3).any(|m| same(sb[m], q) && same(sb[(m + 1) % 3], p)));
+            if let Some((b, _)) = partner {
+                out.push((a, l, b));
+            }
+        }
+    }
+    out
+}
+
+/// Everything about a layout that does not depend on the face: where to sample and the weights
+/// there.
+struct Plan {
+    np: usize,
+    /// Per interior boundary, per sample: `(t, side a, side b)`.
+    interior: Vec<Vec<(f64, Tangents, Tangents)>>,
+    /// Per face edge `l` (from corner `l` to `l + 1`), per sample `t`: the tangents there.
+    exterior: [Vec<(f64, Tangents)>; 3],
+    /// Per face corner: the control point that interpolates it and the tangents there.
+    corners: [(usize, Tangents); 3],
+}
+
+impl Plan {
+    fn new(layout: &Layout, samples: usize) -> Option<Plan> {
+        let np = layout.points_per_patch();
+        let ts: Vec<f64> = (0..samples)
+            .map(|s| s as f64 / (samples - 1) as f64)
+            .collect();
+        let subs = layout.subs;
+        let mut interior = Vec::new();
+        for (a, l, b) in interior_boundaries(layout) {
+            let (p, q) = (subs[a][l], subs[a][(l + 1) % 3]);
+            let mut row = Vec::with_capacity(ts.len());
+            for &t in &ts {
+                let x = lerp(p, q, t);
+                row.push((
+                    t,
+                    Tangents::new(layout, a, local(&subs[a], x)?),
+                    Tangents::new(layout, b, local(&subs[b], x)?),
+                ));
+            }
+            interior.push(row);
+        }
+        let corner = |i: usize| -> Bary { std::array::from_fn(|c| f64::from(u8::from(c == i))) };
+        let mut exterior: [Vec<(f64, Tangents)>; 3] = Default::default();
+        for (l, row) in exterior.iter_mut().enumerate() {
+            let opposite = (l + 2) % 3;
+            for &t in &ts {
+                let x = lerp(corner(l), corner((l + 1) % 3), t);
+                // The first sub-triangle with an edge on the face edge that contains x.
+                let s = subs.iter().position(|sub| {
+                    (0..3).any(|m| {
+                        sub[m][opposite].abs() < 1e-12 && sub[(m + 1) % 3][opposite].abs() < 1e-12
+                    }) && local(sub, x).is_some_and(|b| b.iter().all(|c| *c >= -1e-12))
+                })?;
+                row.push((t, Tangents::new(layout, s, local(&subs[s], x)?)));
+            }
+        }
+        let mut corners_v = Vec::with_capacity(3);
+        for i in 0..3 {
+            let (s, m) = subs
+                .iter()
+                .enumerate()
+                .find_map(|(s, sub)| (0..3).find(|m| same(sub[*m], corner(i))).map(|m| (s, m)))?;
+            let mut idx = [0usize; 3];
+            idx[m] = layout.degree;
+            let point = s * np + crate::beztri::index(layout.degree, idx[0], idx[1], idx[2]);
+            corners_v.push((point, Tangents::new(layout, s, corner(m))));
+        }
+        let corners: [(usize, Tangents); 3] = corners_v.try_into().ok()?;
+        Some(Plan {
+            np,
+            interior,
+            exterior,
+            corners,
+        })
+    }
 }
 
 /// Measures G1 continuity and interpolation of `fit` over `mesh` at `samples ≥ 2` points per
-/// boundary.
+/// boundary. Sample weights are computed once per layout; faces and edges are measured in
+/// parallel, with the same result as a sequential scan.
 pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
     let samples = samples.max(2);
-    let mut r = G1Report {
-        interior_max: 0.0,
-        interior_at: None,
-        exterior_max: 0.0,
-        exterior_at: None,
-        position_error: 0.0,
-        normal_error: 0.0,
-        undefined_normals: 0,
-        fallback_interior_max: 0.0,
-        fallback_exterior_max: 0.0,
-        fallback_edges: 0,
+    let Some(plan) = Plan::new(&fit.layout, samples) else {
+        return G1Report::empty();
     };
+    let per_face = fit.layout.points_per_face();
+    let np = plan.np;
     let fallback = fit.fallback_mask(mesh.num_faces());
-    let ts: Vec<f64> = (0..samples)
-        .map(|s| s as f64 / (samples - 1) as f64)
-        .collect();
-    for (f, face) in mesh.faces().iter().enumerate() {
-        for (i, &vi) in face.iter().enumerate() {
-            // Interior boundary V_i → S: sub-patch i at (1−t, 0), sub-patch i−1 at (0, 1−t).
-            let l = &fit.patches[3 * f + i];
-            let rt = &fit.patches[3 * f + (i + 2) % 3];
-            for &t in &ts {
-                match (normal(l, 1.0 - t, 0.0), normal(rt, 0.0, 1.0 - t)) {
-                    (Some(a), Some(b)) if fallback[f] => {
-                        r.fallback_interior_max = r.fallback_interior_max.max(angle(&a, &b));
+    let face_points = |f: usize| fit.points.get(f * per_face..(f + 1) * per_face);
+    let faces = (0..mesh.num_faces())
+        .into_par_iter()
+        .fold(G1Report::empty, |mut r, f| {
+            let Some(pts) = face_points(f) else {
+                return r;
+            };
+            for (bi, row) in plan.interior.iter().enumerate() {
+                for (t, a, b) in row {
+                    match (a.normal(pts, np), b.normal(pts, np)) {
+                        (Some(x), Some(y)) if fallback[f] => {
+                            r.fallback_interior_max = r.fallback_interior_max.max(angle(&x, &y));
+                        }
+                        (Some(x), Some(y)) => r.interior(
+                            angle(&x, &y),
+                            (
+                                Boundary::Interior {
+                                    face: f,
+                                    boundary: bi,
+                                },
+                                *t,
+                            ),
+                        ),
+                        _ => r.undefined_normals += 1,
+                    }
+                }
+            }
+            let face = mesh.faces()[f];
+            for (i, (point, tangents)) in plan.corners.iter().enumerate() {
+                let v = &mesh.vertices()[face[i]].data;
+                r.position_error = r.position_error.max((pts[*point] - v.p).norm());
+                if fallback[f] {
+                    continue;
+                }
+                match tangents.normal(pts, np) {
+                    Some(n) => r.normal_error = r.normal_error.max(angle(&n, &v.n.normalize())),
+                    None => r.undefined_normals += 1,
+                }
+            }
+            r
+        })
+        .reduce(G1Report::empty, G1Report::merge);
+    let edges = mesh
+        .edges()
+        .par_iter()
+        .enumerate()
+        .fold(G1Report::empty, |mut r, (ei, e)| {
+            let (Some((g, lg)), (f, lf)) = (e.second, e.first) else {
+                return r;
+            };
+            let (Some(pf), Some(pg)) = (face_points(f), face_points(g)) else {
+                return r;
+            };
+            let touches_fallback = fallback[f] || fallback[g];
+            r.fallback_edges += usize::from(touches_fallback);
+            let (sf, sg) = (&plan.exterior[lf], &plan.exterior[lg]);
+            for (k, (t, tf)) in sf.iter().enumerate() {
+                // Face f's edge runs from its corner lf to lf + 1; g's runs backwards.
+                let tg = &sg[sg.len() - 1 - k].1;
+                match (tf.normal(pf, np), tg.normal(pg, np)) {
+                    (Some(a), Some(b)) if touches_fallback => {
+                        r.fallback_exterior_max = r.fallback_exterior_max.max(angle(&a, &b));
                     }
                     (Some(a), Some(b)) => {
-                        let d = angle(&a, &b);
-                        if d > r.interior_max || r.interior_at.is_none() {
-                            r.interior_max = r.interior_max.max(d);
-                            r.interior_at = Some((Boundary::Interior { face: f, corner: i }, t));
-                        }
+                        r.exterior(angle(&a, &b), (Boundary::Exterior { edge: ei }, *t))
                     }
                     _ => r.undefined_normals += 1,
                 }
             }
-            // Interpolation at the corner V_i of sub-patch i.
-            let v = &mesh.vertices()[vi].data;
-            r.position_error = r.position_error.max((corner(l, 0) - v.p).norm());
-            if fallback[f] {
-                continue;
-            }
-            match normal(l, 1.0, 0.0) {
-                Some(n) => r.normal_error = r.normal_error.max(angle(&n, &v.n.normalize())),
-                None => r.undefined_normals += 1,
-            }
-        }
-    }
-    for (ei, e) in mesh.edges().iter().enumerate() {
-        let (Some((g, lg)), (f, lf)) = (e.second, e.first) else {
-            continue;
-        };
-        let pf = &fit.patches[3 * f + lf];
-        let pg = &fit.patches[3 * g + lg];
-        let touches_fallback = fallback[f] || fallback[g];
-        r.fallback_edges += usize::from(touches_fallback);
-        for &t in &ts {
-            // Face f's edge runs from its corner lf (u = 1) to lf+1 (v = 1); g's runs backwards.
-            match (normal(pf, 1.0 - t, t), normal(pg, t, 1.0 - t)) {
-                (Some(a), Some(b)) if touches_fallback => {
-                    r.fallback_exterior_max = r.fallback_exterior_max.max(angle(&a, &b));
-                }
-                (Some(a), Some(b)) => {
-                    let d = angle(&a, &b);
-                    if d > r.exterior_max || r.exterior_at.is_none() {
-                        r.exterior_max = r.exterior_max.max(d);
-                        r.exterior_at = Some((Boundary::Exterior { edge: ei }, t));
-                    }
-                }
-                _ => r.undefined_normals += 1,
-            }
-        }
-    }
-    r
+            r
+        })
+        .reduce(G1Report::empty, G1Report::merge);
+    faces.merge(edges)
 }

@@ -14,6 +14,8 @@
 //! * [`datasets`] — analytic reference surfaces with exact closest points and curvatures, and
 //!   the named data sets sampled from them ([`dataset_by_name`]);
 //! * [`beztri`] — triangular Bézier patches of any degree ([`BezierTriangle`]);
+//! * [`scheme`] — surface schemes as a plug-in family ([`Scheme`], [`scheme::REGISTRY`]):
+//!   `flat`, `shirman-sequin`, `pn-triangles`, `phong`, …;
 //! * [`shirman_sequin`] — the modified Shirman–Séquin split-domain scheme: three quartic
 //!   patches per triangle, G1 by construction (derivation in the module docs);
 //! * [`fit`](mod@fit) — a whole mesh: one curve per edge (shared), one macro-patch per face;
@@ -41,6 +43,7 @@ pub mod interior;
 pub mod mesh;
 pub mod metrics;
 pub mod repair;
+pub mod scheme;
 pub mod shirman_sequin;
 pub mod tessellate;
 pub mod testbed_format;
@@ -51,12 +54,17 @@ pub use datasets::{
     DATASET_NAMES,
 };
 pub use fit::{
-    face_curves, fit, fit_into, DegenerateEdge, FaceFallback, FaceFallbackReason, Fit, FitError,
+    face_curves, fit, fit_into, fit_scheme, fit_scheme_into, DegenerateEdge, FaceFallback,
+    FaceFallbackReason, Fit, FitError,
 };
 pub use frame::{Frame, FrameError};
 pub use g1::{measure as measure_g1, Boundary, G1Report};
 pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
 pub use metrics::{compare as compare_with_truth, SurfaceErrors};
+pub use scheme::{
+    scheme_by_name, scheme_names, Continuity, Layout, Scheme, SchemeOptions, UnknownScheme,
+    DEFAULT_SCHEME,
+};
 pub use shirman_sequin::{
     chiyokura_kimura, macro_patch, CrossEnd, CrossFailure, InteriorParameters, QuarticNet,
     SchemeError,

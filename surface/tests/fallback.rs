@@ -101,7 +101,7 @@ fn zero_area_faces_and_coincident_vertices_are_fitted() {
     );
     // Vertices 1–5 lie on no common face, so no edge joins them: no degenerate edge here, but
     // every control point is finite and the flat data gives a flat surface.
-    for net in &fitted.patches {
+    for net in fitted.nets() {
         for q in net {
             assert!(q.z.abs() < C0_TOL && q.x.is_finite() && q.y.is_finite());
         }
@@ -135,8 +135,7 @@ fn a_degenerate_edge_gets_the_straight_cubic() {
         e.error
     );
     assert!(fitted
-        .patches
+        .points
         .iter()
-        .flatten()
         .all(|q| q.iter().all(|x| x.is_finite())));
 }

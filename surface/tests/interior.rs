@@ -20,11 +20,7 @@ fn corner_measures_ignore_beta_and_c() {
             (0..data.mesh.num_faces())
                 .flat_map(|fi| {
                     let face = data.mesh.faces()[fi];
-                    let nets = [
-                        f.patches[3 * fi],
-                        f.patches[3 * fi + 1],
-                        f.patches[3 * fi + 2],
-                    ];
+                    let nets = std::array::from_fn(|e| f.quartic_net(3 * fi + e).unwrap());
                     corner_measures(&nets, face.map(|i| &data.mesh.vertices()[i].data))
                 })
                 .collect::<Vec<_>>()

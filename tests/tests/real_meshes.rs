@@ -26,16 +26,13 @@ fn fit_everything(label: &str, mesh: &Mesh) -> Vec<(&'static str, usize)> {
         let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
             .unwrap_or_else(|e| panic!("{label}/{}: {e}", entry.name));
         assert_eq!(
-            f.patches.len(),
+            f.num_patches(),
             3 * mesh.num_faces(),
             "{label}/{}",
             entry.name
         );
         assert!(
-            f.patches
-                .iter()
-                .flatten()
-                .all(|q| q.iter().all(|c| c.is_finite())),
+            f.points.iter().all(|q| q.iter().all(|c| c.is_finite())),
             "{label}/{}: non-finite control point",
             entry.name
         );

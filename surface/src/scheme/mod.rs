@@ -1,0 +1,284 @@
+//! Surface schemes as a plug-in family: one trait, one registry by name.
+//!
+//! A scheme turns the data of one face — its three vertices (position, normal, shape tensor)
+//! and, for schemes with cubic boundaries, the face's three edge curves from a
+//! [`curves::CurveMethod`] — into Bézier triangles laid out by its [`Layout`]: a fixed degree
+//! and a fixed split of the face's barycentric domain into sub-triangles (one for a plain patch,
+//! three at the centroid for the split-domain schemes, six for Powell–Sabin). Everything
+//! downstream (G1 measurement, tessellation, metrics, pictures, output) is driven by the layout,
+//! never by a particular scheme.
+//!
+//! The fit ([`crate::fit::fit_scheme`]) runs in two stages: edge curves (only where
+//! [`Scheme::uses_curves`]), shared by the two faces on an edge, then patches per face into one
+//! flat buffer of control points.
+//!
+//! # Adding a scheme
+//!
+//! One file in `surface/src/scheme/` implementing [`Scheme`], one line in [`REGISTRY`], one test
+//! file `surface/tests/scheme_<name>.rs` (closed forms or hand-derived nets, precision,
+//! similarity invariance, and the continuity it claims measured on sphere, ring and capsule;
+//! `surface/tests/schemes.rs` runs every registered scheme through the common checks).
+
+pub mod flat;
+pub mod phong;
+pub mod pn_triangles;
+pub mod shirman_sequin;
+
+use curves::{CubicBez3, VertexData};
+use nalgebra::Point3;
+
+use crate::fit::FaceFallbackReason;
+use crate::shirman_sequin::InteriorParameters;
+
+/// A point of a face's barycentric domain, `(λ_0, λ_1, λ_2)` with `Σ λ = 1`.
+pub type Bary = [f64; 3];
+
+/// The corners of the whole face.
+pub const WHOLE: [[Bary; 3]; 1] = [[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]];
+
+const T: f64 = 1.0 / 3.0;
+
+/// The centroid split (Clough–Tocher, Shirman–Séquin): sub-triangle `e` over
+/// `(V_e, V_{e+1}, S)`, `S` the centroid.
+pub const CENTROID_SPLIT: [[Bary; 3]; 3] = [
+    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [T, T, T]],
+    [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [T, T, T]],
+    [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [T, T, T]],
+];
+
+/// The six-split (Powell–Sabin): for edge `e`, sub-triangles `(V_e, M_e, S)` and
+/// `(M_e, V_{e+1}, S)`, `M_e` the edge midpoint and `S` the centroid.
+pub const SIX_SPLIT: [[Bary; 3]; 6] = [
+    [[1.0, 0.0, 0.0], [0.5, 0.5, 0.0], [T, T, T]],
+    [[0.5, 0.5, 0.0], [0.0, 1.0, 0.0], [T, T, T]],
+    [[0.0, 1.0, 0.0], [0.0, 0.5, 0.5], [T, T, T]],
+    [[0.0, 0.5, 0.5], [0.0, 0.0, 1.0], [T, T, T]],
+    [[0.0, 0.0, 1.0], [0.5, 0.0, 0.5], [T, T, T]],
+    [[0.5, 0.0, 0.5], [1.0, 0.0, 0.0], [T, T, T]],
+];
+
+/// How a scheme's output is laid out per face.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layout {
+    /// Degree of every patch.
+    pub degree: usize,
+    /// The sub-triangles of the face's domain, each as its three corners in barycentric
+    /// coordinates of the face, counter-clockwise like the face. Patch `s` of face `f` is the
+    /// Bézier triangle over `subs[s]`; its corners `b_{n00}, b_{0n0}, b_{00n}` sit over
+    /// `subs[s][0], subs[s][1], subs[s][2]`.
+    pub subs: &'static [[Bary; 3]],
+}
+
+impl Layout {
+    /// Patches per face.
+    pub fn patches_per_face(&self) -> usize {
+        self.subs.len()
+    }
+
+    /// Control points per patch.
+    pub fn points_per_patch(&self) -> usize {
+        crate::beztri::num_points(self.degree)
+    }
+
+    /// Control points per face.
+    pub fn points_per_face(&self) -> usize {
+        self.patches_per_face() * self.points_per_patch()
+    }
+}
+
+/// What a scheme promises across patch boundaries (inside a face and between faces); the G1
+/// measurement reports against it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Continuity {
+    /// Tangent-plane continuity everywhere (measured below 1e-9 rad).
+    G1,
+    /// Position continuity, with a separate normal field for shading that is continuous (PN
+    /// triangles); the geometric normal jump is measured and reported.
+    C0WithNormals,
+    /// Position continuity only; the normal jump is measured and reported.
+    C0,
+}
+
+impl std::fmt::Display for Continuity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Continuity::G1 => "G1",
+            Continuity::C0WithNormals => "C0 + normal field",
+            Continuity::C0 => "C0",
+        })
+    }
+}
+
+/// A scheme's free parameter, for help texts and reports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParameterSpec {
+    /// Option name (`--beta`, `--phong-alpha` …, without dashes).
+    pub name: &'static str,
+    /// Default value.
+    pub default: f64,
+    /// What it does.
+    pub summary: &'static str,
+}
+
+/// What one face's construction reads.
+#[derive(Clone, Copy, Debug)]
+pub struct FaceInput<'a> {
+    /// The face index.
+    pub face: usize,
+    /// The vertex data of its corners `V_0, V_1, V_2`.
+    pub vertices: [&'a VertexData; 3],
+    /// Its edge curves, `edges[e]` from `V_e` to `V_{e+1}` (the shared curve oriented along the
+    /// face). For schemes that do not use curves: the straight cubics at thirds of the edges.
+    pub edges: &'a [CubicBez3; 3],
+}
+
+/// A surface scheme (module docs).
+pub trait Scheme: Send + Sync {
+    /// The registered name.
+    fn name(&self) -> &'static str;
+
+    /// Output layout: degree and domain split.
+    fn layout(&self) -> Layout;
+
+    /// What it promises across boundaries.
+    fn continuity(&self) -> Continuity;
+
+    /// True if its patch boundaries are the cubic edge curves of a [`curves::CurveMethod`]
+    /// (then `--curves` applies); false if the scheme makes its own boundaries.
+    fn uses_curves(&self) -> bool;
+
+    /// Its parameters with their defaults.
+    fn parameters(&self) -> &'static [ParameterSpec] {
+        &[]
+    }
+
+    /// Builds face `input.face` into `out` (`layout().points_per_face()` points: patch after
+    /// patch, each in net order). An error sends the face to [`Scheme::fallback`] and is
+    /// reported with the face; [`FaceFallbackReason::Scheme`] with a `BadParameter` stops the
+    /// whole fit (a setting, not the data).
+    fn build(
+        &self,
+        input: &FaceInput<'_>,
+        out: &mut [Point3<f64>],
+    ) -> Result<(), FaceFallbackReason>;
+
+    /// The C0 patch of a face [`Scheme::build`] cannot fit, meeting its neighbours along the
+    /// shared boundaries. The default is the face's flat triangle over the layout, which is C0
+    /// with neighbours whose boundaries are straight; schemes with curved boundaries override.
+    fn fallback(&self, input: &FaceInput<'_>, out: &mut [Point3<f64>]) {
+        flat_over_layout(self.layout(), input.vertices.map(|v| v.p), out);
+    }
+}
+
+/// The affine map of a face's corners, over every sub-triangle of `layout` and raised to its
+/// degree: `out` gets `points_per_face` points.
+pub fn flat_over_layout(layout: Layout, corners: [Point3<f64>; 3], out: &mut [Point3<f64>]) {
+    let n = layout.degree.max(1) as f64;
+    let at = |b: Bary| {
+        Point3::from(corners[0].coords * b[0] + corners[1].coords * b[1] + corners[2].coords * b[2])
+    };
+    let np = layout.points_per_patch();
+    for (s, sub) in layout.subs.iter().enumerate() {
+        for (slot, (i, j, k)) in out[s * np..(s + 1) * np]
+            .iter_mut()
+            .zip(crate::beztri::multi_indices(layout.degree))
+        {
+            let b: Bary = std::array::from_fn(|c| {
+                (sub[0][c] * i as f64 + sub[1][c] * j as f64 + sub[2][c] * k as f64) / n
+            });
+            *slot = at(if layout.degree == 0 { sub[0] } else { b });
+        }
+    }
+}
+
+/// Options every scheme may read (each reads only its own).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SchemeOptions {
+    /// Shirman–Séquin interior parameters applied to every face.
+    pub interior: InteriorParameters,
+    /// Phong tessellation's shape factor α (Boubekeur and Alexa recommend 3/4).
+    pub phong_alpha: f64,
+}
+
+impl Default for SchemeOptions {
+    fn default() -> Self {
+        SchemeOptions {
+            interior: InteriorParameters::default(),
+            phong_alpha: phong::DEFAULT_ALPHA,
+        }
+    }
+}
+
+/// One registered scheme.
+pub struct SchemeEntry {
+    /// Its name on the command line.
+    pub name: &'static str,
+    /// One line for help texts and reports.
+    pub summary: &'static str,
+    /// Builds it with the given options.
+    pub build: fn(&SchemeOptions) -> Box<dyn Scheme>,
+}
+
+/// Every scheme, by name. The default is [`DEFAULT_SCHEME`].
+pub const REGISTRY: &[SchemeEntry] = &[
+    SchemeEntry {
+        name: "flat",
+        summary: "the testbed's Fitter0: the data triangle itself (degree 1, C0)",
+        build: |_| Box::new(flat::Flat),
+    },
+    SchemeEntry {
+        name: "shirman-sequin",
+        summary:
+            "Mann's modified Shirman–Séquin: three quartics per face on cubic edge curves (G1)",
+        build: |o| Box::new(shirman_sequin::ShirmanSequin::uniform(o.interior)),
+    },
+    SchemeEntry {
+        name: "pn-triangles",
+        summary:
+            "Vlachos et al. 2001 curved PN triangles: one cubic per face, quadratic normals (C0)",
+        build: |_| Box::new(pn_triangles::PnTriangles),
+    },
+    SchemeEntry {
+        name: "phong",
+        summary: "Boubekeur and Alexa 2008 Phong tessellation: one quadratic per face (C0)",
+        build: |o| {
+            Box::new(phong::Phong {
+                alpha: o.phong_alpha,
+            })
+        },
+    },
+];
+
+/// The scheme used when none is named.
+pub const DEFAULT_SCHEME: &str = "shirman-sequin";
+
+/// A scheme name that is not registered.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown surface scheme `{name}` (known: {known})")]
+pub struct UnknownScheme {
+    /// The name asked for.
+    pub name: String,
+    /// The registered names, comma-separated.
+    pub known: String,
+}
+
+/// The registered names, in registry order.
+pub fn scheme_names() -> Vec<&'static str> {
+    REGISTRY.iter().map(|e| e.name).collect()
+}
+
+/// The scheme registered as `name`, built with `options`.
+pub fn scheme_by_name(
+    name: &str,
+    options: &SchemeOptions,
+) -> Result<Box<dyn Scheme>, UnknownScheme> {
+    REGISTRY
+        .iter()
+        .find(|e| e.name == name)
+        .map(|e| (e.build)(options))
+        .ok_or_else(|| UnknownScheme {
+            name: name.to_string(),
+            known: scheme_names().join(", "),
+        })
+}
