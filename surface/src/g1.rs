@@ -128,19 +128,29 @@ fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     a.cross(b).norm().atan2(a.dot(b))
 }
 
-/// The weights of `r_u` and `r_v` of one patch at one local point, per control point.
+/// The weights of `r_u` and `r_v` of one patch at one local point, for the control points
+/// whose weights are not zero (on a patch edge only the two rows next to it count).
 #[derive(Clone, Debug)]
 struct Tangents {
     patch: usize,
-    w: Vec<[f64; 2]>,
+    w: Vec<(usize, [f64; 2])>,
 }
 
 impl Tangents {
     fn new(layout: &Layout, patch: usize, local: Bary) -> Self {
-        let sw = SampleWeights::new(layout.degree, local[0], local[1]);
+        // Coordinates that are zero up to the rounding of the inverse are made exactly zero,
+        // so the rows away from an edge get exactly zero weight and are skipped.
+        let l = local.map(|c| if c.abs() < 1e-13 { 0.0 } else { c });
+        let sw = SampleWeights::new(layout.degree, l[0], l[1]);
         Tangents {
             patch,
-            w: sw.weights().iter().map(|w| [w[1], w[2]]).collect(),
+            w: sw
+                .weights()
+                .iter()
+                .enumerate()
+                .filter(|(_, w)| w[1] != 0.0 || w[2] != 0.0)
+                .map(|(i, w)| (i, [w[1], w[2]]))
+                .collect(),
         }
     }
 
@@ -148,7 +158,8 @@ impl Tangents {
     fn normal(&self, face: &[Point3<f64>], np: usize) -> Option<Vector3<f64>> {
         let net = face.get(self.patch * np..(self.patch + 1) * np)?;
         let (mut du, mut dv) = (Vector3::zeros(), Vector3::zeros());
-        for (p, w) in net.iter().zip(&self.w) {
+        for (i, w) in &self.w {
+            let p = net.get(*i)?;
             du += p.coords * w[0];
             dv += p.coords * w[1];
         }
@@ -156,6 +167,18 @@ impl Tangents {
         let len = c.norm();
         (len > 0.0 && len.is_finite()).then(|| c / len)
     }
+}
+
+/// A monotone stand-in for the angle between unit vectors, cheap and accurate near zero: the
+/// chord `|a − b| = 2 sin(θ/2)`, compared as its square; [`from_chord2`] turns the largest
+/// back into radians.
+fn chord2(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
+    (a - b).norm_squared()
+}
+
+/// The angle whose squared chord is `c2`: `θ = 2 asin(√c2 / 2)`.
+fn from_chord2(c2: f64) -> f64 {
+    2.0 * (c2.sqrt() / 2.0).min(1.0).asin()
 }
 
 /// Local barycentric coordinates of the face point `x` in sub-triangle `sub`.
@@ -286,10 +309,10 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
                 for (t, a, b) in row {
                     match (a.normal(pts, np), b.normal(pts, np)) {
                         (Some(x), Some(y)) if fallback[f] => {
-                            r.fallback_interior_max = r.fallback_interior_max.max(angle(&x, &y));
+                            r.fallback_interior_max = r.fallback_interior_max.max(chord2(&x, &y));
                         }
                         (Some(x), Some(y)) => r.interior(
-                            angle(&x, &y),
+                            chord2(&x, &y),
                             (
                                 Boundary::Interior {
                                     face: f,
@@ -336,10 +359,10 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
                 let tg = &sg[sg.len() - 1 - k].1;
                 match (tf.normal(pf, np), tg.normal(pg, np)) {
                     (Some(a), Some(b)) if touches_fallback => {
-                        r.fallback_exterior_max = r.fallback_exterior_max.max(angle(&a, &b));
+                        r.fallback_exterior_max = r.fallback_exterior_max.max(chord2(&a, &b));
                     }
                     (Some(a), Some(b)) => {
-                        r.exterior(angle(&a, &b), (Boundary::Exterior { edge: ei }, *t))
+                        r.exterior(chord2(&a, &b), (Boundary::Exterior { edge: ei }, *t))
                     }
                     _ => r.undefined_normals += 1,
                 }
@@ -347,5 +370,15 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
             r
         })
         .reduce(G1Report::empty, G1Report::merge);
-    faces.merge(edges)
+    // The scans compared squared chords of the normals; report angles.
+    let mut r = faces.merge(edges);
+    for x in [
+        &mut r.interior_max,
+        &mut r.exterior_max,
+        &mut r.fallback_interior_max,
+        &mut r.fallback_exterior_max,
+    ] {
+        *x = from_chord2(*x);
+    }
+    r
 }
