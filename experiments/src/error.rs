@@ -41,6 +41,9 @@ pub enum ExperimentError {
     /// A curve construction name is not registered.
     #[error(transparent)]
     Method(#[from] curves::UnknownMethod),
+    /// A surface scheme name is not registered.
+    #[error(transparent)]
+    Scheme(#[from] surface::UnknownScheme),
     /// An edge's boundary-curve problem is degenerate (names the edge's vertices).
     #[error(transparent)]
     Edge(#[from] curves::EdgeError),

@@ -35,6 +35,7 @@ mod output;
 mod realmesh;
 mod ring;
 mod ring_render;
+mod schemes;
 mod solvers;
 mod sweep;
 
@@ -79,6 +80,9 @@ enum Experiment {
     /// several resolutions, regular and irregular: errors, convergence orders, libigl's golden
     /// numbers, and the ring study rebuilt from estimated data.
     Estimation(estimation::EstimationArgs),
+    /// Every registered surface scheme on every data set, side by side: G1 against the claimed
+    /// continuity, errors against the true surface, shaded and KColor pictures.
+    Schemes(schemes::SchemesArgs),
     /// The committed real-world meshes read, repaired, completed by estimation and fitted with
     /// every curve construction; pictures of the optimized-curve surfaces.
     Realmesh(realmesh::RealMeshArgs),
@@ -104,6 +108,7 @@ fn main() -> ExitCode {
         Experiment::Convert(args) => convert::run(&args),
         Experiment::Estimation(args) => estimation::run(&args),
         Experiment::Realmesh(args) => realmesh::run(&args),
+        Experiment::Schemes(args) => schemes::run(&args),
     };
     match result {
         Ok(code) => code,

@@ -1,0 +1,237 @@
+//! `experiments -- schemes`: every registered surface scheme on every data set, side by side
+//! with the same measures and the same pictures (the testbed seed's purpose).
+//!
+//! For each data set (`surface::DATASET_NAMES`, at its default resolution, exact vertex data)
+//! and each scheme (`surface::scheme::REGISTRY`; schemes on cubic edge curves get the
+//! `--curves` construction): fit, measure G1 (9 samples per boundary) against the scheme's
+//! claimed continuity, tessellate with about the same number of triangles per data face for
+//! every layout (`s = round(S / √patches)`, `S = --density`), and compare with the true surface
+//! (position, normal, Gaussian and mean curvature; docs/conventions.md). Pictures: per data set
+//! one composite, the schemes in columns, shaded above and coloured by Gaussian curvature
+//! (KColor, one scale per data set: the true surface's largest |K|) below.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use curves::method_by_name;
+use nalgebra::{Point3, Vector3};
+use render::colors as colormap;
+use render::{
+    render, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions, Tile,
+};
+use serde_json::{json, Value};
+use surface::scheme::REGISTRY;
+use surface::{
+    compare_with_truth, dataset_by_name, fit_scheme, measure_g1, scheme_by_name, tessellate,
+    Continuity, SchemeOptions, Tessellation, DATASET_NAMES,
+};
+
+use crate::curve_args::CurveOptions;
+use crate::error::ExperimentError;
+use crate::output::{write_result, Staged};
+
+/// Size of one picture in a composite.
+const TILE: (u32, u32) = (300, 230);
+
+/// The view of every picture (azimuth°, elevation°).
+const VIEW: (f64, f64) = (35.0, 35.0);
+
+/// A G1 claim holds when the measured angle is below this (rounding; the scheme tests' bound).
+const G1_CLAIM: f64 = 1e-9;
+
+/// Arguments of `schemes`.
+#[derive(clap::Args, Debug)]
+pub struct SchemesArgs {
+    /// Curve construction of the schemes on cubic edge curves.
+    #[arg(long, default_value = "optimized")]
+    curves: String,
+    #[command(flatten)]
+    curve: CurveOptions,
+    /// Tessellation density: segments per data-face edge (each patch gets
+    /// round(density / √patches-per-face)).
+    #[arg(long, default_value_t = 8)]
+    density: usize,
+    /// Output directory.
+    #[arg(long, default_value = "results/schemes")]
+    out: PathBuf,
+}
+
+/// Segments per patch edge for a layout of `patches` patches per face.
+fn segments(density: usize, patches: usize) -> usize {
+    ((density as f64 / (patches as f64).sqrt()).round() as usize).max(1)
+}
+
+fn coloured(t: &Tessellation, colour: impl Fn(usize) -> [f32; 3]) -> RenderMesh {
+    RenderMesh {
+        positions: t.positions.clone(),
+        normals: t.normals.clone(),
+        colors: (0..t.positions.len()).map(colour).collect(),
+        faces: t.faces.clone(),
+    }
+}
+
+fn bounds(t: &Tessellation) -> (Point3<f64>, Point3<f64>) {
+    let mut lo = Point3::from(Vector3::repeat(f64::INFINITY));
+    let mut hi = Point3::from(Vector3::repeat(f64::NEG_INFINITY));
+    for p in &t.positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+fn fmt_e(x: f64) -> String {
+    format!("{x:.2e}")
+}
+
+/// Runs the study.
+pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
+    let start = Instant::now();
+    crate::limits::check_usize("density", args.density, &crate::limits::SAMPLING_RANGE)?;
+    let method = method_by_name(&args.curves, &args.curve.method_options())?;
+    let staged = Staged::begin(&args.out)?;
+    let out = staged.path().to_path_buf();
+    let mut records = Vec::new();
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "# Surface schemes side by side\n\nWritten by `cargo run --release -p experiments -- schemes --curves {} --solver {} --density {} --out {}`.\n\n\
+         Every registered scheme on every data set (exact vertex data); schemes on cubic edge curves use `{}` curves. \
+         Tessellation: round({} / √patches) segments per patch edge, so every layout gets about the same number of triangles per data face. \
+         Errors against the true surface at the tessellation's vertices (docs/conventions.md). \
+         G1: largest normal angle across patch boundaries (9 samples per boundary); a scheme that claims G1 must measure below {G1_CLAIM:e} rad.\n",
+        args.curves, args.curve.solver, args.density, args.out.display(), args.curves, args.density
+    );
+    for name in DATASET_NAMES {
+        let data = dataset_by_name(name, None)?;
+        let mesh = &data.mesh;
+        let _ = writeln!(
+            md,
+            "\n## {name} ({} faces)\n\n| scheme | claims | G1 across edges (rad) | inside faces (rad) | claim holds | position max | normal RMS (°) | K RMS | H RMS | triangles |\n|---|---|---:|---:|---|---:|---:|---:|---:|---:|",
+            mesh.num_faces()
+        );
+        let mut tiles_shaded = Vec::new();
+        let mut tiles_k = Vec::new();
+        let mut tessellations = Vec::new();
+        for entry in REGISTRY {
+            let scheme = scheme_by_name(entry.name, &SchemeOptions::default())?;
+            let t0 = Instant::now();
+            let f = fit_scheme(mesh, scheme.as_ref(), method.as_ref())?;
+            let fit_ms = t0.elapsed().as_secs_f64() * 1e3;
+            let g1 = measure_g1(mesh, &f, 9);
+            let s = segments(args.density, f.layout.patches_per_face());
+            let tess = tessellate(&f.bezier_patches(), s)?;
+            let errors = compare_with_truth(&tess, data.surface.as_ref());
+            let holds = match f.continuity {
+                Continuity::G1 => g1.max_angle() < G1_CLAIM,
+                _ => true,
+            };
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {} | {} | {:.3} | {:.4} | {:.4} | {} |",
+                entry.name,
+                f.continuity,
+                fmt_e(g1.exterior_max),
+                fmt_e(g1.interior_max),
+                if holds { "yes" } else { "**no**" },
+                fmt_e(errors.position_max),
+                errors.normal_rms_degrees,
+                errors.gaussian_rms,
+                errors.mean_rms,
+                tess.faces.len(),
+            );
+            records.push(json!({
+                "dataset": name,
+                "faces": mesh.num_faces(),
+                "scheme": entry.name,
+                "summary": entry.summary,
+                "continuity": f.continuity,
+                "layout": {"degree": f.layout.degree, "patches_per_face": f.layout.patches_per_face()},
+                "uses_curves": scheme.uses_curves(),
+                "curves": scheme.uses_curves().then_some(args.curves.as_str()),
+                "g1_exterior_radians": g1.exterior_max,
+                "g1_interior_radians": g1.interior_max,
+                "claim_holds": holds,
+                "interpolation_position_error": g1.position_error,
+                "interpolation_normal_error_radians": g1.normal_error,
+                "face_fallbacks": f.face_fallbacks.len(),
+                "segments_per_patch_edge": s,
+                "triangles": tess.faces.len(),
+                "errors": serde_json::to_value(errors).unwrap_or(Value::Null),
+                "fit_time_seconds": fit_ms / 1e3,
+            }));
+            tessellations.push((entry.name, tess));
+        }
+        // One colour scale per data set: the true surface's largest |K| at the samples.
+        let k_limit = tessellations
+            .first()
+            .map(|(_, t)| {
+                t.positions
+                    .iter()
+                    .map(|p| data.surface.closest(p).gaussian().abs())
+                    .fold(0.0f64, f64::max)
+            })
+            .unwrap_or(1.0)
+            .max(1e-12);
+        // Framing: the union of every scheme's bounds, so no picture is clipped.
+        let (lo, hi) = tessellations.iter().map(|(_, t)| bounds(t)).fold(
+            (
+                Point3::from(Vector3::repeat(f64::INFINITY)),
+                Point3::from(Vector3::repeat(f64::NEG_INFINITY)),
+            ),
+            |(lo, hi), (a, b)| (lo.inf(&a), hi.sup(&b)),
+        );
+        let cam = Camera::framing(lo, hi, VIEW.0, VIEW.1);
+        let options = RenderOptions {
+            width: TILE.0,
+            height: TILE.1,
+            ..RenderOptions::default()
+        };
+        for (scheme, t) in &tessellations {
+            tiles_shaded.push(Tile {
+                image: render(&coloured(t, |_| colormap::MATERIAL), &cam, &options)?,
+                label: format!("{scheme} — shaded"),
+            });
+            tiles_k.push(Tile {
+                image: render(
+                    &coloured(t, |i| colormap::diverging(t.gaussian[i], k_limit)),
+                    &cam,
+                    &options,
+                )?,
+                label: format!("{scheme} — K"),
+            });
+        }
+        let columns = tiles_shaded.len();
+        tiles_shaded.extend(tiles_k);
+        let file = format!("{name}.png");
+        write_composite(
+            &tiles_shaded,
+            columns,
+            &format!("{name}: every scheme, shaded (top) and Gaussian curvature (bottom)"),
+            Some(&Legend {
+                title: "Gaussian curvature K (bottom row)".into(),
+                kind: LegendKind::Diverging { limit: k_limit },
+            }),
+            &out.join(&file),
+        )?;
+        let _ = writeln!(md, "\n![{name}]({file})");
+    }
+    let report = json!({
+        "experiment": "schemes",
+        "options": {"curves": args.curves, "solver": args.curve.solver.to_string(), "density": args.density},
+        "schemes": REGISTRY.iter().map(|e| json!({"name": e.name, "summary": e.summary})).collect::<Vec<_>>(),
+        "results": records,
+        "time_seconds": start.elapsed().as_secs_f64(),
+    });
+    let text = serde_json::to_string_pretty(&report)
+        .map_err(|e| ExperimentError::Usage(format!("cannot serialize the report: {e}")))?;
+    write_result(Some(&out.join("report.json")), text.as_bytes())?;
+    write_result(Some(&out.join("report.md")), md.as_bytes())?;
+    staged.commit()?;
+    say!("schemes: written to {}", args.out.display());
+    Ok(ExitCode::SUCCESS)
+}
