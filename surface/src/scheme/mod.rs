@@ -19,9 +19,11 @@
 //! similarity invariance, and the continuity it claims measured on sphere, ring and capsule;
 //! `surface/tests/schemes.rs` runs every registered scheme through the common checks).
 
+pub mod clough_tocher;
 pub mod flat;
 pub mod phong;
 pub mod pn_triangles;
+pub mod powell_sabin;
 pub mod shirman_sequin;
 
 use curves::{CubicBez3, VertexData};
@@ -247,6 +249,16 @@ pub const REGISTRY: &[SchemeEntry] = &[
                 alpha: o.phong_alpha,
             })
         },
+    },
+    SchemeEntry {
+        name: "clough-tocher",
+        summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, cross-boundary points for G1 (G1)",
+        build: |_| Box::new(clough_tocher::CloughTocher),
+    },
+    SchemeEntry {
+        name: "powell-sabin",
+        summary: "parametric Powell–Sabin 1977: six quadratics per face, boundaries from vertex tangent planes (C0)",
+        build: |_| Box::new(powell_sabin::PowellSabin),
     },
 ];
 
