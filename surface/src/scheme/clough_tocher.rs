@@ -76,15 +76,18 @@
 //!   `β_1 (w·D_1) = −(n_0·D_2 + n_2·D_0)/4 − (w × B'_1)·D_1`: the component of `D_1` along
 //!   `w` — the cross-boundary magnitude itself — is set by the shared tilt `β_1`, not by the
 //!   face;
-//! * a shared `β_1` fits at most one of the two faces: each face's natural magnitude would ask
-//!   for its own `β_1`, and for two faces mirror-symmetric about the curve plane the two asks
-//!   have opposite signs, so the only symmetric choice is the singular `β_1 = 0`.
+//! * a shared `β_1` fits at most one of the two faces: each face's natural magnitude `w·D_1`
+//!   asks for its own `β_1`. For two faces mirror-symmetric about the curve plane the right
+//!   sides are equal and the magnitudes opposite, so the two asks have opposite signs: one
+//!   `β_1` satisfies both only where that right side vanishes.
 //!
-//! (The measured construction with `β_1 = (β_0 + β_2)/2` was singular on every edge of the
-//! sphere data set.) The claim is therefore [`Continuity::C0`] across mesh edges, with G1 at the
-//! vertices and C1 inside each face; the jump is measured and reported. This is the
-//! twist/compatibility obstacle that makes Shirman–Séquin go to quartics, where the
-//! Chiyokura–Kimura field has a face-independent magnitude `K(t)` per side.
+//! (With `β_1 = (β_0 + β_2)/2` the system is singular on every edge of the sphere data set,
+//! whose radial normals are coplanar with every chord; this was tried and measured: 4.7e-4 rad
+//! at the edge midpoints with the singular part dropped.) The claim is therefore
+//! [`Continuity::C0`] across mesh edges, with G1 at the vertices and C1 inside each face; the
+//! jump is measured and reported. This is why Shirman–Séquin go to quartics: there the
+//! Chiyokura–Kimura field gives each side its own magnitude `K(t)` along a shared direction
+//! field `Ĉ(t)`, which a quadratic cross-boundary derivative cannot carry.
 //!
 //! Linear precision: for planar data the chord curves are straight at thirds and every rule
 //! above is affine, so the macro-patch is the flat triangle (tested).

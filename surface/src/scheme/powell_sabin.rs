@@ -55,9 +55,8 @@
 //!   the face's other two edges through `W_a`, `W_b`. The interior has no free point left once
 //!   the C1 rules hold, so the tangent plane at `M` differs between the faces in general: the
 //!   claim is [`Continuity::C0`], and the jump is measured and reported. (Making the tangent
-//!   plane at `M` shared would need `Z` from shared data, i.e. giving up C1 inside for G1
-//!   inside; a quadratic half-edge patch then still has a cubic coplanarity condition along
-//!   the piece, so G1 along the whole edge is not to be had this way.)
+//!   plane at `M` shared would need `Z` from shared data, i.e. giving up C1 inside; that is
+//!   not pursued here.)
 //!
 //! Linear precision: for planar data the projections are the identity, the boundary points
 //! are the quarter points and midpoints, and every rule is affine: the flat triangle (tested).
