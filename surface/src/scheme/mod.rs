@@ -253,7 +253,7 @@ pub const REGISTRY: &[SchemeEntry] = &[
     },
     SchemeEntry {
         name: "clough-tocher",
-        summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, cross-boundary points for G1 (G1)",
+        summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, C1 inside, linear cross-boundary derivative (C0)",
         build: |_| Box::new(clough_tocher::CloughTocher),
     },
     SchemeEntry {
