@@ -19,9 +19,12 @@
 //! similarity invariance, and the continuity it claims measured on sphere, ring and capsule;
 //! `surface/tests/schemes.rs` runs every registered scheme through the common checks).
 
+pub mod clough_tocher;
 pub mod flat;
 pub mod phong;
+pub mod piper;
 pub mod pn_triangles;
+pub mod powell_sabin;
 pub mod shirman_sequin;
 
 use curves::{CubicBez3, VertexData};
@@ -247,6 +250,21 @@ pub const REGISTRY: &[SchemeEntry] = &[
                 alpha: o.phong_alpha,
             })
         },
+    },
+    SchemeEntry {
+        name: "clough-tocher",
+        summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, C1 inside, linear cross-boundary derivative (C0)",
+        build: |_| Box::new(clough_tocher::CloughTocher),
+    },
+    SchemeEntry {
+        name: "powell-sabin",
+        summary: "parametric Powell–Sabin 1977: six quadratics per face, boundaries from vertex tangent planes (C0)",
+        build: |_| Box::new(powell_sabin::PowellSabin),
+    },
+    SchemeEntry {
+        name: "piper",
+        summary: "stand-in for Piper 1987: three quartics per face on cubic edge curves, Chiyokura–Kimura across edges, C1 inside (G1; = shirman-sequin at β = 1/3, c = 1)",
+        build: |_| Box::new(piper::Piper),
     },
 ];
 
