@@ -22,7 +22,6 @@
 pub mod clough_tocher;
 pub mod flat;
 pub mod phong;
-pub mod piper;
 pub mod pn_triangles;
 pub mod powell_sabin;
 pub mod shirman_sequin;
@@ -260,11 +259,6 @@ pub const REGISTRY: &[SchemeEntry] = &[
         name: "powell-sabin",
         summary: "parametric Powell–Sabin 1977: six quadratics per face, boundaries from vertex tangent planes (C0)",
         build: |_| Box::new(powell_sabin::PowellSabin),
-    },
-    SchemeEntry {
-        name: "piper",
-        summary: "stand-in for Piper 1987: three quartics per face on cubic edge curves, Chiyokura–Kimura across edges, C1 inside (G1; = shirman-sequin at β = 1/3, c = 1)",
-        build: |_| Box::new(piper::Piper),
     },
 ];
 
