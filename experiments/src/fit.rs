@@ -107,8 +107,11 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         c: [args.c; 3],
     };
     let t1 = Instant::now();
-    let fitted = fit(&mesh, method.as_ref(), &|_| params)
-        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
+    let fit_error = |source| ExperimentError::Fit {
+        subject: args.input.data.clone(),
+        source,
+    };
+    let fitted = fit(&mesh, method.as_ref(), &|_| params).map_err(fit_error)?;
     let (fitted, stats) = surface::fairing::refit_interior(
         &mesh,
         method.as_ref(),
@@ -116,7 +119,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         args.interior,
         args.curve.solver,
     )
-    .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
+    .map_err(fit_error)?;
     let t_fit = t1.elapsed().as_secs_f64();
     if args.interior != InteriorChoice::Default {
         say!(
@@ -134,7 +137,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t_g1 = t2.elapsed().as_secs_f64();
 
     if let Some(out) = &args.out {
-        crate::output::refuse_overwriting_input(out, &args.input.data)?;
+        crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
         let mut text = String::new();
         for (i, p) in fitted.patches.iter().enumerate() {
             let pts: Vec<[f64; 3]> = p
@@ -154,21 +157,30 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             limits::tessellation_bytes(fitted.patches.len() as u128, args.tess),
         )?;
         let t3 = Instant::now();
-        let mut tess = surface::tessellate(&fitted.bezier_patches(), args.tess)
-            .map_err(ExperimentError::from)?;
+        let mut tess =
+            surface::tessellate(&fitted.bezier_patches(), args.tess).map_err(|source| {
+                ExperimentError::Tessellate {
+                    subject: args.input.data.clone(),
+                    source,
+                }
+            })?;
         frame.tessellation_to_world(&mut tess);
-        crate::output::refuse_overwriting_input(path, &args.input.data)?;
+        crate::output::refuse_overwriting_input("--mesh-out", path, &args.input.data)?;
         let format = meshio::format_for_path(path)
             .filter(|f| f.can_write())
-            .ok_or_else(|| {
-                ExperimentError::Usage(format!(
-                    "--mesh-out {}: unsupported output format",
-                    path.display()
-                ))
+            .ok_or_else(|| ExperimentError::UnsupportedOutputFormat {
+                option: "--mesh-out",
+                path: path.clone(),
+                writable: crate::output::writable_extensions(),
             })?;
         let raw = tessellation_to_raw(&tess);
-        let bytes = meshio::write_bytes(&raw, format, &meshio::WriteOptions::new())
-            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", path.display())))?;
+        let bytes =
+            meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|source| {
+                ExperimentError::MeshWrite {
+                    path: path.clone(),
+                    source,
+                }
+            })?;
         write_result(Some(path), &bytes)?;
         say!(
             "  tessellation: s = {}, {} vertices, {} triangles, {} seam welds, in {:.3} s → {}",

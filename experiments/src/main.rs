@@ -108,7 +108,8 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            say!("error: {e}");
+            // The error, then each cause on its own `caused by:` line.
+            say!("error: {}", error::chain(&e));
             ExitCode::from(2)
         }
     }

@@ -82,10 +82,9 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     let out = staged.path().to_path_buf();
     let files = corpus_files(&args.corpus)?;
     if files.is_empty() {
-        return Err(ExperimentError::Usage(format!(
-            "{}: no mesh files",
-            args.corpus.display()
-        )));
+        return Err(ExperimentError::EmptyCorpus {
+            path: args.corpus.clone(),
+        });
     }
     let mut md = String::from(
         "# Real meshes\n\nThe committed corpus (`data/meshes/`, licences there), each file read as it is, repaired by the stated rules, its normals and shape tensors estimated, and fitted with the modified Shirman–Séquin scheme and every curve construction. G1 defects are split into edges between regular faces (the scheme's guarantee) and edges touching a fallback face (C0 only).\n\n| mesh | vertices | faces | repairs | curves | fallback faces | degenerate edges | G1 regular (rad) | G1 at fallbacks (rad) | unconverged | fit time (s) |\n|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n",
@@ -117,8 +116,13 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             let m =
                 method_by_name(method, &MethodOptions::default()).map_err(ExperimentError::from)?;
             let t = Instant::now();
-            let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
-                .map_err(|e| ExperimentError::Usage(format!("{}: {e}", path.display())))?;
+            let f =
+                fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).map_err(|source| {
+                    ExperimentError::Fit {
+                        subject: format!("{} ({method} curves)", path.display()),
+                        source,
+                    }
+                })?;
             let t_fit = t.elapsed().as_secs_f64();
             let g1 = measure_g1(mesh, &f, 9);
             let finite = f
@@ -153,8 +157,12 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                        "fit_time_seconds": t_fit}),
             );
             if method == "optimized" {
-                let tess =
-                    tessellate(&f.bezier_patches(), SAMPLING).map_err(ExperimentError::from)?;
+                let tess = tessellate(&f.bezier_patches(), SAMPLING).map_err(|source| {
+                    ExperimentError::Tessellate {
+                        subject: format!("{} ({method} curves)", path.display()),
+                        source,
+                    }
+                })?;
                 let (lo, hi) = bbox(&tess.positions);
                 shots.push((name.clone(), tess, (hi - lo).norm()));
             }

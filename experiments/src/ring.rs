@@ -122,7 +122,10 @@ fn flat_triangles(mesh: &Mesh, s: usize) -> Result<Tessellation, ExperimentError
             BezierTriangle::new(1, vec![v[f[0]].data.p, v[f[1]].data.p, v[f[2]].data.p]).ok()
         })
         .collect();
-    tessellate(&patches, s).map_err(ExperimentError::from)
+    tessellate(&patches, s).map_err(|source| ExperimentError::Tessellate {
+        subject: "ring/flat".into(),
+        source,
+    })
 }
 
 fn errors_json(e: &SurfaceErrors) -> Value {
@@ -150,15 +153,24 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         faces * crate::limits::FIT_BYTES_PER_FACE as u128 * 5
             + 5 * crate::limits::tessellation_bytes(3 * faces, args.sampling),
     )?;
-    let data =
-        surface::dataset_by_name("ring", Some(args.resolution)).map_err(ExperimentError::from)?;
+    let data = surface::dataset_by_name("ring", Some(args.resolution)).map_err(|source| {
+        ExperimentError::DataOption {
+            given: format!("--resolution {}", args.resolution),
+            source,
+        }
+    })?;
     let mesh = &data.mesh;
     let truth: &dyn AnalyticSurface = data.surface.as_ref();
     let (big, small) = (
         surface::datasets::RING_MAJOR_RADIUS,
         surface::datasets::RING_TUBE_RADIUS,
     );
-    let problems = surface::curve_stats::edge_problems(mesh)?;
+    let problems = surface::curve_stats::edge_problems(mesh).map_err(|source| {
+        ExperimentError::EdgeProblems {
+            subject: "ring".into(),
+            source,
+        }
+    })?;
     stage("data", t);
 
     // Fits.
@@ -169,11 +181,14 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     for name in METHODS {
         let t = Instant::now();
         let m = method_by_name(name, &options).map_err(ExperimentError::from)?;
-        let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
-            .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
+        let fit_error = |source| ExperimentError::Fit {
+            subject: format!("ring/{name}"),
+            source,
+        };
+        let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).map_err(fit_error)?;
         let (f, _) =
             surface::fairing::refit_interior(mesh, m.as_ref(), f, args.interior, args.curve.solver)
-                .map_err(|e| ExperimentError::Usage(format!("ring/{name}: {e}")))?;
+                .map_err(fit_error)?;
         let fit_time = t.elapsed().as_secs_f64();
         let g1 = measure_g1(mesh, &f, 9);
         let cs = surface::curve_stats::curve_stats(&problems, &f);
@@ -226,7 +241,12 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         errors: fe,
     });
     for (name, f, _, _) in &fits {
-        let tess = tessellate(&f.bezier_patches(), args.sampling).map_err(ExperimentError::from)?;
+        let tess = tessellate(&f.bezier_patches(), args.sampling).map_err(|source| {
+            ExperimentError::Tessellate {
+                subject: format!("ring/{name}"),
+                source,
+            }
+        })?;
         let errors = compare_with_truth(&tess, truth);
         surfaces.push(Surface {
             name,
@@ -304,9 +324,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         "pictures": pictures,
         "times": times,
     });
-    let mut text = serde_json::to_string_pretty(&report)
-        .map_err(|e| ExperimentError::Usage(format!("cannot serialize the report: {e}")))?;
-    text.push('\n');
+    let text = crate::output::pretty_json(&report, "the ring report")?;
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let md = markdown(args, &report, &surfaces, &fits);
     write_result(Some(&out.join("report.md")), md.as_bytes())?;

@@ -297,9 +297,7 @@ pub fn run(args: &SolversArgs) -> Result<std::process::ExitCode, ExperimentError
         "problems": problem_records,
         "total_time_seconds": total_time,
     });
-    let mut text = serde_json::to_string_pretty(&report)
-        .map_err(|e| ExperimentError::Usage(format!("cannot serialize the report: {e}")))?;
-    text.push('\n');
+    let text = crate::output::pretty_json(&report, "the solvers report")?;
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let md = markdown(
         args,
