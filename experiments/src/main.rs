@@ -34,7 +34,6 @@ mod limits;
 mod output;
 mod realmesh;
 mod ring;
-mod ring_render;
 mod solvers;
 mod sweep;
 
