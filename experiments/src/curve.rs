@@ -41,8 +41,8 @@ pub struct CurveArgs {
     /// Where to write the JSON Lines answers (standard output when absent).
     #[arg(long)]
     output: Option<PathBuf>,
-    /// Comma-separated constructions to run (known: chord, dbhs, optimized).
-    #[arg(long, value_delimiter = ',', default_value = "chord,dbhs,optimized")]
+    /// Comma-separated constructions to run (by default every registered one).
+    #[arg(long, value_delimiter = ',', default_value = crate::curve_args::all_methods())]
     methods: Vec<String>,
     /// The curve constructions' options.
     #[command(flatten)]

@@ -33,6 +33,8 @@ const KCOLOR_MEDIANS: f64 = 4.0;
 const TILE: (u32, u32) = (360, 300);
 /// Tessellation density of the pictures (segments per sub-patch edge).
 const SAMPLING: usize = 3;
+/// The construction whose surfaces are pictured.
+const PICTURED_METHOD: &str = "optimized";
 /// The two views (azimuth°, elevation°, name).
 const VIEWS: [(f64, f64, &str); 2] = [(-60.0, 15.0, "front"), (120.0, 30.0, "back")];
 
@@ -112,7 +114,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             .map(|r| r.summary_lines())
             .unwrap_or_default();
         let mut per_method = Map::new();
-        for method in ["chord", "dbhs", "optimized"] {
+        for method in curves::REGISTRY.iter().map(|e| e.name) {
             let m =
                 method_by_name(method, &MethodOptions::default()).map_err(ExperimentError::from)?;
             let t = Instant::now();
@@ -156,7 +158,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                        "unconverged": f.unconverged, "finite": finite,
                        "fit_time_seconds": t_fit}),
             );
-            if method == "optimized" {
+            if method == PICTURED_METHOD {
                 let tess = tessellate(&f.bezier_patches(), SAMPLING).map_err(|source| {
                     ExperimentError::Tessellate {
                         subject: format!("{} ({method} curves)", path.display()),

@@ -1,8 +1,9 @@
 //! `experiments -- sweep` and `experiments -- merge`: the ring study's measures over every data
 //! set × curve construction × solver, as one comparison table.
 //!
-//! The task list is fixed and ordered (data sets in registry order, then constructions, then —
-//! for `optimized` — solvers). `--shard i/n` runs the tasks whose index is `i mod n`
+//! The task list is fixed and ordered (data sets in the studies' order — the ring first, then
+//! the `surface` registry's order —, then constructions in `curves::REGISTRY` order, then — for
+//! `optimized` — solvers). `--shard i/n` runs the tasks whose index is `i mod n`
 //! (round-robin, so shards get similar mixes) and writes `shard-i-of-n.json`; `merge` joins the
 //! shard files of a directory, checks that every task is present exactly once, and writes the
 //! same `report.json`/`report.md` an unsharded run writes. Nothing depends on the shard: a task's
@@ -20,11 +21,13 @@ use serde_json::{json, Value};
 use solver::SolverKind;
 use surface::{compare_with_truth, fit, measure_g1, tessellate, InteriorParameters};
 
+use crate::curve_args::InteriorOption;
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, pretty_json, write_result, Staged};
 
-/// Data sets of the sweep, in order.
-const DATASETS: [&str; 4] = ["ring", "sphere", "capsule", "octa"];
+/// The construction that takes a solver: the sweep runs it once per solver (`SolverKind::ALL`),
+/// every other construction once.
+const SOLVED_METHOD: &str = "optimized";
 /// Tessellation density of the sweep's measurements.
 const SAMPLING: usize = 4;
 
@@ -45,25 +48,27 @@ impl Task {
     }
 }
 
+/// Every data set (in the studies' order, [`crate::datasets::all`]) × every registered
+/// construction (registry order) × every solver for [`SOLVED_METHOD`].
 fn tasks() -> Vec<Task> {
     let mut out = Vec::new();
-    for dataset in DATASETS {
-        out.push(Task {
-            dataset,
-            curves: "chord",
-            solver: None,
-        });
-        out.push(Task {
-            dataset,
-            curves: "dbhs",
-            solver: None,
-        });
-        for s in SolverKind::ALL {
-            out.push(Task {
-                dataset,
-                curves: "optimized",
-                solver: Some(s),
-            });
+    for dataset in crate::datasets::all() {
+        for curves in curves::REGISTRY.iter().map(|e| e.name) {
+            if curves == SOLVED_METHOD {
+                for s in SolverKind::ALL {
+                    out.push(Task {
+                        dataset,
+                        curves,
+                        solver: Some(s),
+                    });
+                }
+            } else {
+                out.push(Task {
+                    dataset,
+                    curves,
+                    solver: None,
+                });
+            }
         }
     }
     out
@@ -104,9 +109,9 @@ pub struct SweepArgs {
     /// `merge`).
     #[arg(long)]
     shard: Option<Shard>,
-    /// Interior parameters of every task: default, thin-plate or membrane.
-    #[arg(long, default_value_t = surface::fairing::InteriorChoice::Default)]
-    interior: surface::fairing::InteriorChoice,
+    /// The interior parameters of every task's surface.
+    #[command(flatten)]
+    interior: InteriorOption,
     /// Output directory.
     #[arg(long, default_value = "results/sweep")]
     out: PathBuf,
@@ -196,8 +201,8 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         if tty {
             say_inline!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
         }
-        let mut v = run_task(t, args.interior)?;
-        v["interior"] = json!(args.interior.to_string());
+        let mut v = run_task(t, args.interior.choice)?;
+        v["interior"] = json!(args.interior.choice.to_string());
         v["index"] = json!(k);
         results.push(v);
     }
@@ -208,7 +213,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     match args.shard {
         Some(s) => {
             let shard = json!({"shard": [s.index, s.count], "tasks_total": all.len(),
-                               "options": options_json(args.interior), "results": results});
+                               "options": options_json(args.interior.choice), "results": results});
             let text = pretty_json(&shard, "the shard report")?;
             let path = args
                 .out
@@ -224,7 +229,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         }
         None => {
             let staged = Staged::begin_keeping(&args.out, is_shard)?;
-            write_report(staged.path(), &options_json(args.interior), results)?;
+            write_report(staged.path(), &options_json(args.interior.choice), results)?;
             staged.commit()?;
         }
     }

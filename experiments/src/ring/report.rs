@@ -85,7 +85,7 @@ pub(super) fn report_json(
         },
         "settings": {
             "sampling": args.sampling, "solver": args.curve.solver.name(), "dbhs_pick": args.curve.dbhs_pick.to_string(),
-            "interior": args.interior.to_string(),
+            "interior": args.interior.choice.to_string(),
             "optimized_weights": [defaults.weights.tangent, defaults.weights.curvature],
             "optimized_alpha_min": defaults.alpha_min,
         },
@@ -166,7 +166,7 @@ pub(super) fn markdown(
         args.sampling,
         args.curve.solver,
         args.curve.dbhs_pick,
-        args.interior,
+        args.interior.choice,
         args.out.display()
     );
     let _ = writeln!(

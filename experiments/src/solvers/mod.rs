@@ -43,7 +43,7 @@ pub struct SolversArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "ring,sphere,capsule,octa"
+        default_value = crate::datasets::all_joined()
     )]
     data: Vec<String>,
 }
