@@ -33,9 +33,9 @@ pub struct InteriorArgs {
 /// Sweep points.
 const STEPS: usize = 19;
 
-/// The data sets of the claim's β and c sweeps: the three sampled analytic surfaces (the
-/// octahedron of Figure 2, too coarse to say much about corner measures, is only in the
-/// comparison of interior settings, which runs on every data set).
+/// The data sets of the claim's β and c sweeps (module docs): the three sampled analytic
+/// surfaces, a deliberate subset; the comparison of interior settings runs on every data set
+/// (`octa` too).
 const CLAIM_DATASETS: [&str; 3] = ["ring", "sphere", "capsule"];
 
 struct Sweep {
