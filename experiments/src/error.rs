@@ -66,7 +66,8 @@ pub enum ExperimentError {
     /// error: the names and resolutions are the experiment's own).
     #[error(transparent)]
     DataSet(#[from] surface::DataSetError),
-    /// A curve construction name is not registered (`--curves`, `--methods`).
+    /// A curve construction name is not registered (`curve --methods`; `fit --curves` is checked
+    /// against the registry by the command-line parser).
     #[error(transparent)]
     Method(#[from] curves::UnknownMethod),
     /// The boundary-curve problems of a mesh could not be set up (a degenerate edge, named by
