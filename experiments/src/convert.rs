@@ -36,20 +36,13 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     let t0 = Instant::now();
     let format = meshio::format_for_path(&args.out)
         .filter(|f| f.can_write())
-        .ok_or_else(|| {
-            ExperimentError::Usage(format!(
-                "--out {}: unsupported output format (writable: {})",
-                args.out.display(),
-                meshio::FORMATS
-                    .iter()
-                    .filter(|f| f.can_write())
-                    .flat_map(|f| f.extensions().iter().map(|e| format!(".{e}")))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ))
+        .ok_or_else(|| ExperimentError::UnsupportedOutputFormat {
+            option: "--out",
+            path: args.out.clone(),
+            writable: crate::output::writable_extensions(),
         })?;
     let loaded = load(&args.input)?;
-    crate::output::refuse_overwriting_input(&args.out, &args.input.data)?;
+    crate::output::refuse_overwriting_input("--out", &args.out, &args.input.data)?;
     let mut world = loaded.mesh.clone();
     loaded.frame.mesh_to_world(&mut world);
     let mesh = &world;
@@ -71,8 +64,12 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     } else {
         WriteOptions::new()
     };
-    let bytes = meshio::write_bytes(&raw, format, &options)
-        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.out.display())))?;
+    let bytes = meshio::write_bytes(&raw, format, &options).map_err(|source| {
+        ExperimentError::MeshWrite {
+            path: args.out.clone(),
+            source,
+        }
+    })?;
     write_result(Some(&args.out), &bytes)?;
     for note in &loaded.notes {
         say!("  {note}");

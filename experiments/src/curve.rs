@@ -41,8 +41,8 @@ pub struct CurveArgs {
     /// Where to write the JSON Lines answers (standard output when absent).
     #[arg(long)]
     output: Option<PathBuf>,
-    /// Comma-separated constructions to run (known: chord, dbhs, optimized).
-    #[arg(long, value_delimiter = ',', default_value = "chord,dbhs,optimized")]
+    /// Comma-separated constructions to run (by default every registered one).
+    #[arg(long, value_delimiter = ',', default_value = crate::curve_args::all_methods())]
     methods: Vec<String>,
     /// The curve constructions' options.
     #[command(flatten)]
@@ -70,7 +70,7 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
         .collect::<Result<_, _>>()
         .map_err(ExperimentError::from)?;
     if let (Some(i), Some(o)) = (&args.input, &args.output) {
-        crate::output::refuse_overwriting_input(o, &i.to_string_lossy())?;
+        crate::output::refuse_overwriting_input("--output", o, &i.to_string_lossy())?;
     }
     let text = read_input(args.input.as_deref())?;
 
@@ -319,9 +319,7 @@ fn write_plots(
         ));
     }
     let report = json!({"experiment": "curve", "problems": records});
-    let mut json_text = serde_json::to_string_pretty(&report)
-        .map_err(|e| ExperimentError::Usage(format!("cannot serialize the report: {e}")))?;
-    json_text.push('\n');
+    let json_text = crate::output::pretty_json(&report, "the curve report")?;
     write_result(Some(&dir.join("report.json")), json_text.as_bytes())?;
     write_result(Some(&dir.join("report.md")), md.as_bytes())?;
     Ok(())

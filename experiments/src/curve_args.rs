@@ -1,8 +1,26 @@
-//! The options of the boundary-curve constructions, one argument group shared by every
-//! experiment that builds curves (`fit`, `ring`, `curve`).
+//! The options of the boundary-curve constructions and of the fitted surfaces, declared once as
+//! argument groups and flattened into every experiment that builds curves or fits surfaces, so
+//! that each flag has one name, one default and one meaning everywhere:
+//!
+//! | group | flags | taken by |
+//! |---|---|---|
+//! | [`CurveOptions`] | `--solver`, `--dbhs-pick` | `curve`, `ring`, `fit` (in [`FitOptions`]) |
+//! | [`InteriorOption`] | `--interior` | `sweep`, `ring`, `fit` (in [`FitOptions`]) |
+//! | [`FitOptions`] | `--curves` (one construction), [`CurveOptions`], [`InteriorOption`] | `fit` |
+//!
+//! `ring` fits every construction of its study, so it takes no `--curves`; `sweep` runs every
+//! construction with every solver and the default dBHS pick, so it takes only `--interior`;
+//! `curve` builds curves without surfaces, so it takes no `--interior` and names several
+//! constructions with `--methods`. The names a flag accepts come from the libraries' registries:
+//! constructions from [`curves::REGISTRY`], solvers from [`solver::SolverKind`], dBHS picks from
+//! [`curves::DbhsPick`], interior choices from [`InteriorChoice`].
 
+use std::sync::LazyLock;
+
+use clap::builder::PossibleValuesParser;
 use curves::{DbhsPick, MethodOptions};
 use solver::SolverKind;
+use surface::fairing::InteriorChoice;
 
 /// `--solver` and `--dbhs-pick`.
 #[derive(clap::Args, Debug, Clone, Copy)]
@@ -25,5 +43,71 @@ impl CurveOptions {
             solver: self.solver,
             ..MethodOptions::default()
         }
+    }
+}
+
+/// `--interior`.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct InteriorOption {
+    /// Interior parameters of the fitted surfaces: `default` (β and c as set: `--beta` and `--c`
+    /// where the experiment has them, else the Shirman–Séquin β = 1/3, c = 1), or per triangle
+    /// the β and c minimizing the macro-patch's `thin-plate` or `membrane` energy.
+    #[arg(id = "interior", long = "interior", value_name = "INTERIOR",
+          default_value_t = InteriorChoice::Default)]
+    pub choice: InteriorChoice,
+}
+
+/// `--curves` (one construction) with [`CurveOptions`] and [`InteriorOption`]: how `fit` builds
+/// its surface.
+#[derive(clap::Args, Debug, Clone)]
+pub struct FitOptions {
+    /// Boundary-curve construction.
+    #[arg(long, default_value = "chord", value_parser = method_names())]
+    pub curves: String,
+    /// The curve constructions' options.
+    #[command(flatten)]
+    pub curve: CurveOptions,
+    /// The interior parameters.
+    #[command(flatten)]
+    pub interior: InteriorOption,
+}
+
+/// The registered construction names as the values a flag accepts (listed in its `--help`).
+fn method_names() -> PossibleValuesParser {
+    PossibleValuesParser::new(curves::REGISTRY.iter().map(|e| e.name))
+}
+
+/// Every registered construction, comma-separated in registry order: the default of `curve
+/// --methods`.
+pub fn all_methods() -> &'static str {
+    static ALL: LazyLock<String> = LazyLock::new(|| {
+        curves::REGISTRY
+            .iter()
+            .map(|e| e.name)
+            .collect::<Vec<_>>()
+            .join(",")
+    });
+    &ALL
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::builder::TypedValueParser as _;
+
+    #[test]
+    fn every_registered_construction_is_offered_and_builds() {
+        let all: Vec<&str> = all_methods().split(',').collect();
+        assert_eq!(all.len(), curves::REGISTRY.len());
+        for name in &all {
+            assert!(curves::method_by_name(name, &MethodOptions::default()).is_ok());
+        }
+        let offered: Vec<String> = method_names()
+            .possible_values()
+            .into_iter()
+            .flatten()
+            .map(|v| v.get_name().to_string())
+            .collect();
+        assert_eq!(offered, all);
     }
 }

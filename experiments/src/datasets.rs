@@ -1,9 +1,31 @@
-//! Edge problems of the data sets (the `surface` crate's registry), by name.
+//! The data sets of the `surface` crate's registry in the order the studies list them, and
+//! their edge problems, by name.
+
+use std::sync::LazyLock;
 
 use curves::BoundaryProblem;
-use surface::{dataset_by_name, DataSet};
+use surface::{dataset_by_name, DataSet, DATASET_NAMES};
 
 use crate::error::ExperimentError;
+
+/// The data set the studies list first: the seeds' ring.
+const LEADING: &str = "ring";
+
+/// Every data set of the registry ([`surface::DATASET_NAMES`]), in the order the studies list
+/// them (`sweep`'s tasks, the `solvers` default, `interior`'s comparison): the seeds' ring first,
+/// then the others in registry order.
+pub fn all() -> Vec<&'static str> {
+    let mut names = DATASET_NAMES.to_vec();
+    // Stable: the ring first, the rest keep their registry order.
+    names.sort_by_key(|n| *n != LEADING);
+    names
+}
+
+/// [`all`], comma-separated: the default of a `--data` list.
+pub fn all_joined() -> &'static str {
+    static ALL: LazyLock<String> = LazyLock::new(|| all().join(","));
+    &ALL
+}
 
 /// Loads a data set at its default resolution; an unknown name is a usage error listing the
 /// known ones.
@@ -29,4 +51,19 @@ pub fn edge_problems(name: &str) -> Result<(EdgeProblems, usize), ExperimentErro
         }
     }
     Ok((out, skipped))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_registered_data_set_is_listed_once_ring_first() {
+        let names = all();
+        assert_eq!(names.len(), DATASET_NAMES.len());
+        assert!(DATASET_NAMES.iter().all(|n| names.contains(n)));
+        assert_eq!(names.first(), Some(&LEADING));
+        // The order the committed results were written in.
+        assert_eq!(all_joined(), "ring,sphere,capsule,octa");
+    }
 }

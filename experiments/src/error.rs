@@ -1,12 +1,19 @@
 //! What can stop an experiment before it produces anything.
+//!
+//! Every variant says what the experiment was doing and names the file, option or value
+//! involved; where another error is the cause it is kept as the variant's `source` (never
+//! flattened into a string), so the whole chain reaches the user: [`chain`] writes the error
+//! and then each cause on its own `caused by:` line. The variants of this crate do not repeat
+//! their cause in their own message; errors of other crates often do (`"{path}: {source}"`),
+//! and [`chain`] leaves out a cause whose text is already shown.
 
 use std::path::PathBuf;
 
 /// An experiment could not run or could not write its results.
 #[derive(Debug, thiserror::Error)]
 pub enum ExperimentError {
-    /// A file or standard input could not be read.
-    #[error("cannot read {path}: {source}")]
+    /// A file, directory or standard input could not be read.
+    #[error("cannot read {path}")]
     Read {
         /// The file (or `<stdin>`).
         path: PathBuf,
@@ -14,46 +21,265 @@ pub enum ExperimentError {
         source: std::io::Error,
     },
     /// A result could not be written.
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {path}")]
     Write {
-        /// The file.
+        /// The file (or `<stdout>`).
         path: PathBuf,
         /// Why.
         source: std::io::Error,
     },
-    /// A figure could not be drawn or written.
+    /// A figure could not be drawn, or a file could not be written atomically (the renderer's
+    /// writer refuses a directory, device, FIFO or socket by name).
     #[error(transparent)]
     Render(#[from] render::RenderError),
     /// A mesh file could not be read.
     #[error(transparent)]
     MeshIo(meshio::MeshIoError),
-    /// A mesh file was read but could not be made into a mesh to fit.
-    #[error("{}: {source}", path.display())]
+    /// A mesh file was read but could not be made into a mesh to fit (nothing left after
+    /// repair, coordinates beyond a working frame, no normals and no estimator).
+    #[error("{path}: cannot make a mesh to fit of it")]
     Prepare {
         /// The file.
         path: PathBuf,
         /// Why.
         source: estimate::PrepareError,
     },
-    /// A named data set does not exist or its resolution is out of range.
+    /// `--estimate` names no estimator.
+    #[error("--estimate {value}: not an estimator's name or `none`")]
+    Estimate {
+        /// The value given.
+        value: String,
+        /// The estimator registry's answer (it lists the known names).
+        source: estimate::UnknownEstimator,
+    },
+    /// `--data` (with `--resolution`), or the ring study's `--resolution`, asks for a data set
+    /// that cannot be built: an unknown name that is no mesh file either, or a resolution out of
+    /// range.
+    #[error("{given}: {}", data_hint(source))]
+    DataOption {
+        /// The options as given (`--data NAME`, `--resolution N`).
+        given: String,
+        /// The data-set registry's answer.
+        source: surface::DataSetError,
+    },
+    /// A data set the experiment builds by itself could not be built (a defect, not a usage
+    /// error: the names and resolutions are the experiment's own).
     #[error(transparent)]
     DataSet(#[from] surface::DataSetError),
-    /// A curve construction name is not registered.
+    /// A curve construction name is not registered (`curve --methods`; `fit --curves` is checked
+    /// against the registry by the command-line parser).
     #[error(transparent)]
     Method(#[from] curves::UnknownMethod),
     /// A surface scheme name is not registered.
     #[error(transparent)]
     Scheme(#[from] surface::UnknownScheme),
-    /// An edge's boundary-curve problem is degenerate (names the edge's vertices).
-    #[error(transparent)]
-    Edge(#[from] curves::EdgeError),
+    /// The boundary-curve problems of a mesh could not be set up (a degenerate edge, named by
+    /// its vertices).
+    #[error("{subject}: cannot set up the boundary-curve problems")]
+    EdgeProblems {
+        /// What was being fitted (`ring`, a sweep task such as `sphere/optimized/lm`).
+        subject: String,
+        /// The degenerate edge.
+        source: curves::EdgeError,
+    },
     /// A fit could not be made (a bad parameter, or curvature the data does not have).
-    #[error(transparent)]
-    Fit(#[from] surface::FitError),
+    #[error("{subject}: cannot fit")]
+    Fit {
+        /// What was being fitted (the `--data` value, `ring/dbhs`, a sweep task, a file).
+        subject: String,
+        /// Why.
+        source: surface::FitError,
+    },
     /// A tessellation could not be made.
-    #[error("tessellation: {0}")]
-    Tess(#[from] surface::TessError),
-    /// A command-line setting names something that does not exist.
-    #[error("{0}")]
-    Usage(String),
+    #[error("{subject}: cannot tessellate")]
+    Tessellate {
+        /// What was being tessellated.
+        subject: String,
+        /// Why.
+        source: surface::TessError,
+    },
+    /// A tessellation or mesh could not be encoded in the format of its output file.
+    #[error("cannot write {path} as a mesh")]
+    MeshWrite {
+        /// The output file.
+        path: PathBuf,
+        /// The format writer's answer (the format and what it cannot hold).
+        source: meshio::WriteError,
+    },
+    /// An output option names a file whose extension no mesh writer handles.
+    #[error("{option} {path}: unsupported output format (writable: {writable})", path = .path.display())]
+    UnsupportedOutputFormat {
+        /// The option (`--out`, `--mesh-out`).
+        option: &'static str,
+        /// The file given.
+        path: PathBuf,
+        /// The writable extensions, comma-separated.
+        writable: String,
+    },
+    /// An output option names the input file (by any path): writing would destroy the input.
+    #[error("{option} {path}: the output is the input file; choose another output path", path = .path.display())]
+    OutputIsInput {
+        /// The option (`--out`, `--mesh-out`, `--output`).
+        option: &'static str,
+        /// The file given.
+        path: PathBuf,
+    },
+    /// A results directory exists as something that is not a directory.
+    #[error("{path}: exists and is not a directory; results are a directory")]
+    NotADirectory {
+        /// The path given.
+        path: PathBuf,
+    },
+    /// A report could not be serialized as JSON.
+    #[error("cannot serialize {what} as JSON")]
+    Json {
+        /// Which report (`the ring report`, `a sweep shard`, …).
+        what: &'static str,
+        /// Why.
+        source: serde_json::Error,
+    },
+    /// A JSON input file (golden numbers) is not valid JSON.
+    #[error("{path}: not valid JSON")]
+    JsonFile {
+        /// The file.
+        path: PathBuf,
+        /// The parser's answer (line and column).
+        source: serde_json::Error,
+    },
+    /// A shard file of `sweep --shard` could not be read by `merge`.
+    #[error("{path}: not a shard file of `sweep` that merge can read")]
+    Shard {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: experiments::shard::ShardError,
+    },
+    /// Two shard files come from runs with different options.
+    #[error("{path}: options {these} differ from {first}'s {theirs}: these shards come from different runs", path = .path.display(), first = .first.display())]
+    ShardOptionsDiffer {
+        /// The shard file read last.
+        path: PathBuf,
+        /// Its options (JSON).
+        these: String,
+        /// The first shard file read.
+        first: PathBuf,
+        /// Its options (JSON).
+        theirs: String,
+    },
+    /// A task appears in two shard files.
+    #[error("{path}: task {index} ({task}) appears in more than one shard", path = .path.display())]
+    ShardTaskRepeated {
+        /// The shard file where it appears again.
+        path: PathBuf,
+        /// The task's index in the sweep.
+        index: usize,
+        /// The task's name as the shard file gives it (JSON).
+        task: serde_json::Value,
+    },
+    /// Tasks of the sweep are in no shard file.
+    #[error("merge: {} of {total} tasks missing from {files} shard file(s): {}", missing.len(), missing.join(", "))]
+    ShardTasksMissing {
+        /// The missing tasks' names.
+        missing: Vec<String>,
+        /// Tasks of the sweep.
+        total: usize,
+        /// Shard files read.
+        files: usize,
+    },
+    /// `--corpus` holds no readable mesh file.
+    #[error("--corpus {path}: no mesh files (readable: {})", meshio::readable_extensions(), path = .path.display())]
+    EmptyCorpus {
+        /// The directory given.
+        path: PathBuf,
+    },
+    /// A numeric option is outside its valid range.
+    #[error("--{option} {value}: outside its valid range {range}{}", why.map(|w| format!(" ({w})")).unwrap_or_default())]
+    OutOfRange {
+        /// The option, without its dashes (`beta`, `tess`).
+        option: &'static str,
+        /// The value as given (shown in scientific notation when very small or large).
+        value: String,
+        /// The valid range, `[lo, hi]`.
+        range: String,
+        /// Why the range is what it is, where that needs saying.
+        why: Option<&'static str>,
+    },
+    /// A setting would need more memory than the machine has available.
+    #[error("{what} would need about {:.1} GB, more than this machine has available ({:.1} GB): choose a smaller setting", *needed_bytes as f64 / 1e9, *budget_bytes as f64 / 1e9)]
+    TooMuchMemory {
+        /// The options responsible (`--resolution 4096 --sampling 4`).
+        what: String,
+        /// Estimated need, bytes.
+        needed_bytes: u128,
+        /// What the run may use, bytes.
+        budget_bytes: u128,
+    },
+}
+
+/// The second half of a [`ExperimentError::DataOption`] message.
+fn data_hint(e: &surface::DataSetError) -> String {
+    match e {
+        surface::DataSetError::UnknownName { .. } => format!(
+            "not a data set, and no mesh file of that name (mesh files: {})",
+            meshio::readable_extensions()
+        ),
+        _ => "cannot build this data set".into(),
+    }
+}
+
+/// An error and its causes as the user sees them: the error on the first line, then each cause
+/// on its own `caused by:` line, leaving out a cause whose text is already shown (errors of other
+/// crates often repeat their source in their own message).
+pub fn chain(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        let line = c.to_string();
+        if !text.contains(&line) {
+            text.push_str("\n  caused by: ");
+            text.push_str(&line);
+        }
+        cause = c.source();
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_chain_shows_every_cause_once() {
+        let e = ExperimentError::Json {
+            what: "the ring report",
+            source: serde_json::from_str::<serde_json::Value>("{").unwrap_err(),
+        };
+        let text = chain(&e);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 2, "{text}");
+        assert_eq!(lines[0], "cannot serialize the ring report as JSON");
+        assert!(lines[1].starts_with("  caused by: EOF"), "{text}");
+        // A cause the message already repeats is not shown twice.
+        let e = ExperimentError::Render(render::RenderError::Io {
+            path: "x.png".into(),
+            source: std::io::Error::other("disk full"),
+        });
+        assert_eq!(chain(&e), "cannot write x.png: disk full");
+    }
+
+    #[test]
+    fn data_option_errors_name_the_option_and_keep_the_registry_answer() {
+        let source =
+            surface::dataset_by_name("torus", None).expect_err("`torus` is not a data set");
+        let e = ExperimentError::DataOption {
+            given: "--data torus".into(),
+            source,
+        };
+        let text = chain(&e);
+        assert!(text.starts_with("--data torus: not a data set"), "{text}");
+        assert!(
+            text.contains("caused by: unknown data set `torus`"),
+            "{text}"
+        );
+    }
 }

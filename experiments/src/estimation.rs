@@ -172,7 +172,7 @@ fn study_mesh(
 
 /// The study's meshes, in a fixed order.
 fn study_meshes() -> Result<Vec<StudyMesh>, ExperimentError> {
-    let usage = ExperimentError::from;
+    let built = ExperimentError::from;
     let mut out = Vec::new();
     let mut add = |family: &str, label: String, data: surface::DataSet, seed: u64| {
         let jit = jittered(&data.mesh, data.surface.as_ref(), seed);
@@ -190,15 +190,15 @@ fn study_meshes() -> Result<Vec<StudyMesh>, ExperimentError> {
         ));
     };
     for (i, nu) in [16usize, 32, 64, 128, 256].into_iter().enumerate() {
-        let d = surface::datasets::ring(nu, nu / 2).map_err(usage)?;
+        let d = surface::datasets::ring(nu, nu / 2).map_err(built)?;
         add("ring", format!("ring-{nu}x{}", nu / 2), d, 100 + i as u64);
     }
     for level in 1..=6usize {
-        let d = surface::datasets::sphere(level).map_err(usage)?;
+        let d = surface::datasets::sphere(level).map_err(built)?;
         add("sphere", format!("sphere-{level}"), d, 200 + level as u64);
     }
     for (i, n) in [8usize, 16, 32, 64, 128].into_iter().enumerate() {
-        let d = surface::datasets::capsule(n).map_err(usage)?;
+        let d = surface::datasets::capsule(n).map_err(built)?;
         add("capsule", format!("capsule-{n}"), d, 300 + i as u64);
     }
     Ok(out)
@@ -392,12 +392,23 @@ fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), 
         summary.fallbacks.len()
     );
     let mut rows = Vec::new();
-    for method in ["chord", "dbhs", "optimized"] {
+    for method in crate::ring::METHODS {
         let m = method_by_name(method, &MethodOptions::default()).map_err(ExperimentError::from)?;
         for (label, mesh) in [("exact", &data.mesh), ("estimated", &estimated)] {
-            let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
-                .map_err(|e| ExperimentError::Usage(format!("ring ({label}): {e}")))?;
-            let tess = tessellate(&f.bezier_patches(), 4).map_err(ExperimentError::from)?;
+            let subject = || format!("ring/{method} ({label} data)");
+            let f =
+                fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).map_err(|source| {
+                    ExperimentError::Fit {
+                        subject: subject(),
+                        source,
+                    }
+                })?;
+            let tess = tessellate(&f.bezier_patches(), 4).map_err(|source| {
+                ExperimentError::Tessellate {
+                    subject: subject(),
+                    source,
+                }
+            })?;
             let errs = compare_with_truth(&tess, truth);
             let g1 = measure_g1(mesh, &f, 9);
             let _ = writeln!(
@@ -428,8 +439,10 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
         return Ok(ExitCode::SUCCESS);
     }
     let golden: Value = match std::fs::read_to_string(&args.golden) {
-        Ok(text) => serde_json::from_str(&text)
-            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.golden.display())))?,
+        Ok(text) => serde_json::from_str(&text).map_err(|source| ExperimentError::JsonFile {
+            path: args.golden.clone(),
+            source,
+        })?,
         Err(e) => {
             say!(
                 "estimation: no golden numbers ({}: {e}); libigl columns left empty",

@@ -16,7 +16,7 @@ use serde_json::json;
 use surface::fairing::InteriorChoice;
 use surface::{fit, measure_g1, InteriorParameters};
 
-use crate::curve_args::CurveOptions;
+use crate::curve_args::FitOptions;
 use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
 use crate::limits::{
@@ -33,22 +33,15 @@ pub struct FitArgs {
     /// The input mesh and how to complete it.
     #[command(flatten)]
     input: InputArgs,
-    /// Boundary-curve construction: chord, dbhs or optimized.
-    #[arg(long, default_value = "chord")]
-    curves: String,
-    /// The curve constructions' options.
+    /// The construction, its options and the interior parameters.
     #[command(flatten)]
-    curve: CurveOptions,
+    fit: FitOptions,
     /// β at every corner (1/3: the Shirman–Séquin default, C1 inside each triangle).
     #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_BETA)]
     beta: f64,
     /// Jensen's c on every edge (1: Chiyokura–Kimura).
     #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_C)]
     c: f64,
-    /// Interior parameters: `default` (the --beta and --c values), or per triangle the β and c
-    /// minimizing the macro-patch's `thin-plate` or `membrane` energy.
-    #[arg(long, default_value_t = InteriorChoice::Default)]
-    interior: InteriorChoice,
     /// Where to write the patches (JSON Lines); none are written when absent.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -100,28 +93,31 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let face_source = loaded.face_source;
     let vertex_source = loaded.vertex_source;
     let t_read = t0.elapsed().as_secs_f64();
-    let options = args.curve.method_options();
-    let method = method_by_name(&args.curves, &options).map_err(ExperimentError::from)?;
+    let options = args.fit.curve.method_options();
+    let method = method_by_name(&args.fit.curves, &options).map_err(ExperimentError::from)?;
     let params = InteriorParameters {
         beta: [args.beta; 3],
         c: [args.c; 3],
     };
     let t1 = Instant::now();
-    let fitted = fit(&mesh, method.as_ref(), &|_| params)
-        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
+    let fit_error = |source| ExperimentError::Fit {
+        subject: args.input.data.clone(),
+        source,
+    };
+    let fitted = fit(&mesh, method.as_ref(), &|_| params).map_err(fit_error)?;
     let (fitted, stats) = surface::fairing::refit_interior(
         &mesh,
         method.as_ref(),
         fitted,
-        args.interior,
-        args.curve.solver,
+        args.fit.interior.choice,
+        args.fit.curve.solver,
     )
-    .map_err(|e| ExperimentError::Usage(format!("{}: {e}", args.input.data)))?;
+    .map_err(fit_error)?;
     let t_fit = t1.elapsed().as_secs_f64();
-    if args.interior != InteriorChoice::Default {
+    if args.fit.interior.choice != InteriorChoice::Default {
         say!(
             "  interior {}: {} faces, {} converged, {} kept at defaults, energy {:.4e} → {:.4e}",
-            args.interior,
+            args.fit.interior.choice,
             stats.faces,
             stats.converged,
             stats.kept_default,
@@ -134,7 +130,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t_g1 = t2.elapsed().as_secs_f64();
 
     if let Some(out) = &args.out {
-        crate::output::refuse_overwriting_input(out, &args.input.data)?;
+        crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
         let mut text = String::new();
         let per_face = fitted.layout.patches_per_face();
         for (i, p) in fitted.nets().enumerate() {
@@ -155,21 +151,30 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             limits::tessellation_bytes(fitted.num_patches() as u128, args.tess),
         )?;
         let t3 = Instant::now();
-        let mut tess = surface::tessellate(&fitted.bezier_patches(), args.tess)
-            .map_err(ExperimentError::from)?;
+        let mut tess =
+            surface::tessellate(&fitted.bezier_patches(), args.tess).map_err(|source| {
+                ExperimentError::Tessellate {
+                    subject: args.input.data.clone(),
+                    source,
+                }
+            })?;
         frame.tessellation_to_world(&mut tess);
-        crate::output::refuse_overwriting_input(path, &args.input.data)?;
+        crate::output::refuse_overwriting_input("--mesh-out", path, &args.input.data)?;
         let format = meshio::format_for_path(path)
             .filter(|f| f.can_write())
-            .ok_or_else(|| {
-                ExperimentError::Usage(format!(
-                    "--mesh-out {}: unsupported output format",
-                    path.display()
-                ))
+            .ok_or_else(|| ExperimentError::UnsupportedOutputFormat {
+                option: "--mesh-out",
+                path: path.clone(),
+                writable: crate::output::writable_extensions(),
             })?;
         let raw = tessellation_to_raw(&tess);
-        let bytes = meshio::write_bytes(&raw, format, &meshio::WriteOptions::new())
-            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", path.display())))?;
+        let bytes =
+            meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|source| {
+                ExperimentError::MeshWrite {
+                    path: path.clone(),
+                    source,
+                }
+            })?;
         write_result(Some(path), &bytes)?;
         say!(
             "  tessellation: s = {}, {} vertices, {} triangles, {} seam welds, in {:.3} s → {}",

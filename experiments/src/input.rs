@@ -58,8 +58,11 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         let t = std::time::Instant::now();
         let raw = meshio::read_file(path).map_err(ExperimentError::MeshIo)?;
         let t_read = t.elapsed().as_secs_f64();
-        let choice = EstimateChoice::parse(&args.estimate)
-            .map_err(|e| ExperimentError::Usage(format!("--estimate: {e}")))?;
+        let choice =
+            EstimateChoice::parse(&args.estimate).map_err(|source| ExperimentError::Estimate {
+                value: args.estimate.clone(),
+                source,
+            })?;
         let prepared = estimate::prepare(&raw, choice, args.replace_normals).map_err(|source| {
             ExperimentError::Prepare {
                 path: path.to_path_buf(),
@@ -81,11 +84,14 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
             vertex_source: Some(prepared.vertex_source),
         });
     }
-    let data = surface::dataset_by_name(&args.data, args.resolution).map_err(|e| {
-        ExperimentError::Usage(format!(
-            "{e}; or give a mesh file ({})",
-            meshio::readable_extensions()
-        ))
+    let data = surface::dataset_by_name(&args.data, args.resolution).map_err(|source| {
+        ExperimentError::DataOption {
+            given: match args.resolution {
+                Some(r) => format!("--data {} --resolution {r}", args.data),
+                None => format!("--data {}", args.data),
+            },
+            source,
+        }
     })?;
     Ok(Loaded {
         mesh: data.mesh,

@@ -36,12 +36,13 @@ const MEMORY_SHARE: f64 = 0.8;
 /// Memory assumed available where the system does not say (`/proc/meminfo` absent).
 const FALLBACK_AVAILABLE: u64 = 8 << 30;
 
-/// `--option value` must lie in `range`.
+/// `--option value` must lie in `range` (`option` without its dashes; `why` says why the range is
+/// what it is).
 pub fn check_f64(
-    option: &str,
+    option: &'static str,
     value: f64,
     range: &RangeInclusive<f64>,
-    why: &str,
+    why: &'static str,
 ) -> Result<(), ExperimentError> {
     if range.contains(&value) {
         return Ok(());
@@ -51,27 +52,29 @@ pub fn check_f64(
     } else {
         format!("{value}")
     };
-    Err(ExperimentError::Usage(format!(
-        "--{option} {shown}: outside its valid range [{}, {}] ({why})",
-        range.start(),
-        range.end()
-    )))
+    Err(ExperimentError::OutOfRange {
+        option,
+        value: shown,
+        range: format!("[{}, {}]", range.start(), range.end()),
+        why: Some(why),
+    })
 }
 
-/// `--option value` must lie in `range`.
+/// `--option value` must lie in `range` (`option` without its dashes).
 pub fn check_usize(
-    option: &str,
+    option: &'static str,
     value: usize,
     range: &RangeInclusive<usize>,
 ) -> Result<(), ExperimentError> {
     if range.contains(&value) {
         return Ok(());
     }
-    Err(ExperimentError::Usage(format!(
-        "--{option} {value}: outside its valid range [{}, {}]",
-        range.start(),
-        range.end()
-    )))
+    Err(ExperimentError::OutOfRange {
+        option,
+        value: value.to_string(),
+        range: format!("[{}, {}]", range.start(), range.end()),
+        why: None,
+    })
 }
 
 /// Memory available to this process, bytes (Linux `MemAvailable`, else a stated assumption).
@@ -94,11 +97,11 @@ pub fn check_memory(what: &str, bytes: u128) -> Result<(), ExperimentError> {
     if bytes <= budget {
         return Ok(());
     }
-    Err(ExperimentError::Usage(format!(
-        "{what} would need about {:.1} GB, more than this machine has available ({:.1} GB): choose a smaller setting",
-        bytes as f64 / 1e9,
-        budget as f64 / 1e9
-    )))
+    Err(ExperimentError::TooMuchMemory {
+        what: what.to_string(),
+        needed_bytes: bytes,
+        budget_bytes: budget,
+    })
 }
 
 /// Estimated bytes of a tessellation of `patches` patches at `s` segments per edge.
@@ -131,6 +134,11 @@ mod tests {
             .contains("--beta 1e-308: outside its valid range [0.01, 10]"));
         assert!(check_f64("c", 1.0, &C_RANGE, "c").is_ok());
         assert!(check_f64("c", f64::NAN, &C_RANGE, "c").is_err());
+        let e = check_usize("tess", 1000, &SAMPLING_RANGE).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--tess 1000: outside its valid range [1, 256]"
+        );
         assert!(check_usize("tess", usize::MAX, &SAMPLING_RANGE).is_err());
     }
 

@@ -34,7 +34,6 @@ mod limits;
 mod output;
 mod realmesh;
 mod ring;
-mod ring_render;
 mod schemes;
 mod solvers;
 mod sweep;
@@ -113,7 +112,8 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            say!("error: {e}");
+            // The error, then each cause on its own `caused by:` line.
+            say!("error: {}", error::chain(&e));
             ExitCode::from(2)
         }
     }

@@ -35,19 +35,46 @@ pub fn ensure_dir(dir: &Path) -> Result<(), ExperimentError> {
     })
 }
 
-/// Refuses to write `out` when it is the input file `input` (the same file, by any path): a
-/// conversion or fit would otherwise destroy its own input.
-pub fn refuse_overwriting_input(out: &Path, input: &str) -> Result<(), ExperimentError> {
+/// Refuses to write `out` (given by `option`, such as `--out`) when it is the input file `input`
+/// (the same file, by any path): a conversion or fit would otherwise destroy its own input.
+pub fn refuse_overwriting_input(
+    option: &'static str,
+    out: &Path,
+    input: &str,
+) -> Result<(), ExperimentError> {
     let (Ok(a), Ok(b)) = (std::fs::canonicalize(out), std::fs::canonicalize(input)) else {
         return Ok(());
     };
     if a == b {
-        return Err(ExperimentError::Usage(format!(
-            "{}: the output is the input file; choose another output path",
-            out.display()
-        )));
+        return Err(ExperimentError::OutputIsInput {
+            option,
+            path: out.to_path_buf(),
+        });
     }
     Ok(())
+}
+
+/// The extensions of the writable mesh formats, comma-separated (`.obj, .ply, …`; `meshio` lists
+/// only the readable ones).
+pub fn writable_extensions() -> String {
+    meshio::FORMATS
+        .iter()
+        .filter(|f| f.can_write())
+        .flat_map(|f| f.extensions().iter().map(|e| format!(".{e}")))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A report as pretty-printed JSON with a final newline, the form of every `report.json` and
+/// shard file; `what` names the report in the error.
+pub fn pretty_json(
+    value: &serde_json::Value,
+    what: &'static str,
+) -> Result<String, ExperimentError> {
+    let mut text = serde_json::to_string_pretty(value)
+        .map_err(|source| ExperimentError::Json { what, source })?;
+    text.push('\n');
+    Ok(text)
 }
 
 /// A result directory written whole: every file goes into a fresh staging directory beside the
@@ -74,10 +101,9 @@ impl Staged {
     pub fn begin_keeping(out: &Path, keep: impl Fn(&str) -> bool) -> Result<Self, ExperimentError> {
         if let Ok(meta) = std::fs::symlink_metadata(out) {
             if !meta.is_dir() {
-                return Err(ExperimentError::Usage(format!(
-                    "{}: exists and is not a directory; results are a directory",
-                    out.display()
-                )));
+                return Err(ExperimentError::NotADirectory {
+                    path: out.to_path_buf(),
+                });
             }
         }
         let name = out

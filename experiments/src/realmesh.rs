@@ -33,6 +33,8 @@ const KCOLOR_MEDIANS: f64 = 4.0;
 const TILE: (u32, u32) = (360, 300);
 /// Tessellation density of the pictures (segments per sub-patch edge).
 const SAMPLING: usize = 3;
+/// The construction whose surfaces are pictured.
+const PICTURED_METHOD: &str = "optimized";
 /// The two views (azimuth°, elevation°, name).
 const VIEWS: [(f64, f64, &str); 2] = [(-60.0, 15.0, "front"), (120.0, 30.0, "back")];
 
@@ -82,10 +84,9 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     let out = staged.path().to_path_buf();
     let files = corpus_files(&args.corpus)?;
     if files.is_empty() {
-        return Err(ExperimentError::Usage(format!(
-            "{}: no mesh files",
-            args.corpus.display()
-        )));
+        return Err(ExperimentError::EmptyCorpus {
+            path: args.corpus.clone(),
+        });
     }
     let mut md = String::from(
         "# Real meshes\n\nThe committed corpus (`data/meshes/`, licences there), each file read as it is, repaired by the stated rules, its normals and shape tensors estimated, and fitted with the modified Shirman–Séquin scheme and every curve construction. G1 defects are split into edges between regular faces (the scheme's guarantee) and edges touching a fallback face (C0 only).\n\n| mesh | vertices | faces | repairs | curves | fallback faces | degenerate edges | G1 regular (rad) | G1 at fallbacks (rad) | unconverged | fit time (s) |\n|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n",
@@ -113,12 +114,17 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             .map(|r| r.summary_lines())
             .unwrap_or_default();
         let mut per_method = Map::new();
-        for method in ["chord", "dbhs", "optimized"] {
+        for method in curves::REGISTRY.iter().map(|e| e.name) {
             let m =
                 method_by_name(method, &MethodOptions::default()).map_err(ExperimentError::from)?;
             let t = Instant::now();
-            let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
-                .map_err(|e| ExperimentError::Usage(format!("{}: {e}", path.display())))?;
+            let f =
+                fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).map_err(|source| {
+                    ExperimentError::Fit {
+                        subject: format!("{} ({method} curves)", path.display()),
+                        source,
+                    }
+                })?;
             let t_fit = t.elapsed().as_secs_f64();
             let g1 = measure_g1(mesh, &f, 9);
             let finite = f.points.iter().all(|q| q.iter().all(|c| c.is_finite()));
@@ -148,9 +154,13 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                        "unconverged": f.unconverged, "finite": finite,
                        "fit_time_seconds": t_fit}),
             );
-            if method == "optimized" {
-                let tess =
-                    tessellate(&f.bezier_patches(), SAMPLING).map_err(ExperimentError::from)?;
+            if method == PICTURED_METHOD {
+                let tess = tessellate(&f.bezier_patches(), SAMPLING).map_err(|source| {
+                    ExperimentError::Tessellate {
+                        subject: format!("{} ({method} curves)", path.display()),
+                        source,
+                    }
+                })?;
                 let (lo, hi) = bbox(&tess.positions);
                 shots.push((name.clone(), tess, (hi - lo).norm()));
             }

@@ -120,11 +120,18 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
         for entry in REGISTRY {
             let scheme = scheme_by_name(entry.name, &SchemeOptions::default())?;
             let t0 = Instant::now();
-            let f = fit_scheme(mesh, scheme.as_ref(), method.as_ref())?;
+            let subject = format!("{name}/{}", entry.name);
+            let f = fit_scheme(mesh, scheme.as_ref(), method.as_ref()).map_err(|source| {
+                ExperimentError::Fit {
+                    subject: subject.clone(),
+                    source,
+                }
+            })?;
             let fit_ms = t0.elapsed().as_secs_f64() * 1e3;
             let g1 = measure_g1(mesh, &f, 9);
             let s = segments(args.density, f.layout.patches_per_face());
-            let tess = tessellate(&f.bezier_patches(), s)?;
+            let tess = tessellate(&f.bezier_patches(), s)
+                .map_err(|source| ExperimentError::Tessellate { subject, source })?;
             let errors = compare_with_truth(&tess, data.surface.as_ref());
             let holds = match f.continuity {
                 Continuity::G1 => g1.max_angle() < G1_CLAIM,
@@ -227,8 +234,7 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
         "results": records,
         "time_seconds": start.elapsed().as_secs_f64(),
     });
-    let text = serde_json::to_string_pretty(&report)
-        .map_err(|e| ExperimentError::Usage(format!("cannot serialize the report: {e}")))?;
+    let text = crate::output::pretty_json(&report, "the schemes report")?;
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     write_result(Some(&out.join("report.md")), md.as_bytes())?;
     staged.commit()?;

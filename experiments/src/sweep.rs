@@ -1,8 +1,9 @@
 //! `experiments -- sweep` and `experiments -- merge`: the ring study's measures over every data
 //! set × curve construction × solver, as one comparison table.
 //!
-//! The task list is fixed and ordered (data sets in registry order, then constructions, then —
-//! for `optimized` — solvers). `--shard i/n` runs the tasks whose index is `i mod n`
+//! The task list is fixed and ordered (data sets in the studies' order — the ring first, then
+//! the `surface` registry's order —, then constructions in `curves::REGISTRY` order, then — for
+//! `optimized` — solvers). `--shard i/n` runs the tasks whose index is `i mod n`
 //! (round-robin, so shards get similar mixes) and writes `shard-i-of-n.json`; `merge` joins the
 //! shard files of a directory, checks that every task is present exactly once, and writes the
 //! same `report.json`/`report.md` an unsharded run writes. Nothing depends on the shard: a task's
@@ -20,11 +21,13 @@ use serde_json::{json, Value};
 use solver::SolverKind;
 use surface::{compare_with_truth, fit, measure_g1, tessellate, InteriorParameters};
 
+use crate::curve_args::InteriorOption;
 use crate::error::ExperimentError;
-use crate::output::{ensure_dir, write_result, Staged};
+use crate::output::{ensure_dir, pretty_json, write_result, Staged};
 
-/// Data sets of the sweep, in order.
-const DATASETS: [&str; 4] = ["ring", "sphere", "capsule", "octa"];
+/// The construction that takes a solver: the sweep runs it once per solver (`SolverKind::ALL`),
+/// every other construction once.
+const SOLVED_METHOD: &str = "optimized";
 /// Tessellation density of the sweep's measurements.
 const SAMPLING: usize = 4;
 
@@ -45,25 +48,27 @@ impl Task {
     }
 }
 
+/// Every data set (in the studies' order, [`crate::datasets::all`]) × every registered
+/// construction (registry order) × every solver for [`SOLVED_METHOD`].
 fn tasks() -> Vec<Task> {
     let mut out = Vec::new();
-    for dataset in DATASETS {
-        out.push(Task {
-            dataset,
-            curves: "chord",
-            solver: None,
-        });
-        out.push(Task {
-            dataset,
-            curves: "dbhs",
-            solver: None,
-        });
-        for s in SolverKind::ALL {
-            out.push(Task {
-                dataset,
-                curves: "optimized",
-                solver: Some(s),
-            });
+    for dataset in crate::datasets::all() {
+        for curves in curves::REGISTRY.iter().map(|e| e.name) {
+            if curves == SOLVED_METHOD {
+                for s in SolverKind::ALL {
+                    out.push(Task {
+                        dataset,
+                        curves,
+                        solver: Some(s),
+                    });
+                }
+            } else {
+                out.push(Task {
+                    dataset,
+                    curves,
+                    solver: None,
+                });
+            }
         }
     }
     out
@@ -104,9 +109,9 @@ pub struct SweepArgs {
     /// `merge`).
     #[arg(long)]
     shard: Option<Shard>,
-    /// Interior parameters of every task: default, thin-plate or membrane.
-    #[arg(long, default_value_t = surface::fairing::InteriorChoice::Default)]
-    interior: surface::fairing::InteriorChoice,
+    /// The interior parameters of every task's surface.
+    #[command(flatten)]
+    interior: InteriorOption,
     /// Output directory.
     #[arg(long, default_value = "results/sweep")]
     out: PathBuf,
@@ -132,11 +137,18 @@ fn run_task(
         ..MethodOptions::default()
     };
     let m = method_by_name(t.curves, &options).map_err(ExperimentError::from)?;
-    let problems = surface::curve_stats::edge_problems(mesh)
-        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
+    let problems = surface::curve_stats::edge_problems(mesh).map_err(|source| {
+        ExperimentError::EdgeProblems {
+            subject: t.id(),
+            source,
+        }
+    })?;
+    let fit_error = |source| ExperimentError::Fit {
+        subject: t.id(),
+        source,
+    };
     let t_fit = Instant::now();
-    let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
-        .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
+    let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).map_err(fit_error)?;
     let (f, _) = surface::fairing::refit_interior(
         mesh,
         m.as_ref(),
@@ -144,12 +156,16 @@ fn run_task(
         interior,
         t.solver.unwrap_or(SolverKind::ExactPenalty),
     )
-    .map_err(|e| ExperimentError::Usage(format!("{}: {e}", t.id())))?;
+    .map_err(fit_error)?;
     let fit_time = t_fit.elapsed().as_secs_f64();
     let g1 = measure_g1(mesh, &f, 9);
     let cs = surface::curve_stats::curve_stats(&problems, &f);
-    let tess = tessellate(&f.bezier_patches(), SAMPLING)
-        .map_err(|e| ExperimentError::Usage(format!("{}: tessellation: {e}", t.id())))?;
+    let tess = tessellate(&f.bezier_patches(), SAMPLING).map_err(|source| {
+        ExperimentError::Tessellate {
+            subject: t.id(),
+            source,
+        }
+    })?;
     let errors = compare_with_truth(&tess, data.surface.as_ref());
     Ok(json!({
         "task": t.id(),
@@ -185,8 +201,8 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         if tty {
             say_inline!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
         }
-        let mut v = run_task(t, args.interior)?;
-        v["interior"] = json!(args.interior.to_string());
+        let mut v = run_task(t, args.interior.choice)?;
+        v["interior"] = json!(args.interior.choice.to_string());
         v["index"] = json!(k);
         results.push(v);
     }
@@ -197,10 +213,8 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     match args.shard {
         Some(s) => {
             let shard = json!({"shard": [s.index, s.count], "tasks_total": all.len(),
-                               "options": options_json(args.interior), "results": results});
-            let mut text = serde_json::to_string_pretty(&shard)
-                .map_err(|e| ExperimentError::Usage(format!("cannot serialize: {e}")))?;
-            text.push('\n');
+                               "options": options_json(args.interior.choice), "results": results});
+            let text = pretty_json(&shard, "the shard report")?;
             let path = args
                 .out
                 .join(format!("shard-{}-of-{}.json", s.index, s.count));
@@ -215,7 +229,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         }
         None => {
             let staged = Staged::begin_keeping(&args.out, is_shard)?;
-            write_report(staged.path(), &options_json(args.interior), results)?;
+            write_report(staged.path(), &options_json(args.interior.choice), results)?;
             staged.commit()?;
         }
     }
@@ -259,28 +273,33 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
             path: p.clone(),
             source,
         })?;
-        let shard = experiments::shard::read_shard(&text, total)
-            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", p.display())))?;
+        let shard = experiments::shard::read_shard(&text, total).map_err(|source| {
+            ExperimentError::Shard {
+                path: p.clone(),
+                source,
+            }
+        })?;
         // Shards of different runs must not be joined: their options must agree.
         let these = shard.options.clone();
         match &options {
             None => options = Some((p.clone(), these)),
             Some((first, o)) if *o != these => {
-                return Err(ExperimentError::Usage(format!(
-                "{}: options {these} differ from {}'s {o}: these shards come from different runs",
-                p.display(),
-                first.display()
-            )))
+                return Err(ExperimentError::ShardOptionsDiffer {
+                    path: p.clone(),
+                    these: these.to_string(),
+                    first: first.clone(),
+                    theirs: o.to_string(),
+                })
             }
             Some(_) => {}
         }
         for (k, r) in shard.results {
             if results[k].is_some() {
-                return Err(ExperimentError::Usage(format!(
-                    "{}: task {k} ({}) appears in more than one shard",
-                    p.display(),
-                    r["task"]
-                )));
+                return Err(ExperimentError::ShardTaskRepeated {
+                    path: p.clone(),
+                    index: k,
+                    task: r["task"].clone(),
+                });
             }
             results[k] = Some(r);
         }
@@ -292,12 +311,11 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         .map(|(k, _)| tasks()[k].id())
         .collect();
     if !missing.is_empty() {
-        return Err(ExperimentError::Usage(format!(
-            "merge: {} of {total} tasks missing from {} shard file(s): {}",
-            missing.len(),
-            paths.len(),
-            missing.join(", ")
-        )));
+        return Err(ExperimentError::ShardTasksMissing {
+            missing,
+            total,
+            files: paths.len(),
+        });
     }
     let options = options.map(|(_, o)| o).unwrap_or(Value::Null);
     let staged = Staged::begin_keeping(&args.out, is_shard)?;
@@ -318,9 +336,7 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
 fn write_report(out: &Path, options: &Value, results: Vec<Value>) -> Result<(), ExperimentError> {
     let report = json!({"experiment": "sweep", "sampling": SAMPLING, "beta": surface::shirman_sequin::DEFAULT_BETA,
                         "c": surface::shirman_sequin::DEFAULT_C, "options": options, "results": results});
-    let mut text = serde_json::to_string_pretty(&report)
-        .map_err(|e| ExperimentError::Usage(format!("cannot serialize: {e}")))?;
-    text.push('\n');
+    let text = pretty_json(&report, "the sweep report")?;
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let mut md = String::new();
     let _ = writeln!(md, "# Sweep: data sets × boundary curves × solvers\n");

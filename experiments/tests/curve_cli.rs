@@ -58,6 +58,12 @@ fn unknown_method_and_missing_file_are_usage_errors() {
     let (code, _, err) = run(&["curve", "--input", "/nonexistent/problems.jsonl"], "");
     assert_eq!(code, 2);
     assert!(err.contains("/nonexistent/problems.jsonl"), "{err}");
+    // The cause is kept and printed on its own line.
+    assert!(
+        err.lines()
+            .any(|l| l.trim_start().starts_with("caused by: ")),
+        "{err}"
+    );
 }
 
 #[test]

@@ -1,6 +1,8 @@
 //! Pictures and mesh files of the ring study: every surface from three views, shaded, coloured
-//! by Gaussian curvature (KColor) and by distance to the true surface (Radial).
+//! by Gaussian curvature (KColor) and by distance to the true surface (Radial); every surface as
+//! PLY, the optimized one as OBJ and as patch nets (JSON Lines).
 
+use std::fmt::Write as _;
 use std::path::Path;
 
 use nalgebra::{Point3, Vector3};
@@ -11,9 +13,9 @@ use render::{
 };
 use serde_json::{json, Value};
 
+use super::surfaces::{FittedMethod, SurfaceView};
 use crate::error::ExperimentError;
 use crate::output::write_result;
-use crate::ring::SurfaceView;
 
 /// The three views (azimuth°, elevation°, name) of the seeds' Pictures 1–3: an overview, a view
 /// from above onto the top of the ring (where Mann's Picture 2 shows the worst artifact), and a
@@ -200,6 +202,27 @@ pub fn write_meshes(out: &Path, views: &[SurfaceView<'_>]) -> Result<(), Experim
                 source,
             })?;
         write_result(Some(&out.join(format!("{}.obj", v.name))), &obj)?;
+    }
+    Ok(())
+}
+
+/// Patch nets of the optimized surface (the others: `experiments -- fit --out`), to keep the
+/// committed results small.
+pub fn write_patches(out: &Path, fits: &[FittedMethod]) -> Result<(), ExperimentError> {
+    for FittedMethod { name, fit: f, .. } in fits.iter().filter(|f| f.name == "optimized") {
+        let mut text = String::new();
+        for (i, net) in f.nets().enumerate() {
+            let pts: Vec<[f64; 3]> = net.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let _ = writeln!(
+                text,
+                "{}",
+                json!({"type": "BezierTriangle", "degree": 4, "points": pts, "face": i / 3, "subpatch": i % 3})
+            );
+        }
+        write_result(
+            Some(&out.join(format!("patches-{name}.jsonl"))),
+            text.as_bytes(),
+        )?;
     }
     Ok(())
 }
