@@ -1,9 +1,10 @@
-//! `experiments -- fit`: fit a data set or mesh file with the modified Shirman–Séquin scheme and
-//! write the patches as JSON Lines.
+//! `experiments -- fit`: fit a data set or mesh file with a surface scheme (`--scheme`, default
+//! the modified Shirman–Séquin) and write the patches as JSON Lines.
 //!
-//! Each output line is one record, `{"type": "BezierTriangle", "degree": 4, "points":
-//! [[x, y, z], …15], "face": f, "subpatch": e}` (points in the row order of docs/conventions.md; sub-patch `e`
-//! of face `f` spans the face's corners `e`, `e + 1` and the split point). stderr gets the G1
+//! Each output line is one record, `{"type": "BezierTriangle", "degree": n, "points":
+//! [[x, y, z], …], "face": f, "subpatch": e}` (points in the row order of docs/conventions.md;
+//! sub-patch `e` of face `f` spans the scheme's sub-triangle `e` of the face: for
+//! Shirman–Séquin, the face's corners `e`, `e + 1` and the split point). stderr gets the G1
 //! defect, the interpolation error, the curve statistics and the time of each stage.
 
 use std::fmt::Write as _;
@@ -14,7 +15,7 @@ use std::time::Instant;
 use curves::method_by_name;
 use serde_json::json;
 use surface::fairing::InteriorChoice;
-use surface::{fit, measure_g1, InteriorParameters};
+use surface::{measure_g1, InteriorParameters};
 
 use crate::curve_args::FitOptions;
 use crate::error::ExperimentError;
@@ -104,11 +105,11 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         subject: args.input.data.clone(),
         source,
     };
-    let fitted = fit(&mesh, method.as_ref(), &|_| params).map_err(fit_error)?;
-    let (fitted, stats) = surface::fairing::refit_interior(
+    let scheme = args.fit.scheme.build(params)?;
+    let (fitted, stats) = surface::fairing::fit_surface(
         &mesh,
+        scheme.as_ref(),
         method.as_ref(),
-        fitted,
         args.fit.interior.choice,
         args.fit.curve.solver,
     )
@@ -187,18 +188,30 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         );
     }
     let faces = mesh.num_faces();
+    let settings = match (fitted.scheme, scheme.uses_curves()) {
+        ("shirman-sequin", _) => {
+            format!(
+                "curves {}, β = {}, c = {}",
+                method.name(),
+                args.beta,
+                args.c
+            )
+        }
+        (_, true) => format!("curves {}", method.name()),
+        (_, false) => "its own boundaries".to_string(),
+    };
     say!(
-        "fit: {} ({} vertices, {} edges, {} faces), curves {}, β = {}, c = {}",
+        "fit: {} ({} vertices, {} edges, {} faces), scheme {} ({}), {settings}",
         args.input.data,
         mesh.num_vertices(),
         mesh.num_edges(),
         faces,
-        method.name(),
-        args.beta,
-        args.c
+        fitted.scheme,
+        fitted.continuity,
     );
     say!(
-        "  G1 defect: interior {:.3e} rad, exterior {:.3e} rad; interpolation: position {:.3e}, normal {:.3e} rad",
+        "  {}: interior {:.3e} rad, exterior {:.3e} rad; interpolation: position {:.3e}, normal {:.3e} rad",
+        if fitted.continuity == surface::Continuity::G1 { "G1 defect" } else { "normal jump (the scheme claims only C0)" },
         g1.interior_max, g1.exterior_max, g1.position_error * frame.scale, g1.normal_error
     );
     if !fitted.face_fallbacks.is_empty() {
@@ -244,12 +257,14 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             say!("    edge {}: {}", d.edge, d.error);
         }
     }
-    say!(
-        "  curves: {} fallbacks to chord, {} unconverged optimizations, {} flipped tangents",
-        fitted.fallbacks,
-        fitted.unconverged,
-        fitted.flipped_tangents
-    );
+    if scheme.uses_curves() {
+        say!(
+            "  curves: {} fallbacks to chord, {} unconverged optimizations, {} flipped tangents",
+            fitted.fallbacks,
+            fitted.unconverged,
+            fitted.flipped_tangents
+        );
+    }
     say!(
         "  time: read {:.3} s, fit {:.3} s ({:.0} triangles/s), G1 {:.3} s",
         t_read,

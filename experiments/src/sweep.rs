@@ -19,9 +19,9 @@ use std::time::Instant;
 use curves::{method_by_name, MethodOptions};
 use serde_json::{json, Value};
 use solver::SolverKind;
-use surface::{compare_with_truth, fit, measure_g1, tessellate, InteriorParameters};
+use surface::{compare_with_truth, measure_g1, tessellate, InteriorParameters};
 
-use crate::curve_args::InteriorOption;
+use crate::curve_args::{InteriorOption, SchemeOption};
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, pretty_json, write_result, Staged};
 
@@ -112,6 +112,9 @@ pub struct SweepArgs {
     /// The interior parameters of every task's surface.
     #[command(flatten)]
     interior: InteriorOption,
+    /// The surface scheme of every task.
+    #[command(flatten)]
+    scheme: SchemeOption,
     /// Output directory.
     #[arg(long, default_value = "results/sweep")]
     out: PathBuf,
@@ -128,6 +131,7 @@ pub struct MergeArgs {
 fn run_task(
     t: &Task,
     interior: surface::fairing::InteriorChoice,
+    scheme: &dyn surface::Scheme,
 ) -> Result<Value, ExperimentError> {
     let start = Instant::now();
     let data = surface::dataset_by_name(t.dataset, None).map_err(ExperimentError::from)?;
@@ -148,11 +152,10 @@ fn run_task(
         source,
     };
     let t_fit = Instant::now();
-    let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).map_err(fit_error)?;
-    let (f, _) = surface::fairing::refit_interior(
+    let (f, _) = surface::fairing::fit_surface(
         mesh,
+        scheme,
         m.as_ref(),
-        f,
         interior,
         t.solver.unwrap_or(SolverKind::ExactPenalty),
     )
@@ -189,6 +192,7 @@ fn run_task(
 
 /// Runs the sweep (or one shard of it).
 pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
+    let scheme = args.scheme.build(InteriorParameters::default())?;
     let all = tasks();
     let mine: Vec<(usize, &Task)> = all
         .iter()
@@ -201,7 +205,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         if tty {
             say_inline!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
         }
-        let mut v = run_task(t, args.interior.choice)?;
+        let mut v = run_task(t, args.interior.choice, scheme.as_ref())?;
         v["interior"] = json!(args.interior.choice.to_string());
         v["index"] = json!(k);
         results.push(v);
@@ -213,7 +217,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     match args.shard {
         Some(s) => {
             let shard = json!({"shard": [s.index, s.count], "tasks_total": all.len(),
-                               "options": options_json(args.interior.choice), "results": results});
+                               "options": options_json(args.interior.choice, &args.scheme), "results": results});
             let text = pretty_json(&shard, "the shard report")?;
             let path = args
                 .out
@@ -229,7 +233,11 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         }
         None => {
             let staged = Staged::begin_keeping(&args.out, is_shard)?;
-            write_report(staged.path(), &options_json(args.interior.choice), results)?;
+            write_report(
+                staged.path(),
+                &options_json(args.interior.choice, &args.scheme),
+                results,
+            )?;
             staged.commit()?;
         }
     }
@@ -248,8 +256,9 @@ fn is_shard(name: &str) -> bool {
 }
 
 /// The options every task of a run shares: what a shard records and `merge` compares.
-fn options_json(interior: surface::fairing::InteriorChoice) -> Value {
-    json!({"interior": interior.to_string(), "sampling": SAMPLING,
+fn options_json(interior: surface::fairing::InteriorChoice, scheme: &SchemeOption) -> Value {
+    json!({"interior": interior.to_string(), "sampling": SAMPLING, "scheme": scheme.scheme,
+           "phong_alpha": scheme.phong_alpha,
            "beta": surface::shirman_sequin::DEFAULT_BETA, "c": surface::shirman_sequin::DEFAULT_C})
 }
 
@@ -340,7 +349,7 @@ fn write_report(out: &Path, options: &Value, results: Vec<Value>) -> Result<(), 
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let mut md = String::new();
     let _ = writeln!(md, "# Sweep: data sets × boundary curves × solvers\n");
-    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` (or shards joined by `merge`). Every data set at its default resolution, the modified Shirman–Séquin scheme with β = 1/3, c = 1, tessellated at s = {SAMPLING}, measured against the true surface. Options: `{options}`.\n");
+    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` (or shards joined by `merge`). Every data set at its default resolution, the surface scheme of the options (default: the modified Shirman–Séquin scheme with β = 1/3, c = 1), tessellated at s = {SAMPLING} per patch edge, measured against the true surface. Options: `{options}`.\n");
     let _ = writeln!(md, "| task | faces | position max | normal RMS (°) | K RMS | H RMS | G1 (rad) | κ error max | shortest α | fallbacks | fit (ms) |");
     let _ = writeln!(
         md,

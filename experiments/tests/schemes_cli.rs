@@ -44,3 +44,66 @@ fn the_study_covers_every_scheme_and_data_set_and_g1_claims_hold() {
         assert!(png.len() > 10_000, "{name}.png is {} bytes", png.len());
     }
 }
+
+/// `fit --scheme` writes the scheme's layout (degree, sub-patches per face) and refuses interior
+/// parameters a scheme does not have, naming the scheme.
+#[test]
+fn fit_writes_any_scheme_and_refuses_interior_choices_it_lacks() {
+    let dir = tempfile::tempdir().unwrap();
+    for (scheme, degree, per_face) in [
+        ("flat", 1, 1),
+        ("pn-triangles", 3, 1),
+        ("phong", 2, 1),
+        ("clough-tocher", 3, 3),
+        ("powell-sabin", 2, 6),
+        ("shirman-sequin", 4, 3),
+    ] {
+        let out = dir.path().join(format!("{scheme}.jsonl"));
+        let (code, _, err) = common::run(
+            &[
+                "fit",
+                "--data",
+                "octa",
+                "--scheme",
+                scheme,
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            "",
+        );
+        assert_eq!(code, 0, "{scheme}: {err}");
+        let text = std::fs::read_to_string(&out).unwrap();
+        let lines: Vec<serde_json::Value> = text
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect();
+        assert_eq!(lines.len(), 8 * per_face, "{scheme}");
+        for l in &lines {
+            assert_eq!(l["degree"], degree, "{scheme}");
+            assert_eq!(
+                l["points"].as_array().unwrap().len(),
+                (degree + 1) * (degree + 2) / 2
+            );
+        }
+    }
+    let (code, _, err) = common::run(
+        &[
+            "fit",
+            "--data",
+            "octa",
+            "--scheme",
+            "phong",
+            "--interior",
+            "thin-plate",
+        ],
+        "",
+    );
+    assert_ne!(code, 0);
+    assert!(
+        err.contains("`phong` scheme has no interior parameters"),
+        "{err}"
+    );
+    let (code, _, err) = common::run(&["fit", "--data", "octa", "--scheme", "bogus"], "");
+    assert_ne!(code, 0);
+    assert!(err.contains("clough-tocher"), "{err}");
+}

@@ -252,3 +252,31 @@ pub fn refit_interior(
     let refit = crate::fit::fit(mesh, method, &|f| params[f])?;
     Ok((refit, stats))
 }
+
+/// `mesh` fitted with `scheme` (its curves from `method`); for the split-domain scheme
+/// (`shirman-sequin`) the interior parameters are then chosen per face by `choice` with the
+/// solver `kind` ([`refit_interior`]). Any other scheme has no interior parameters: a choice
+/// other than [`InteriorChoice::Default`] is refused
+/// ([`crate::fit::FitError::NoInteriorParameters`]).
+pub fn fit_surface(
+    mesh: &crate::mesh::Mesh,
+    scheme: &dyn crate::scheme::Scheme,
+    method: &dyn curves::CurveMethod,
+    choice: InteriorChoice,
+    kind: solver::SolverKind,
+) -> Result<(crate::fit::Fit, InteriorStats), crate::fit::FitError> {
+    let first = crate::fit::fit_scheme(mesh, scheme, method)?;
+    if choice == InteriorChoice::Default {
+        let stats = InteriorStats {
+            faces: mesh.num_faces(),
+            ..InteriorStats::default()
+        };
+        return Ok((first, stats));
+    }
+    if scheme.name() != "shirman-sequin" {
+        return Err(crate::fit::FitError::NoInteriorParameters {
+            scheme: scheme.name(),
+        });
+    }
+    refit_interior(mesh, method, first, choice, kind)
+}

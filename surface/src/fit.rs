@@ -103,6 +103,12 @@ pub enum FitError {
         /// The face index.
         face: usize,
     },
+    /// Interior parameters were to be chosen for a scheme that has none.
+    #[error("the `{scheme}` scheme has no interior parameters to choose (only `shirman-sequin` does): drop --interior")]
+    NoInteriorParameters {
+        /// The scheme's name.
+        scheme: &'static str,
+    },
     /// The mesh structure disagreed with itself (a bug, reported rather than panicking).
     #[error("internal mesh inconsistency: {0}")]
     Mesh(String),

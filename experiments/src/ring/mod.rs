@@ -25,7 +25,7 @@ use std::time::Instant;
 use serde_json::{json, Map};
 use surface::AnalyticSurface;
 
-use crate::curve_args::{CurveOptions, InteriorOption};
+use crate::curve_args::{CurveOptions, InteriorOption, SchemeOption};
 use crate::error::ExperimentError;
 use crate::output::{pretty_json, write_result, Staged};
 
@@ -51,6 +51,10 @@ pub struct RingArgs {
     /// The interior parameters of the fitted surfaces.
     #[command(flatten)]
     interior: InteriorOption,
+    /// The surface scheme of the fitted surfaces (each with every construction of [`METHODS`]
+    /// where it takes curves).
+    #[command(flatten)]
+    scheme: SchemeOption,
     /// Output directory.
     #[arg(long, default_value = "results/ring")]
     out: PathBuf,
@@ -94,8 +98,10 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     stage("data", t);
 
     // Fits.
+    let scheme = args.scheme.build(surface::InteriorParameters::default())?;
     let fits = surfaces::fit_methods(
         mesh,
+        scheme.as_ref(),
         &problems,
         &args.curve.method_options(),
         args.interior.choice,

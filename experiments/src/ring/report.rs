@@ -161,12 +161,13 @@ pub(super) fn markdown(
     let _ = writeln!(md, "# The ring study\n");
     let _ = writeln!(
         md,
-        "Written by `cargo run --release -p experiments -- ring --resolution {} --sampling {} --solver {} --dbhs-pick {} --interior {} --out {}`.\n",
+        "Written by `cargo run --release -p experiments -- ring --resolution {} --sampling {} --solver {} --dbhs-pick {} --interior {} --scheme {} --out {}`.\n",
         args.resolution,
         args.sampling,
         args.curve.solver,
         args.curve.dbhs_pick,
         args.interior.choice,
+        args.scheme.scheme,
         args.out.display()
     );
     let _ = writeln!(

@@ -10,8 +10,8 @@ use curves::{method_by_name, BoundaryProblem, MethodOptions};
 use surface::curve_stats::CurveStats;
 use surface::fairing::InteriorChoice;
 use surface::{
-    compare_with_truth, fit, measure_g1, tessellate, AnalyticSurface, BezierTriangle, Fit,
-    G1Report, InteriorParameters, Mesh, SurfaceErrors, Tessellation,
+    compare_with_truth, measure_g1, tessellate, AnalyticSurface, BezierTriangle, Fit, G1Report,
+    Mesh, SurfaceErrors, Tessellation,
 };
 
 use crate::error::ExperimentError;
@@ -112,6 +112,7 @@ fn flat_triangles(mesh: &Mesh, s: usize) -> Result<Tessellation, ExperimentError
 /// fairing by `solver`), measured.
 pub(super) fn fit_methods(
     mesh: &Mesh,
+    scheme: &dyn surface::Scheme,
     problems: &[BoundaryProblem],
     options: &MethodOptions,
     interior: InteriorChoice,
@@ -125,8 +126,7 @@ pub(super) fn fit_methods(
             subject: format!("ring/{name}"),
             source,
         };
-        let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).map_err(fit_error)?;
-        let (f, _) = surface::fairing::refit_interior(mesh, m.as_ref(), f, interior, solver)
+        let (f, _) = surface::fairing::fit_surface(mesh, scheme, m.as_ref(), interior, solver)
             .map_err(fit_error)?;
         let fit_time = t.elapsed().as_secs_f64();
         let g1 = measure_g1(mesh, &f, 9);
@@ -188,7 +188,10 @@ pub(super) fn measure_surfaces(
         let errors = compare_with_truth(&tess, truth);
         surfaces.push(Surface {
             name,
-            label: format!("Shirman–Séquin, {name} curves"),
+            label: match f.scheme {
+                "shirman-sequin" => format!("Shirman–Séquin, {name} curves"),
+                other => format!("{other}, {name} curves"),
+            },
             tess,
             flat: false,
             errors,
