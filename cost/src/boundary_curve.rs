@@ -124,13 +124,9 @@ impl BoundaryCurveObjective {
         })
     }
 
-    /// End curvatures `[κ(0), κ(1)]` of the cubic with lengths `alpha`.
+    /// End curvatures `[κ(0), κ(1)]` of the cubic with lengths `alpha` ([`end_curvatures`]).
     pub fn end_curvatures(&self, alpha: &SVector<f64, 2>) -> [f64; 2] {
-        let (a0, a1) = (alpha[0], alpha[1]);
-        [
-            2.0 * (3.0 * self.d0 - a1 * self.c) / (a0 * a0),
-            2.0 * (-3.0 * self.d1 - a0 * self.c) / (a1 * a1),
-        ]
+        end_curvatures(self.d0, self.d1, self.c, [alpha[0], alpha[1]])
     }
 
     /// The lower bound on both lengths.
@@ -196,5 +192,21 @@ pub fn printed_eqs_11_to_14(
         -8.0 * b0 * t01 / a0.powi(4) + 4.0 * k0 * t01 / a0.powi(2), // eq 12
         -8.0 * b1 * t01 / a1.powi(4) + 4.0 * k1 * t01 / a1.powi(2), // eq 13
         -16.0 * b1 * b1 / a1.powi(5) + 8.0 * k1 * b1 / a1.powi(3), // eq 14
+    ]
+}
+
+/// End curvatures `[κ(0), κ(1)]` of the unit-chord cubic `P0 = (0, 0)`, `P1 = α0 t0 / 3`,
+/// `P2 = (1, 0) − α1 t1 / 3`, `P3 = (1, 0)`, given `d0 = t0 × D`, `d1 = t1 × D` (`D = (1, 0)`)
+/// and `c = t0 × t1` — the one copy of the formula (curves' `UnitProblem::end_curvatures`
+/// calls it).
+///
+/// Derivation (techreport §3, with its `α2` typo in `f''(1)` read as `α1`):
+/// `f''(0) = 6D − 2α1 t1 − 4α0 t0`, so `f'(0) × f''(0) = 2α0(3 t0×D − α1 t0×t1)`, divided by
+/// `|f'(0)|³ = α0³`; likewise `f'(1) × f''(1) = 2α1(3 t1×(−D) + α0 t1×t0)`, divided by `α1³`.
+pub fn end_curvatures(d0: f64, d1: f64, c: f64, alpha: [f64; 2]) -> [f64; 2] {
+    let [a0, a1] = alpha;
+    [
+        2.0 * (3.0 * d0 - a1 * c) / (a0 * a0),
+        2.0 * (-3.0 * d1 - a0 * c) / (a1 * a1),
     ]
 }

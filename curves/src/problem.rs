@@ -210,14 +210,13 @@ impl UnitProblem {
     /// `|f'(0)|³ = α0³` gives `κ(0)`. Likewise `f''(1) = 6(P3 − 2P2 + P1) = −6D + 4α1 t1 + 2α0 t0`,
     /// `f'(1) × f''(1) = 2α1(3 t1×(−D) + α0 t1×t0)`, divided by `α1³`.
     pub fn end_curvatures(&self, alpha: [f64; 2]) -> [f64; 2] {
-        let [a0, a1] = alpha;
-        let c = cross2(&self.t0, &self.t1);
-        let d0 = -self.t0.y; // t0 × D with D = (1, 0)
-        let d1 = -self.t1.y; // t1 × D
-        [
-            2.0 * (3.0 * d0 - a1 * c) / (a0 * a0),
-            2.0 * (-3.0 * d1 - a0 * c) / (a1 * a1),
-        ]
+        // t × D with D = (1, 0) is −t.y.
+        cost::boundary_curve::end_curvatures(
+            -self.t0.y,
+            -self.t1.y,
+            cross2(&self.t0, &self.t1),
+            alpha,
+        )
     }
 
     /// The same problem traversed from `(1, 0)` to `(0, 0)` and turned by 180° about
