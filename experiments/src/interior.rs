@@ -182,11 +182,7 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
             subject: name.to_string(),
             source,
         })?;
-        for choice in [
-            InteriorChoice::Default,
-            InteriorChoice::ThinPlate,
-            InteriorChoice::Membrane,
-        ] {
+        for choice in InteriorChoice::ALL {
             let (f, stats) = surface::fairing::refit_interior(
                 &data.mesh,
                 method.as_ref(),

@@ -116,6 +116,15 @@ pub enum InteriorChoice {
     Membrane,
 }
 
+impl InteriorChoice {
+    /// Every choice, in the order studies list them.
+    pub const ALL: [InteriorChoice; 3] = [
+        InteriorChoice::Default,
+        InteriorChoice::ThinPlate,
+        InteriorChoice::Membrane,
+    ];
+}
+
 impl std::str::FromStr for InteriorChoice {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
