@@ -39,9 +39,7 @@ use estimate::{vertex_normals, Estimator, NormalWeighting, ESTIMATORS};
 use nalgebra::Vector3;
 use render::{LineChart, Series};
 use serde_json::{json, Map, Value};
-use surface::{
-    compare_with_truth, fit, measure_g1, tessellate, AnalyticSurface, InteriorParameters, Mesh,
-};
+use surface::{compare_with_truth, fit, measure_g1, AnalyticSurface, InteriorParameters, Mesh};
 
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, write_result, Staged};
@@ -403,7 +401,7 @@ fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), 
                         source,
                     }
                 })?;
-            let tess = tessellate(&f.bezier_patches(), 4).map_err(|source| {
+            let tess = surface::tessellate_fit(mesh, &f, 4).map_err(|source| {
                 ExperimentError::Tessellate {
                     subject: subject(),
                     source,

@@ -152,13 +152,12 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             limits::tessellation_bytes(fitted.num_patches() as u128, args.tess),
         )?;
         let t3 = Instant::now();
-        let mut tess =
-            surface::tessellate(&fitted.bezier_patches(), args.tess).map_err(|source| {
-                ExperimentError::Tessellate {
-                    subject: args.input.data.clone(),
-                    source,
-                }
-            })?;
+        let mut tess = surface::tessellate_fit(&mesh, &fitted, args.tess).map_err(|source| {
+            ExperimentError::Tessellate {
+                subject: args.input.data.clone(),
+                source,
+            }
+        })?;
         frame.tessellation_to_world(&mut tess);
         crate::output::refuse_overwriting_input("--mesh-out", path, &args.input.data)?;
         let format = meshio::format_for_path(path)

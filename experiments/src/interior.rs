@@ -195,7 +195,7 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
                 source,
             })?;
             let g1 = surface::measure_g1(&data.mesh, &f, 9);
-            let tess = surface::tessellate(&f.bezier_patches(), 4).map_err(|source| {
+            let tess = surface::tessellate_fit(&data.mesh, &f, 4).map_err(|source| {
                 ExperimentError::Tessellate {
                     subject: format!("{name} (--interior {choice})"),
                     source,

@@ -19,7 +19,7 @@ use render::{
     render, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions, Tile,
 };
 use serde_json::{json, Map, Value};
-use surface::{fit, measure_g1, tessellate, InteriorParameters};
+use surface::{fit, measure_g1, InteriorParameters};
 
 use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
@@ -155,7 +155,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                        "fit_time_seconds": t_fit}),
             );
             if method == PICTURED_METHOD {
-                let tess = tessellate(&f.bezier_patches(), SAMPLING).map_err(|source| {
+                let tess = surface::tessellate_fit(mesh, &f, SAMPLING).map_err(|source| {
                     ExperimentError::Tessellate {
                         subject: format!("{} ({method} curves)", path.display()),
                         source,

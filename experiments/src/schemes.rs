@@ -24,8 +24,8 @@ use render::{
 use serde_json::{json, Value};
 use surface::scheme::REGISTRY;
 use surface::{
-    compare_with_truth, dataset_by_name, fit_scheme, measure_g1, scheme_by_name, tessellate,
-    Continuity, SchemeOptions, Tessellation, DATASET_NAMES,
+    compare_with_truth, dataset_by_name, fit_scheme, measure_g1, scheme_by_name, Continuity,
+    SchemeOptions, Tessellation, DATASET_NAMES,
 };
 
 use crate::curve_args::CurveOptions;
@@ -130,7 +130,7 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
             let fit_ms = t0.elapsed().as_secs_f64() * 1e3;
             let g1 = measure_g1(mesh, &f, 9);
             let s = segments(args.density, f.layout.patches_per_face());
-            let tess = tessellate(&f.bezier_patches(), s)
+            let tess = surface::tessellate_fit(mesh, &f, s)
                 .map_err(|source| ExperimentError::Tessellate { subject, source })?;
             let errors = compare_with_truth(&tess, data.surface.as_ref());
             let holds = match f.continuity {

@@ -19,7 +19,7 @@ use std::time::Instant;
 use curves::{method_by_name, MethodOptions};
 use serde_json::{json, Value};
 use solver::SolverKind;
-use surface::{compare_with_truth, measure_g1, tessellate, InteriorParameters};
+use surface::{compare_with_truth, measure_g1, InteriorParameters};
 
 use crate::curve_args::{InteriorOption, SchemeOption};
 use crate::error::ExperimentError;
@@ -163,7 +163,7 @@ fn run_task(
     let fit_time = t_fit.elapsed().as_secs_f64();
     let g1 = measure_g1(mesh, &f, 9);
     let cs = surface::curve_stats::curve_stats(&problems, &f);
-    let tess = tessellate(&f.bezier_patches(), SAMPLING).map_err(|source| {
+    let tess = surface::tessellate_fit(mesh, &f, SAMPLING).map_err(|source| {
         ExperimentError::Tessellate {
             subject: t.id(),
             source,

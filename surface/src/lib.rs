@@ -25,7 +25,9 @@
 //! * [`interior`] — Section 4's corner measures (interior-boundary curvature, twists);
 //! * [`g1`] — the testbed's `G1`: measured normal continuity and interpolation;
 //! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
-//!   position, normal, Gaussian and mean curvature.
+//!   position, normal, Gaussian and mean curvature;
+//! * [`tessellate_fit`](mod@tessellate_fit) — the same for a fitted mesh, welded by topology and
+//!   in parallel.
 //!
 //! Conventions (docs/conventions.md): normal curvature `κn(d) = dᵀ S d` is positive where the surface
 //! bends towards its normal, so the unit sphere with outward normals has `κn = −1`, Gaussian
@@ -46,6 +48,7 @@ pub mod repair;
 pub mod scheme;
 pub mod shirman_sequin;
 pub mod tessellate;
+pub mod tessellate_fit;
 pub mod testbed_format;
 
 pub use beztri::{BezTriError, BezierCurve, BezierTriangle, Curvature, Derivatives};
@@ -70,6 +73,7 @@ pub use shirman_sequin::{
     SchemeError,
 };
 pub use tessellate::{tessellate, TessError, Tessellation};
+pub use tessellate_fit::tessellate_fit;
 pub use testbed_format::{
     read_testbed, read_testbed_file, write_testbed, write_testbed_file, TestbedError,
 };

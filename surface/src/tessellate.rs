@@ -23,7 +23,10 @@
 //!
 //! **Singular points** (a collapsed patch edge, `r_u × r_v = 0`): the differential geometry is
 //! taken a small step ([`SINGULAR_NUDGE`]) towards the patch centre, and counted in
-//! [`Tessellation::singular_samples`] — never NaN. A patch singular even there is an error.
+//! [`Tessellation::singular_samples`] — never NaN. A patch singular even there (a net collapsed
+//! to a curve or a point, as a zero-area face's fallback can be) gets the normal of its corner
+//! triangle (or `+z` if that has no area either) and zero curvature, counted the same way:
+//! one bad patch never stops a tessellation.
 
 use std::collections::HashMap;
 
@@ -49,18 +52,6 @@ pub enum TessError {
     /// The sampling density must be at least 1.
     #[error("sampling density must be at least 1 segment per edge")]
     ZeroDensity,
-    /// A patch has no normal near a sample.
-    #[error("patch {patch}: singular at barycentric ({u}, {v}, {w}), even after nudging")]
-    Singular {
-        /// The patch.
-        patch: usize,
-        /// Barycentric coordinates of the sample.
-        u: f64,
-        /// See `u`.
-        v: f64,
-        /// See `u`.
-        w: f64,
-    },
     /// Converting to a [`Mesh`] failed (degenerate or non-manifold output).
     #[error("tessellation is not a valid mesh: {0}")]
     Mesh(#[from] MeshError),
@@ -216,27 +207,40 @@ impl Welder {
 fn geometry(
     patch: &BezierTriangle,
     weights: Option<&SampleWeights>,
-    index: usize,
-    (u, v, w): (f64, f64, f64),
-) -> Result<(Curvature, bool), TessError> {
+    (u, v, _w): (f64, f64, f64),
+) -> (Curvature, bool) {
     let fast = weights
         .and_then(|wt| patch.derivatives_with(wt))
         .and_then(|d| crate::beztri::curvature_of(&d));
     if let Some(c) = fast.or_else(|| patch.curvature(u, v)) {
-        return Ok((c, false));
+        return (c, false);
     }
+    (nudged_geometry(patch, u, v), true)
+}
+
+/// The geometry of a singular sample: a small step towards the centre, or where the patch is
+/// singular there too, the normal of its corner triangle (`+z` if that has no area) with zero
+/// curvature (module docs).
+pub(crate) fn nudged_geometry(patch: &BezierTriangle, u: f64, v: f64) -> Curvature {
     let third = 1.0 / 3.0;
     let t = SINGULAR_NUDGE;
     let (nu, nv) = (u + t * (third - u), v + t * (third - v));
-    patch
-        .curvature(nu, nv)
-        .map(|c| (c, true))
-        .ok_or(TessError::Singular {
-            patch: index,
-            u,
-            v,
-            w,
-        })
+    patch.curvature(nu, nv).unwrap_or_else(|| {
+        let n = patch.degree();
+        let corner = |i, j, k| patch.point(i, j, k).unwrap_or_else(Point3::origin);
+        let (a, b, c) = (corner(n, 0, 0), corner(0, n, 0), corner(0, 0, n));
+        let normal = (b - a)
+            .cross(&(c - a))
+            .try_normalize(0.0)
+            .unwrap_or_else(Vector3::z);
+        Curvature {
+            normal,
+            gaussian: 0.0,
+            mean: 0.0,
+            principal: [0.0, 0.0],
+            shape: Matrix3::zeros(),
+        }
+    })
 }
 
 /// Tessellates `patches` at `s` segments per patch edge into one welded mesh (module docs).
@@ -289,7 +293,7 @@ pub fn tessellate(patches: &[BezierTriangle], s: usize) -> Result<Tessellation, 
                 let p = weights
                     .and_then(|wt| patch.derivatives_with(wt))
                     .map_or_else(|| patch.eval(u, v, w), |d| d.p);
-                let (c, nudged) = geometry(patch, weights, pi, (u, v, w))?;
+                let (c, nudged) = geometry(patch, weights, (u, v, w));
                 out.singular_samples += usize::from(nudged);
                 let on_boundary = i == 0 || j == 0 || k == 0;
                 let existing = if on_boundary {

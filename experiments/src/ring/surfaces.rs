@@ -179,7 +179,7 @@ pub(super) fn measure_surfaces(
         errors: fe,
     });
     for FittedMethod { name, fit: f, .. } in fits {
-        let tess = tessellate(&f.bezier_patches(), sampling).map_err(|source| {
+        let tess = surface::tessellate_fit(mesh, f, sampling).map_err(|source| {
             ExperimentError::Tessellate {
                 subject: format!("ring/{name}"),
                 source,

@@ -1,0 +1,429 @@
+#![allow(clippy::needless_range_loop)] // corners and edges are indexed 0..3 across several parallel arrays
+//! Tessellation of a fitted mesh with welding by topology: the testbed's `Tess` at full speed.
+//!
+//! [`crate::tessellate::tessellate`] takes any list of patches and welds boundary samples by
+//! position (a spatial hash). A [`Fit`] knows more: which patches meet where. Every sample of
+//! every patch sits at a point of its face's barycentric domain; with the layouts in use
+//! (corners on the lattice of sixths) and `s` segments per patch edge, that point lies on the
+//! lattice `q/(6s)`, `q ∈ ℕ³`, `|q| = 6s`. A lattice point with two zero coordinates is a
+//! mesh vertex, one with one zero coordinate lies on a mesh edge (the same point for both faces
+//! on it, at mirrored positions), the rest are inside the face. So every sample gets its
+//! output vertex from arithmetic alone:
+//!
+//! * a mesh vertex's sample belongs to the lowest-numbered face around it, a mesh edge's
+//!   samples to the edge's first face, a face's inner samples to the face;
+//! * each face's owned samples form one contiguous block of the output (prefix sums), so the
+//!   faces are evaluated in parallel into disjoint slices, each sample exactly once;
+//! * triangles are written per face (a fixed number per face, in patch order) with the ids the
+//!   arithmetic gives.
+//!
+//! The result is the same welded mesh the positional weld gives for a watertight fit (the
+//! vertex order differs), computed without hashing and without evaluating any sample twice.
+//! A welded vertex carries the geometry of its owner's patch ([`Tessellation::welds`] counts
+//! the samples that were not evaluated because another patch owns them;
+//! [`Tessellation::max_weld_normal_angle`] is not measured here and stays 0: `measure_g1`
+//! reports normal jumps along every shared boundary). Sample weights are computed once per
+//! layout ([`SampleWeights`]); singular samples are nudged as in
+//! [`crate::tessellate`](mod@crate::tessellate).
+//!
+//! A layout whose corners are not on the sixths lattice is tessellated by the positional weld.
+
+use nalgebra::{Point3, Vector3};
+use rayon::prelude::*;
+
+use crate::beztri::{curvature_of, BezierTriangle, Curvature, SampleWeights};
+use crate::fit::Fit;
+use crate::mesh::Mesh;
+use crate::scheme::Layout;
+use crate::tessellate::{nudged_geometry, tessellate, TessError, Tessellation};
+
+/// Where a sample of a face goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Slot {
+    /// The mesh vertex at face corner `c`.
+    Corner(usize),
+    /// Sample `k` (from corner `l`) of the face's edge `l` (from corner `l` to `l + 1`).
+    Edge(usize, usize),
+    /// Inner sample `k` of the face.
+    Inner(usize),
+}
+
+/// What does not depend on the face.
+struct Plan {
+    /// Samples per patch (`(s + 1)(s + 2)/2`) and their weights.
+    weights: Vec<SampleWeights>,
+    /// Barycentric `(u, v, w)` of each local sample.
+    local: Vec<(f64, f64, f64)>,
+    /// Per patch of the layout, per local sample: its slot.
+    slots: Vec<Vec<Slot>>,
+    /// Samples inside a mesh edge (excluding its ends).
+    per_edge: usize,
+    /// Samples inside a face.
+    per_face_inner: usize,
+    /// For each slot kind, the first (patch, local sample) that lands there: corners, edge
+    /// samples (per edge `l`, from corner `l`), inner samples.
+    corner_src: [(usize, usize); 3],
+    edge_src: [Vec<(usize, usize)>; 3],
+    inner_src: Vec<(usize, usize)>,
+    /// Triangles per patch as local sample indices.
+    triangles: Vec<[usize; 3]>,
+}
+
+/// Local index of sample `(i, j, s − i − j)` (rows by `j`, as in the positional tessellation).
+fn local_index(s: usize, i: usize, j: usize) -> usize {
+    j * (s + 1) - j * j.saturating_sub(1) / 2 + i
+}
+
+impl Plan {
+    fn new(layout: &Layout, s: usize) -> Option<Plan> {
+        let lattice = 6 * s as i64;
+        // Corners on the lattice of sixths.
+        let corners: Vec<[[i64; 3]; 3]> = layout
+            .subs
+            .iter()
+            .map(|sub| {
+                let mut out = [[0i64; 3]; 3];
+                for (c, corner) in sub.iter().enumerate() {
+                    for (k, x) in corner.iter().enumerate() {
+                        let q = x * 6.0;
+                        if (q - q.round()).abs() > 1e-9 {
+                            return None;
+                        }
+                        out[c][k] = q.round() as i64;
+                    }
+                }
+                Some(out)
+            })
+            .collect::<Option<_>>()?;
+        let n = (s + 1) * (s + 2) / 2;
+        let mut local = vec![(0.0, 0.0, 0.0); n];
+        let mut weights = Vec::with_capacity(n);
+        for j in 0..=s {
+            for i in 0..=s - j {
+                let (u, v) = (i as f64 / s as f64, j as f64 / s as f64);
+                local[local_index(s, i, j)] = (u, v, 1.0 - u - v);
+            }
+        }
+        for &(u, v, _) in &local {
+            weights.push(SampleWeights::new(layout.degree, u, v));
+        }
+        // Face lattice point of every (patch, sample).
+        let mut edge_points: [Vec<i64>; 3] = Default::default();
+        let mut inner_points: Vec<[i64; 3]> = Vec::new();
+        let mut points = vec![vec![[0i64; 3]; n]; corners.len()];
+        for (p, c) in corners.iter().enumerate() {
+            for j in 0..=s {
+                for i in 0..=s - j {
+                    let k = s - i - j;
+                    let q: [i64; 3] = std::array::from_fn(|d| {
+                        i as i64 * c[0][d] + j as i64 * c[1][d] + k as i64 * c[2][d]
+                    });
+                    points[p][local_index(s, i, j)] = q;
+                    let zeros = q.iter().filter(|x| **x == 0).count();
+                    match zeros {
+                        2 => {}
+                        1 => {
+                            let l = (q.iter().position(|x| *x == 0)? + 1) % 3;
+                            edge_points[l].push(q[(l + 1) % 3]);
+                        }
+                        _ => inner_points.push(q),
+                    }
+                }
+            }
+        }
+        for e in &mut edge_points {
+            e.sort_unstable();
+            e.dedup();
+        }
+        inner_points.sort_unstable();
+        inner_points.dedup();
+        // Both faces on an edge must see the same samples at mirrored positions.
+        let per_edge = edge_points[0].len();
+        for e in &edge_points {
+            if e.len() != per_edge || e.iter().zip(e.iter().rev()).any(|(a, b)| a + b != lattice) {
+                return None;
+            }
+        }
+        let mut slots = vec![vec![Slot::Inner(0); n]; corners.len()];
+        let mut corner_src = [(usize::MAX, 0); 3];
+        let mut edge_src: [Vec<(usize, usize)>; 3] =
+            std::array::from_fn(|_| vec![(usize::MAX, 0); per_edge]);
+        let mut inner_src = vec![(usize::MAX, 0); inner_points.len()];
+        for (p, pts) in points.iter().enumerate() {
+            for (li, q) in pts.iter().enumerate() {
+                let zeros = q.iter().filter(|x| **x == 0).count();
+                let (slot, src) = match zeros {
+                    2 => {
+                        let c = q.iter().position(|x| *x != 0)?;
+                        (Slot::Corner(c), &mut corner_src[c])
+                    }
+                    1 => {
+                        let l = (q.iter().position(|x| *x == 0)? + 1) % 3;
+                        let k = edge_points[l].binary_search(&q[(l + 1) % 3]).ok()?;
+                        (Slot::Edge(l, k), &mut edge_src[l][k])
+                    }
+                    _ => {
+                        let k = inner_points.binary_search(q).ok()?;
+                        (Slot::Inner(k), &mut inner_src[k])
+                    }
+                };
+                slots[p][li] = slot;
+                if src.0 == usize::MAX {
+                    *src = (p, li);
+                }
+            }
+        }
+        if corner_src.iter().any(|c| c.0 == usize::MAX) {
+            return None;
+        }
+        let mut triangles = Vec::with_capacity(s * s);
+        for j in 0..s {
+            for i in 0..s - j {
+                triangles.push([
+                    local_index(s, i + 1, j),
+                    local_index(s, i, j + 1),
+                    local_index(s, i, j),
+                ]);
+                if i + j + 2 <= s {
+                    triangles.push([
+                        local_index(s, i + 1, j),
+                        local_index(s, i + 1, j + 1),
+                        local_index(s, i, j + 1),
+                    ]);
+                }
+            }
+        }
+        Some(Plan {
+            weights,
+            local,
+            slots,
+            per_edge,
+            per_face_inner: inner_points.len(),
+            corner_src,
+            edge_src,
+            inner_src,
+            triangles,
+        })
+    }
+}
+
+/// One evaluated sample.
+#[derive(Clone, Copy, Debug)]
+struct Sample {
+    p: Point3<f64>,
+    c: Curvature,
+    nudged: bool,
+}
+
+/// Position and differential geometry of one sample of a net (nudged towards the centre where
+/// the patch is singular, as the positional tessellation does).
+fn evaluate(
+    net: &[Point3<f64>],
+    degree: usize,
+    weights: &SampleWeights,
+    (u, v, _): (f64, f64, f64),
+) -> Sample {
+    let mut acc = [Vector3::zeros(); 6];
+    for (b, wk) in net.iter().zip(weights.weights()) {
+        for (a, x) in acc.iter_mut().zip(wk) {
+            *a += b.coords * *x;
+        }
+    }
+    let d = crate::beztri::Derivatives {
+        p: Point3::from(acc[0]),
+        du: acc[1],
+        dv: acc[2],
+        duu: acc[3],
+        duv: acc[4],
+        dvv: acc[5],
+    };
+    match curvature_of(&d) {
+        Some(c) => Sample {
+            p: d.p,
+            c,
+            nudged: false,
+        },
+        None => {
+            // Rare: build the patch only here.
+            let bez = BezierTriangle::from_fn(degree, |i, j, k| {
+                net.get(crate::beztri::index(degree, i, j, k))
+                    .copied()
+                    .unwrap_or_else(Point3::origin)
+            });
+            Sample {
+                p: d.p,
+                c: nudged_geometry(&bez, u, v),
+                nudged: true,
+            }
+        }
+    }
+}
+
+/// Tessellates `fit` (a fit of `mesh`) at `s` segments per patch edge into one welded mesh,
+/// welding by topology (module docs). Falls back to the positional weld of
+/// [`crate::tessellate::tessellate`] for a layout whose corners are not on the sixths lattice.
+pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, TessError> {
+    if s == 0 {
+        return Err(TessError::ZeroDensity);
+    }
+    let layout = fit.layout;
+    let Some(plan) = Plan::new(&layout, s) else {
+        return tessellate(&fit.bezier_patches(), s);
+    };
+    let faces = mesh.faces();
+    let nf = faces.len();
+    let ppf = layout.patches_per_face();
+    let np = layout.points_per_patch();
+    if fit.points.len() != nf * ppf * np {
+        return tessellate(&fit.bezier_patches(), s);
+    }
+    // Owners: a vertex belongs to the lowest-numbered face around it, an edge to its first face.
+    let mut vertex_owner = vec![usize::MAX; mesh.num_vertices()];
+    let mut owned_corners = vec![[false; 3]; nf];
+    for (f, face) in faces.iter().enumerate() {
+        for (c, &v) in face.iter().enumerate() {
+            if vertex_owner[v] == usize::MAX {
+                vertex_owner[v] = f;
+                owned_corners[f][c] = true;
+            }
+        }
+    }
+    let edges = mesh.edges();
+    let mut owned_edges = vec![[false; 3]; nf];
+    for e in edges {
+        owned_edges[e.first.0][e.first.1] = true;
+    }
+    // Blocks: per face, owned corners, then owned edges' samples (along the edge's own
+    // direction), then inner samples.
+    let mut start = Vec::with_capacity(nf + 1);
+    let mut total = 0usize;
+    for f in 0..nf {
+        start.push(total);
+        total += owned_corners[f].iter().filter(|x| **x).count()
+            + owned_edges[f].iter().filter(|x| **x).count() * plan.per_edge
+            + plan.per_face_inner;
+    }
+    start.push(total);
+    let mut vertex_id = vec![usize::MAX; mesh.num_vertices()];
+    let mut edge_base = vec![usize::MAX; edges.len()];
+    for f in 0..nf {
+        let mut at = start[f];
+        for c in 0..3 {
+            if owned_corners[f][c] {
+                vertex_id[faces[f][c]] = at;
+                at += 1;
+            }
+        }
+        for l in 0..3 {
+            if owned_edges[f][l] {
+                let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
+                edge_base[ei] = at;
+                at += plan.per_edge;
+            }
+        }
+    }
+    // The global id of each slot of face f.
+    let per_edge = plan.per_edge;
+    let slot_id = |f: usize, slot: Slot| -> Result<usize, TessError> {
+        Ok(match slot {
+            Slot::Corner(c) => vertex_id[faces[f][c]],
+            Slot::Edge(l, k) => {
+                let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
+                // Samples are stored along the edge from `vertices[0]`.
+                let forward = edges[ei].vertices[0] == faces[f][l];
+                edge_base[ei] + if forward { k } else { per_edge - 1 - k }
+            }
+            Slot::Inner(k) => start[f + 1] - plan.per_face_inner + k,
+        })
+    };
+
+    // Evaluate every face's owned samples into its block.
+    let mut samples: Vec<Option<Sample>> = vec![None; total];
+    let mut blocks: Vec<&mut [Option<Sample>]> = Vec::with_capacity(nf);
+    let mut rest: &mut [Option<Sample>] = &mut samples;
+    for f in 0..nf {
+        let (head, tail) = rest.split_at_mut(start[f + 1] - start[f]);
+        blocks.push(head);
+        rest = tail;
+    }
+    let degree = layout.degree;
+    blocks
+        .into_par_iter()
+        .enumerate()
+        .try_for_each(|(f, block)| -> Result<(), TessError> {
+            let mut at = 0;
+            let mut put = |(p, li): (usize, usize)| -> Result<(), TessError> {
+                let patch = f * ppf + p;
+                let net = &fit.points[patch * np..(patch + 1) * np];
+                block[at] = Some(evaluate(net, degree, &plan.weights[li], plan.local[li]));
+                at += 1;
+                Ok(())
+            };
+            for c in 0..3 {
+                if owned_corners[f][c] {
+                    put(plan.corner_src[c])?;
+                }
+            }
+            for l in 0..3 {
+                if owned_edges[f][l] {
+                    let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
+                    let forward = edges[ei].vertices[0] == faces[f][l];
+                    for k in 0..per_edge {
+                        let kk = if forward { k } else { per_edge - 1 - k };
+                        put(plan.edge_src[l][kk])?;
+                    }
+                }
+            }
+            for &src in &plan.inner_src {
+                put(src)?;
+            }
+            Ok(())
+        })?;
+
+    // Triangles, a fixed number per face.
+    let per_patch = plan.triangles.len();
+    let mut tris = vec![[0usize; 3]; nf * ppf * per_patch];
+    tris.par_chunks_mut(ppf * per_patch.max(1))
+        .enumerate()
+        .try_for_each_init(Vec::new, |ids, (f, chunk)| -> Result<(), TessError> {
+            for p in 0..ppf {
+                ids.clear();
+                for slot in &plan.slots[p] {
+                    ids.push(slot_id(f, *slot)?);
+                }
+                for (t, tri) in plan.triangles.iter().enumerate() {
+                    chunk[p * per_patch + t] = tri.map(|li| ids[li]);
+                }
+            }
+            Ok(())
+        })?;
+
+    let mut out = Tessellation {
+        positions: Vec::with_capacity(total),
+        normals: Vec::with_capacity(total),
+        gaussian: Vec::with_capacity(total),
+        mean: Vec::with_capacity(total),
+        shapes: Vec::with_capacity(total),
+        faces: Vec::with_capacity(tris.len()),
+        patch_of_face: Vec::with_capacity(tris.len()),
+        welds: nf * ppf * plan.local.len() - total,
+        max_weld_normal_angle: 0.0,
+        singular_samples: 0,
+        collapsed_faces: 0,
+    };
+    // Every slot of the blocks was written above (the plan lists each owned sample once);
+    // an unwritten one would be a defect of the plan, skipped rather than a panic.
+    for x in samples.iter().flatten() {
+        out.positions.push(x.p);
+        out.normals.push(x.c.normal);
+        out.gaussian.push(x.c.gaussian);
+        out.mean.push(x.c.mean);
+        out.shapes.push(x.c.shape);
+        out.singular_samples += usize::from(x.nudged);
+    }
+    for (t, tri) in tris.into_iter().enumerate() {
+        out.faces.push(tri);
+        out.patch_of_face.push(t / per_patch.max(1));
+    }
+    Ok(out)
+}
