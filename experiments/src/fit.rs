@@ -7,13 +7,11 @@
 //! Shirman–Séquin, the face's corners `e`, `e + 1` and the split point). stderr gets the G1
 //! defect, the interpolation error, the curve statistics and the time of each stage.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
 use curves::method_by_name;
-use serde_json::json;
 use surface::fairing::InteriorChoice;
 use surface::{measure_g1, InteriorParameters};
 
@@ -43,7 +41,8 @@ pub struct FitArgs {
     /// Jensen's c on every edge (1: Chiyokura–Kimura).
     #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_C)]
     c: f64,
-    /// Where to write the patches (JSON Lines); none are written when absent.
+    /// Where to write the patches: JSON Lines, or the compact binary form when the name ends in
+    /// `.bzp` (`surface::patch_io`); none are written when absent.
     #[arg(long)]
     out: Option<PathBuf>,
     /// Tessellate the patches at this many segments per patch edge (the testbed's `Tess -s`)
@@ -132,19 +131,21 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
 
     if let Some(out) = &args.out {
         crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
-        let mut text = String::new();
-        let per_face = fitted.layout.patches_per_face();
-        for (i, p) in fitted.nets().enumerate() {
-            let pts: Vec<[f64; 3]> = p
-                .iter()
-                .map(|q| frame.to_world(q))
-                .map(|q| [q.x, q.y, q.z])
-                .collect();
-            let rec = json!({"type": "BezierTriangle", "degree": fitted.layout.degree, "points": pts,
-                              "face": i / per_face, "subpatch": i % per_face});
-            let _ = writeln!(text, "{rec}");
-        }
-        write_result(Some(out), text.as_bytes())?;
+        let t_out = Instant::now();
+        let binary = out.extension().is_some_and(|e| e == "bzp");
+        let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
+        crate::output::write_result_with(Some(out), &mut |w| {
+            if binary {
+                surface::patch_io::write_binary(&fitted, &to_world, w)
+            } else {
+                surface::patch_io::write_jsonl(&fitted, &to_world, w)
+            }
+        })?;
+        say!(
+            "  patches written to {} in {:.3} s",
+            out.display(),
+            t_out.elapsed().as_secs_f64()
+        );
     }
     if let Some(path) = &args.mesh_out {
         check_memory(

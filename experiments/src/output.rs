@@ -27,6 +27,31 @@ pub fn write_result(path: Option<&Path>, bytes: &[u8]) -> Result<(), ExperimentE
     }
 }
 
+/// Writes to `path` atomically what `produce` writes, piece by piece (no full copy in memory);
+/// `None` streams to standard output.
+pub fn write_result_with(
+    path: Option<&Path>,
+    produce: &mut dyn FnMut(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<(), ExperimentError> {
+    match path {
+        Some(p) => {
+            if let Some(parent) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+                ensure_dir(parent)?;
+            }
+            render::write_atomic_with(p, produce).map_err(ExperimentError::from)
+        }
+        None => {
+            let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+            produce(&mut out)
+                .and_then(|_| out.flush())
+                .map_err(|source| ExperimentError::Write {
+                    path: "<stdout>".into(),
+                    source,
+                })
+        }
+    }
+}
+
 /// Creates a results directory (and its parents).
 pub fn ensure_dir(dir: &Path) -> Result<(), ExperimentError> {
     std::fs::create_dir_all(dir).map_err(|source| ExperimentError::Write {

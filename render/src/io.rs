@@ -149,6 +149,16 @@ pub fn writable_target(path: &Path) -> Result<PathBuf, RenderError> {
 /// renamed over `path`. Readers see either the old file or the complete new one, and a failure
 /// leaves an existing `path` untouched and removes the temporary file.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
+    write_atomic_with(path, &mut |w| w.write_all(bytes))
+}
+
+/// [`write_atomic`] for output produced piece by piece: `produce` writes into a buffered
+/// temporary file, which is flushed, synced and renamed over `path` only if `produce` succeeds
+/// (so gigabytes of output never sit in memory, and a failure still leaves `path` untouched).
+pub fn write_atomic_with(
+    path: &Path,
+    produce: &mut dyn FnMut(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<(), RenderError> {
     let io_err = |source| RenderError::Io {
         path: path.to_path_buf(),
         source,
@@ -158,11 +168,13 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
     let tmp = temp_sibling(path)?;
     in_flight(&tmp);
     let result = (|| {
-        let mut file = fs::OpenOptions::new()
+        let file = fs::OpenOptions::new()
             .write(true)
             .create_new(true)
             .open(&tmp)?;
-        file.write_all(bytes)?;
+        let mut buffered = std::io::BufWriter::with_capacity(1 << 20, file);
+        produce(&mut buffered)?;
+        let file = buffered.into_inner().map_err(|e| e.into_error())?;
         file.sync_all()?;
         drop(file);
         fs::rename(&tmp, path)

@@ -37,7 +37,7 @@ pub use curveplot::{
     CurvePanel, YRange,
 };
 pub use error::RenderError;
-pub use io::{remove_in_flight, writable_target, write_atomic};
+pub use io::{remove_in_flight, writable_target, write_atomic, write_atomic_with};
 pub use mosaic::{write_composite, Legend, LegendKind, Tile};
 pub use plyfile::{ply_bytes, write_ply_binary};
 pub use shade::{render, Camera, Image, RenderMesh, RenderOptions};

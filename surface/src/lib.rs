@@ -19,6 +19,7 @@
 //! * [`shirman_sequin`] — the modified Shirman–Séquin split-domain scheme: three quartic
 //!   patches per triangle, G1 by construction (derivation in the module docs);
 //! * [`fit`](mod@fit) — a whole mesh: one curve per edge (shared), one macro-patch per face;
+//! * [`patch_io`] — a fit's patches written as JSON Lines or a compact binary form;
 //! * [`metrics`] — errors of a tessellation against the true surface;
 //! * [`fairing`] — thin-plate and membrane energies of a macro-patch in β and c, for optimizing
 //!   the interior parameters;
@@ -44,6 +45,7 @@ pub mod g1;
 pub mod interior;
 pub mod mesh;
 pub mod metrics;
+pub mod patch_io;
 pub mod repair;
 pub mod scheme;
 pub mod shirman_sequin;
