@@ -259,6 +259,17 @@ fn evaluate(
     }
 }
 
+/// `v` cut into consecutive blocks `start[f]..start[f + 1]`.
+fn split_blocks<'a, T>(mut v: &'a mut [T], start: &[usize]) -> Vec<&'a mut [T]> {
+    let mut out = Vec::with_capacity(start.len().saturating_sub(1));
+    for w in start.windows(2) {
+        let (head, tail) = v.split_at_mut(w[1] - w[0]);
+        out.push(head);
+        v = tail;
+    }
+    out
+}
+
 /// Tessellates `fit` (a fit of `mesh`) at `s` segments per patch edge into one welded mesh,
 /// welding by topology (module docs). Falls back to the positional weld of
 /// [`crate::tessellate::tessellate`] for a layout whose corners are not on the sixths lattice.
@@ -337,48 +348,59 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
         })
     };
 
-    // Evaluate every face's owned samples into its block.
-    let mut samples: Vec<Option<Sample>> = vec![None; total];
-    let mut blocks: Vec<&mut [Option<Sample>]> = Vec::with_capacity(nf);
-    let mut rest: &mut [Option<Sample>] = &mut samples;
-    for f in 0..nf {
-        let (head, tail) = rest.split_at_mut(start[f + 1] - start[f]);
-        blocks.push(head);
-        rest = tail;
-    }
+    // Evaluate every face's owned samples straight into its block of the output arrays (no
+    // intermediate copy: at 10⁶ faces the output is gigabytes and page faults dominate).
+    let mut positions = vec![Point3::origin(); total];
+    let mut normals = vec![Vector3::zeros(); total];
+    let mut gaussian = vec![0.0; total];
+    let mut mean = vec![0.0; total];
+    let mut shapes = vec![nalgebra::Matrix3::zeros(); total];
+    let mut nudged = vec![false; total];
     let degree = layout.degree;
-    blocks
+    split_blocks(&mut positions, &start)
         .into_par_iter()
+        .zip(split_blocks(&mut normals, &start))
+        .zip(split_blocks(&mut gaussian, &start))
+        .zip(split_blocks(&mut mean, &start))
+        .zip(split_blocks(&mut shapes, &start))
+        .zip(split_blocks(&mut nudged, &start))
         .enumerate()
-        .try_for_each(|(f, block)| -> Result<(), TessError> {
-            let mut at = 0;
-            let mut put = |(p, li): (usize, usize)| -> Result<(), TessError> {
-                let patch = f * ppf + p;
-                let net = &fit.points[patch * np..(patch + 1) * np];
-                block[at] = Some(evaluate(net, degree, &plan.weights[li], plan.local[li]));
-                at += 1;
-                Ok(())
-            };
-            for c in 0..3 {
-                if owned_corners[f][c] {
-                    put(plan.corner_src[c])?;
-                }
-            }
-            for l in 0..3 {
-                if owned_edges[f][l] {
-                    let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
-                    let forward = edges[ei].vertices[0] == faces[f][l];
-                    for k in 0..per_edge {
-                        let kk = if forward { k } else { per_edge - 1 - k };
-                        put(plan.edge_src[l][kk])?;
+        .try_for_each(
+            |(f, (((((ps, ns), ks), hs), ss), nu))| -> Result<(), TessError> {
+                let mut at = 0;
+                let mut put = |(p, li): (usize, usize)| {
+                    let patch = f * ppf + p;
+                    let net = &fit.points[patch * np..(patch + 1) * np];
+                    let x = evaluate(net, degree, &plan.weights[li], plan.local[li]);
+                    ps[at] = x.p;
+                    ns[at] = x.c.normal;
+                    ks[at] = x.c.gaussian;
+                    hs[at] = x.c.mean;
+                    ss[at] = x.c.shape;
+                    nu[at] = x.nudged;
+                    at += 1;
+                };
+                for c in 0..3 {
+                    if owned_corners[f][c] {
+                        put(plan.corner_src[c]);
                     }
                 }
-            }
-            for &src in &plan.inner_src {
-                put(src)?;
-            }
-            Ok(())
-        })?;
+                for l in 0..3 {
+                    if owned_edges[f][l] {
+                        let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
+                        let forward = edges[ei].vertices[0] == faces[f][l];
+                        for k in 0..per_edge {
+                            let kk = if forward { k } else { per_edge - 1 - k };
+                            put(plan.edge_src[l][kk]);
+                        }
+                    }
+                }
+                for &src in &plan.inner_src {
+                    put(src);
+                }
+                Ok(())
+            },
+        )?;
 
     // Triangles, a fixed number per face.
     let per_patch = plan.triangles.len();
@@ -398,32 +420,19 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
             Ok(())
         })?;
 
-    let mut out = Tessellation {
-        positions: Vec::with_capacity(total),
-        normals: Vec::with_capacity(total),
-        gaussian: Vec::with_capacity(total),
-        mean: Vec::with_capacity(total),
-        shapes: Vec::with_capacity(total),
-        faces: Vec::with_capacity(tris.len()),
-        patch_of_face: Vec::with_capacity(tris.len()),
+    let patch_of_face = (0..tris.len()).map(|t| t / per_patch.max(1)).collect();
+    let out = Tessellation {
+        positions,
+        normals,
+        gaussian,
+        mean,
+        shapes,
+        faces: tris,
+        patch_of_face,
         welds: nf * ppf * plan.local.len() - total,
         max_weld_normal_angle: 0.0,
-        singular_samples: 0,
+        singular_samples: nudged.iter().filter(|x| **x).count(),
         collapsed_faces: 0,
     };
-    // Every slot of the blocks was written above (the plan lists each owned sample once);
-    // an unwritten one would be a defect of the plan, skipped rather than a panic.
-    for x in samples.iter().flatten() {
-        out.positions.push(x.p);
-        out.normals.push(x.c.normal);
-        out.gaussian.push(x.c.gaussian);
-        out.mean.push(x.c.mean);
-        out.shapes.push(x.c.shape);
-        out.singular_samples += usize::from(x.nudged);
-    }
-    for (t, tri) in tris.into_iter().enumerate() {
-        out.faces.push(tri);
-        out.patch_of_face.push(t / per_patch.max(1));
-    }
     Ok(out)
 }
