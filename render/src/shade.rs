@@ -113,16 +113,7 @@ pub struct Image {
     pub rgb: Vec<u8>,
 }
 
-/// Linear → sRGB byte.
-pub fn to_srgb8(c: f32) -> u8 {
-    let c = c.clamp(0.0, 1.0);
-    let s = if c <= 0.003_130_8 {
-        12.92 * c
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    };
-    (s * 255.0).round() as u8
-}
+pub use crate::srgb::{to_srgb8, to_srgb8_exact};
 
 /// A vertex in camera space with its attributes.
 #[derive(Clone, Copy)]
