@@ -42,4 +42,4 @@ pub use error::RenderError;
 pub use io::{remove_in_flight, writable_target, write_atomic};
 pub use mosaic::{write_composite, Legend, LegendKind, Tile};
 pub use plyfile::{ply_bytes, write_ply_binary};
-pub use shade::{render, Camera, Image, RenderMesh, RenderOptions};
+pub use shade::{render, render_many, Camera, Image, RenderMesh, RenderOptions};
