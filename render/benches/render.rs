@@ -12,7 +12,8 @@ use nalgebra::{Point3, Vector3};
 use render::colors::{diverging, MATERIAL};
 use render::shade::to_srgb8;
 use render::{
-    render, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions, Tile,
+    render, render_many, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions,
+    Tile,
 };
 
 /// A torus of `nu × nv` quads split in two, coloured uniformly or by Gaussian curvature.
@@ -96,6 +97,13 @@ fn bench(c: &mut Criterion) {
                 }
             }
         })
+    });
+    let jobs: Vec<(&RenderMesh, &Camera)> = cams
+        .iter()
+        .flat_map(|cam| std::iter::repeat_n((&kcolor, cam), 5))
+        .collect();
+    g.bench_function("render_many_15_tiles", |b| {
+        b.iter(|| black_box(render_many(&jobs, &o).ok()))
     });
     let tiles: Vec<Tile> = cams
         .iter()

@@ -5,6 +5,15 @@
 //! `λᵢ/zᵢ`, renormalized), per-pixel Blinn–Phong shading with two-sided lighting, lights fixed
 //! to the camera (a key light above left, a fill light right) so every view is lit alike, and
 //! sRGB output. Bad triangles (non-finite vertices) are skipped, never a panic.
+//!
+//! Speed (issue 15): vertices are transformed once, triangles set up in parallel chunks, and
+//! the picture drawn in bands of rows in parallel (rayon) with deferred shading (a depth pass
+//! keeps each pixel's nearest triangle, then every visible pixel is shaded once); the sRGB
+//! conversion is a table equal to the formula ([`crate::srgb`]) and the specular power of a
+//! whole exponent is raised by squaring ([`spec_power`]). The bytes are those of the serial
+//! per-triangle shader this replaced (same operations per pixel, same triangle order per
+//! pixel), the same on every run and for any number of threads. [`render_many`] draws many
+//! pictures in parallel.
 
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
@@ -128,9 +137,6 @@ const SETUP_CHUNK: usize = 4096;
 /// Largest integer Blinn–Phong exponent raised by repeated squaring (more multiplications
 /// than that would lose more than the 2⁻⁴⁶ relative accuracy stated in [`spec_power`]).
 const MAX_INTEGER_SHININESS: f64 = 1024.0;
-
-/// Id of "no triangle" in the per-pixel triangle buffer.
-const NO_TRIANGLE: u32 = u32::MAX;
 
 /// A vertex in camera space with its attributes.
 #[derive(Clone, Copy)]
@@ -311,12 +317,23 @@ impl Tri {
     }
 }
 
-/// Camera-space vertices and set-up triangles of a mesh: the mesh's vertices first, then the
-/// vertices made by clipping against the near plane.
+/// Camera-space vertices and set-up triangles of a mesh, in chunks of [`SETUP_CHUNK`] faces
+/// (kept apart, not concatenated): each chunk's triangles in face order and the vertices its
+/// clipping made. A triangle's vertex `i` is the mesh's vertex `i` below `verts.len()` and the
+/// chunk's own vertex `i − verts.len()` above.
 struct Scene {
     verts: Vec<Cv>,
-    tris: Vec<Tri>,
+    chunks: Vec<(Vec<Tri>, Vec<Cv>)>,
 }
+
+/// A triangle's id: its chunk in the high half, its place in the chunk in the low half.
+type TriId = u64;
+
+/// One band of the depth pass: its number, its depths and nearest triangles, its triangles.
+type DepthBand<'a> = (usize, ((&'a mut [f64], &'a mut [TriId]), &'a Vec<TriId>));
+
+/// Id of "no triangle" in the per-pixel triangle buffer.
+const NO_TRIANGLE: TriId = TriId::MAX;
 
 /// Clips the faces of one chunk against the near plane and sets up their triangles. Vertices
 /// made by clipping are numbered from `verts.len()` in the chunk's own list.
@@ -365,36 +382,46 @@ fn setup_chunk(faces: &[[usize; 3]], verts: &[Cv], view: &View) -> (Vec<Tri>, Ve
 }
 
 impl Scene {
-    fn new(mesh: &RenderMesh, view: &View) -> Scene {
-        let mut verts: Vec<Cv> = mesh
-            .positions
-            .par_iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let n = mesh.normals.get(i).copied().unwrap_or_else(Vector3::zeros);
-                Cv {
-                    c: view.to_cam(p),
-                    n: view.dir_to_cam(&n),
-                    col: mesh.colors.get(i).copied().unwrap_or([0.8, 0.8, 0.8]),
-                }
-            })
-            .collect();
-        let chunks: Vec<(Vec<Tri>, Vec<Cv>)> = mesh
-            .faces
-            .par_chunks(SETUP_CHUNK)
-            .map(|faces| setup_chunk(faces, &verts, view))
-            .collect();
-        let n = verts.len();
-        let mut tris = Vec::with_capacity(chunks.iter().map(|c| c.0.len()).sum());
-        for (chunk_tris, extra) in chunks {
-            let offset = verts.len() - n;
-            tris.extend(chunk_tris.into_iter().map(|mut t| {
-                t.v = t.v.map(|i| if i >= n { i + offset } else { i });
-                t
-            }));
-            verts.extend(extra);
-        }
-        Scene { verts, tris }
+    fn new(mesh: &RenderMesh, view: &View, parallel: bool) -> Scene {
+        let vertex = |(i, p): (usize, &Point3<f64>)| {
+            let n = mesh.normals.get(i).copied().unwrap_or_else(Vector3::zeros);
+            Cv {
+                c: view.to_cam(p),
+                n: view.dir_to_cam(&n),
+                col: mesh.colors.get(i).copied().unwrap_or([0.8, 0.8, 0.8]),
+            }
+        };
+        let verts: Vec<Cv> = if parallel {
+            mesh.positions.par_iter().enumerate().map(vertex).collect()
+        } else {
+            mesh.positions.iter().enumerate().map(vertex).collect()
+        };
+        let setup = |faces: &[[usize; 3]]| setup_chunk(faces, &verts, view);
+        let chunks = if parallel {
+            mesh.faces.par_chunks(SETUP_CHUNK).map(setup).collect()
+        } else {
+            mesh.faces.chunks(SETUP_CHUNK).map(setup).collect()
+        };
+        Scene { verts, chunks }
+    }
+
+    /// Every triangle with its id, in mesh order.
+    fn tris(&self) -> impl Iterator<Item = (TriId, &Tri)> {
+        self.chunks.iter().enumerate().flat_map(|(c, (tris, _))| {
+            tris.iter()
+                .enumerate()
+                .map(move |(k, t)| (((c as TriId) << 32) | k as TriId, t))
+        })
+    }
+
+    /// The triangle `id` and its three vertices.
+    fn tri(&self, id: TriId) -> Option<(&Tri, [&Cv; 3])> {
+        let (tris, extra) = self.chunks.get((id >> 32) as usize)?;
+        let t = tris.get((id & 0xffff_ffff) as usize)?;
+        let n = self.verts.len();
+        let v =
+            t.v.map(|i| if i < n { &self.verts[i] } else { &extra[i - n] });
+        Some((t, v))
     }
 }
 
@@ -429,8 +456,9 @@ impl Exponent {
 /// is within `2·e` ulps of `x^e` (2⁻⁴⁶ relative at `e` = 1024; about 1.8·10⁻¹⁴ relative and
 /// in practice a few ulps at the default 40), where `powf` is within one ulp. The specular term
 /// enters the pixel as `f32` and then as a byte, so such a difference changes a byte only if
-/// the exact value lies within 10⁻¹⁴ of a rounding boundary of the `f32` cast (see the report
-/// in the crate's README section for the measured effect on the ring study: none).
+/// the exact value lies within 10⁻¹⁴ of a rounding boundary of the `f32` cast and that
+/// rounding then crosses a byte boundary: the 45 pictures of the ring study (exponent 40) are
+/// byte-identical to those drawn with `powf`.
 pub fn spec_power(x: f64, shininess: f64) -> f64 {
     pow_exponent(x, Exponent::new(shininess))
 }
@@ -480,7 +508,7 @@ impl Lighting<'_> {
 /// Renders `mesh` seen by `camera`.
 ///
 /// Parallel inside (rayon): the vertices are transformed and the triangles set up in chunks,
-/// then horizontal bands of [`BAND_ROWS`] rows are rasterized and shaded on their own. Shading
+/// then horizontal bands of 16 rows are rasterized and shaded on their own. Shading
 /// is deferred: the depth pass keeps, per pixel, the nearest triangle (the first of equally
 /// near ones, as before), and each visible pixel is shaded once. The bytes are the same on
 /// every run and for any number of threads. To draw many pictures, [`render_many`] also runs
@@ -489,6 +517,16 @@ pub fn render(
     mesh: &RenderMesh,
     camera: &Camera,
     options: &RenderOptions,
+) -> Result<Image, RenderError> {
+    render_with(mesh, camera, options, true)
+}
+
+/// [`render`], parallel inside or not (the bytes are the same either way).
+fn render_with(
+    mesh: &RenderMesh,
+    camera: &Camera,
+    options: &RenderOptions,
+    parallel: bool,
 ) -> Result<Image, RenderError> {
     let (w, h) = (
         options.width.max(1) as usize,
@@ -501,52 +539,64 @@ pub fn render(
         exponent: Exponent::new(options.shininess),
         o: options,
     };
-    let scene = Scene::new(mesh, &view);
+    let scene = Scene::new(mesh, &view, parallel);
 
     // The triangles reaching each band, in mesh order.
     let bands = h.div_ceil(BAND_ROWS);
-    let mut per_band: Vec<Vec<u32>> = vec![Vec::new(); bands];
-    for (k, t) in scene.tris.iter().enumerate() {
+    let mut per_band: Vec<Vec<TriId>> = vec![Vec::new(); bands];
+    for (k, t) in scene.tris() {
         for list in &mut per_band[t.y.0 / BAND_ROWS..=t.y.1 / BAND_ROWS] {
-            list.push(k as u32);
+            list.push(k);
         }
     }
 
     // Depth pass: the nearest triangle of every pixel.
     let mut depth = vec![f64::INFINITY; w * h];
     let mut nearest = vec![NO_TRIANGLE; w * h];
-    depth
-        .par_chunks_mut(BAND_ROWS * w)
-        .zip(nearest.par_chunks_mut(BAND_ROWS * w))
-        .zip(per_band.par_iter())
-        .enumerate()
-        .for_each(|(b, ((depth, nearest), list))| {
-            let (r0, r1) = (b * BAND_ROWS, (b * BAND_ROWS + depth.len() / w).min(h));
-            for &k in list {
-                let t = &scene.tris[k as usize];
-                for py in t.y.0.max(r0)..=t.y.1.min(r1 - 1) {
-                    let (row, at) = ((py - r0) * w, t.row(py));
-                    let mut entered = false;
-                    for px in t.x.0..=t.x.1 {
-                        let e = t.at(&at, px);
-                        if !t.inside(&e) {
-                            if entered {
-                                break;
-                            }
-                            continue;
+    let depth_band = |(b, ((depth, nearest), list)): DepthBand<'_>| {
+        let (r0, r1) = (b * BAND_ROWS, (b * BAND_ROWS + depth.len() / w).min(h));
+        for &k in list {
+            let Some((t, _)) = scene.tri(k) else {
+                continue;
+            };
+            for py in t.y.0.max(r0)..=t.y.1.min(r1 - 1) {
+                let (row, at) = ((py - r0) * w, t.row(py));
+                let mut entered = false;
+                for px in t.x.0..=t.x.1 {
+                    let e = t.at(&at, px);
+                    if !t.inside(&e) {
+                        if entered {
+                            break;
                         }
-                        entered = true;
-                        let z = 1.0 / t.weights(&e).1;
-                        let idx = row + px;
-                        if z >= depth[idx] {
-                            continue;
-                        }
-                        depth[idx] = z;
-                        nearest[idx] = k;
+                        continue;
                     }
+                    entered = true;
+                    let z = 1.0 / t.weights(&e).1;
+                    let idx = row + px;
+                    if z >= depth[idx] {
+                        continue;
+                    }
+                    depth[idx] = z;
+                    nearest[idx] = k;
                 }
             }
-        });
+        }
+    };
+    if parallel {
+        depth
+            .par_chunks_mut(BAND_ROWS * w)
+            .zip(nearest.par_chunks_mut(BAND_ROWS * w))
+            .zip(per_band.par_iter())
+            .enumerate()
+            .for_each(depth_band);
+    } else {
+        depth
+            .chunks_mut(BAND_ROWS * w)
+            .zip(nearest.chunks_mut(BAND_ROWS * w))
+            .zip(per_band.iter())
+            .enumerate()
+            .for_each(depth_band);
+    }
 
     let mut wire_mask = Vec::new();
     if options.wireframe.is_some() {
@@ -567,40 +617,46 @@ pub fn render(
     let background = srgb.encode3(options.background);
     let wire = options.wireframe.map(|c| srgb.encode3(c));
     let mut rgb = vec![0u8; 3 * w * h];
-    rgb.par_chunks_mut(3 * BAND_ROWS * w)
-        .enumerate()
-        .for_each(|(b, out)| {
-            let r0 = b * BAND_ROWS;
-            for (i, px) in out.chunks_exact_mut(3).enumerate() {
-                let idx = r0 * w + i;
-                let colour = match (wire, wire_mask.get(idx)) {
-                    (Some(c), Some(true)) => c,
-                    _ => match scene.tris.get(nearest[idx] as usize) {
-                        None => background,
-                        Some(t) => {
-                            let (x, y) = (idx % w, idx / w);
-                            let e = t.at(&t.row(y), x);
-                            match t.inside(&e) {
-                                true => {
-                                    let (wt, sum) = t.weights(&e);
-                                    let (a, b, c) = (wt[0] / sum, wt[1] / sum, wt[2] / sum);
-                                    let v = t.v.map(|i| &scene.verts[i]);
-                                    let n = v[0].n * a + v[1].n * b + v[2].n * c;
-                                    let pos = v[0].c * a + v[1].c * b + v[2].c * c;
-                                    let (af, bf, cf) = (a as f32, b as f32, c as f32);
-                                    let col = std::array::from_fn(|k| {
-                                        v[0].col[k] * af + v[1].col[k] * bf + v[2].col[k] * cf
-                                    });
-                                    srgb.encode3(lighting.shade(n, col, pos))
-                                }
-                                false => background,
+    let shade_band = |(b, out): (usize, &mut [u8])| {
+        let r0 = b * BAND_ROWS;
+        for (i, px) in out.chunks_exact_mut(3).enumerate() {
+            let idx = r0 * w + i;
+            let colour = match (wire, wire_mask.get(idx)) {
+                (Some(c), Some(true)) => c,
+                _ => match scene.tri(nearest[idx]) {
+                    None => background,
+                    Some((t, v)) => {
+                        let (x, y) = (idx % w, idx / w);
+                        let e = t.at(&t.row(y), x);
+                        match t.inside(&e) {
+                            true => {
+                                let (wt, sum) = t.weights(&e);
+                                let (a, b, c) = (wt[0] / sum, wt[1] / sum, wt[2] / sum);
+                                let n = v[0].n * a + v[1].n * b + v[2].n * c;
+                                let pos = v[0].c * a + v[1].c * b + v[2].c * c;
+                                let (af, bf, cf) = (a as f32, b as f32, c as f32);
+                                let col = std::array::from_fn(|k| {
+                                    v[0].col[k] * af + v[1].col[k] * bf + v[2].col[k] * cf
+                                });
+                                srgb.encode3(lighting.shade(n, col, pos))
                             }
+                            false => background,
                         }
-                    },
-                };
-                px.copy_from_slice(&colour);
-            }
-        });
+                    }
+                },
+            };
+            px.copy_from_slice(&colour);
+        }
+    };
+    if parallel {
+        rgb.par_chunks_mut(3 * BAND_ROWS * w)
+            .enumerate()
+            .for_each(shade_band);
+    } else {
+        rgb.chunks_mut(3 * BAND_ROWS * w)
+            .enumerate()
+            .for_each(shade_band);
+    }
     Ok(Image {
         width: w as u32,
         height: h as u32,
@@ -609,15 +665,17 @@ pub fn render(
 }
 
 /// Renders every `(mesh, camera)` pair with the same options, in parallel over the pictures
-/// (and inside each, as [`render`]); the images come back in the order of `jobs`, byte for byte
-/// what [`render`] gives for each. The first failing job's error (in `jobs` order) is returned.
+/// (each picture drawn by one thread: with many pictures that keeps every core busy without
+/// the hand-offs of [`render`]'s bands); the images come back in the order of `jobs`, byte for
+/// byte what [`render`] gives for each. The first failing job's error (in `jobs` order) is
+/// returned.
 pub fn render_many(
     jobs: &[(&RenderMesh, &Camera)],
     options: &RenderOptions,
 ) -> Result<Vec<Image>, RenderError> {
     let images: Vec<Result<Image, RenderError>> = jobs
         .par_iter()
-        .map(|(mesh, camera)| render(mesh, camera, options))
+        .map(|(mesh, camera)| render_with(mesh, camera, options, false))
         .collect();
     images.into_iter().collect()
 }
@@ -753,6 +811,101 @@ mod tests {
             .count();
         // Four sides and a diagonal of a square about 139 px wide: roughly 5 × 139 pixels.
         assert!(dark > 500 && dark < 900, "{dark}");
+    }
+
+    /// A torus of `nu × nv` quads (two triangles each), coloured by position, with a few
+    /// triangles through the near plane of [`top_camera`] and one bad face.
+    fn busy_mesh(nu: usize, nv: usize) -> RenderMesh {
+        let mut m = RenderMesh::default();
+        for i in 0..nu {
+            for j in 0..nv {
+                let tau = std::f64::consts::TAU;
+                let (u, v) = (tau * i as f64 / nu as f64, tau * j as f64 / nv as f64);
+                let n = Vector3::new(v.cos() * u.cos(), v.cos() * u.sin(), v.sin());
+                m.positions
+                    .push(Point3::new(u.cos(), u.sin(), 0.0) * 2.0 + n * 0.8);
+                m.normals.push(n);
+                m.colors.push([(u / tau) as f32, (v / tau) as f32, 0.5]);
+                let at = |a: usize, b: usize| (a % nu) * nv + b % nv;
+                m.faces.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                m.faces.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        // Through the near plane (the eye is at z = 5) and an out-of-range index.
+        let base = m.positions.len();
+        m.positions.extend([
+            Point3::new(-1.0, -1.0, 0.0),
+            Point3::new(1.0, -1.0, 0.0),
+            Point3::new(0.0, 0.3, 9.0),
+        ]);
+        m.normals.extend([Vector3::z(); 3]);
+        m.colors.extend([[0.9, 0.2, 0.1]; 3]);
+        m.faces.push([base, base + 1, base + 2]);
+        m.faces.push([0, 1, base + 7]);
+        m
+    }
+
+    #[test]
+    fn rendering_is_deterministic_for_any_thread_count() {
+        // More faces than one setup chunk, so chunks and bands both split the work.
+        let m = busy_mesh(120, 40);
+        assert!(m.faces.len() > 2 * SETUP_CHUNK);
+        let cam = Camera {
+            eye: Point3::new(0.5, -6.0, 3.0),
+            ..top_camera()
+        };
+        for wireframe in [None, Some([0.1, 0.1, 0.1])] {
+            let o = RenderOptions {
+                width: 301,
+                height: 203,
+                wireframe,
+                ..RenderOptions::default()
+            };
+            let first = render(&m, &cam, &o).unwrap();
+            assert!(first.rgb.iter().any(|c| *c < 200), "something drawn");
+            for threads in [1, 2, 3] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let again = pool.install(|| render(&m, &cam, &o)).unwrap();
+                assert!(again == first, "{threads} threads");
+            }
+            let serial = render_with(&m, &cam, &o, false).unwrap();
+            assert!(serial == first);
+            let cams = [cam, top_camera(), cam];
+            let jobs: Vec<(&RenderMesh, &Camera)> = cams.iter().map(|c| (&m, c)).collect();
+            let many = render_many(&jobs, &o).unwrap();
+            assert_eq!(many.len(), 3);
+            assert!(many[0] == first && many[2] == first);
+            assert!(many[1] == render(&m, &top_camera(), &o).unwrap());
+        }
+        assert!(render_many(&[], &RenderOptions::default())
+            .unwrap()
+            .is_empty());
+    }
+
+    /// Relative accuracy promised by [`spec_power`] for whole exponents `e`: `2·e` ulps.
+    fn spec_bound(e: u32) -> f64 {
+        2.0 * f64::from(e) * f64::EPSILON
+    }
+
+    #[test]
+    fn specular_power_matches_powf() {
+        for e in [0u32, 1, 2, 3, 5, 17, 40, 64, 255, 1024] {
+            for i in 0..=2000 {
+                let x = f64::from(i) / 2000.0;
+                let (fast, exact) = (spec_power(x, f64::from(e)), x.powf(f64::from(e)));
+                assert!(
+                    (fast - exact).abs() <= spec_bound(e) * exact,
+                    "{x}^{e}: {fast} vs {exact}"
+                );
+            }
+        }
+        // Fractional, negative and large exponents go through powf.
+        for e in [40.5, -2.0, 2000.0, f64::NAN] {
+            assert!(spec_power(0.7f64, e).to_bits() == 0.7f64.powf(e).to_bits());
+        }
     }
 
     #[test]

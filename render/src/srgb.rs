@@ -94,7 +94,8 @@ impl Srgb8Table {
     /// Linear → sRGB byte (equal to [`to_srgb8_exact`]).
     #[inline]
     pub fn encode(&self, c: f32) -> u8 {
-        if !(c > 0.0) {
+        // NaN, zero and below.
+        if c.is_nan() || c <= 0.0 {
             return 0;
         }
         if c >= 1.0 {
