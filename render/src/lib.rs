@@ -13,6 +13,7 @@
 //! * [`chart`] — line charts (optionally log y, in grids) and grouped bar charts;
 //! * [`shade`] — a z-buffer rasterizer with near-plane clipping, perspective-correct
 //!   interpolation, Blinn–Phong shading and an optional wireframe;
+//! * [`srgb`] — linear → 8-bit sRGB by table, equal to the formula;
 //! * [`colors`] — diverging and sequential colour maps (Moreland, viridis);
 //! * [`mosaic`] — composites of rendered tiles with a title and a legend;
 //! * [`plyfile`] — binary PLY with colours and a quality value, for MeshLab;
@@ -28,6 +29,7 @@ pub mod io;
 pub mod mosaic;
 pub mod plyfile;
 pub mod shade;
+pub mod srgb;
 
 pub use chart::{
     write_histogram, write_line_chart, write_line_charts, Histogram, LineChart, Series,
@@ -40,4 +42,4 @@ pub use error::RenderError;
 pub use io::{remove_in_flight, writable_target, write_atomic, write_atomic_with};
 pub use mosaic::{write_composite, Legend, LegendKind, Tile};
 pub use plyfile::{ply_bytes, write_ply_binary};
-pub use shade::{render, Camera, Image, RenderMesh, RenderOptions};
+pub use shade::{render, render_many, Camera, Image, RenderMesh, RenderOptions};
