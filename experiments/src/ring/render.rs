@@ -8,7 +8,7 @@ use std::path::Path;
 use nalgebra::{Point3, Vector3};
 use render::colors as colormap;
 use render::{
-    render, write_composite, write_ply_binary, Camera, Image, Legend, LegendKind, RenderMesh,
+    write_composite, write_ply_binary, Camera, Image, Legend, LegendKind, RenderMesh,
     RenderOptions, Tile,
 };
 use serde_json::{json, Value};
@@ -149,17 +149,24 @@ pub fn render_all(out: &Path, views: &[SurfaceView<'_>]) -> Result<Value, Experi
     let mut files = Vec::new();
     for (file, title, colouring, legend) in &modes {
         let meshes: Vec<RenderMesh> = views.iter().map(|v| render_mesh(v, colouring)).collect();
-        let mut tiles = Vec::new();
-        for (az, el, vname) in VIEWS {
-            let cam = Camera::framing(lo, hi, az, el);
-            for (v, m) in views.iter().zip(&meshes) {
-                let image: Image = render(m, &cam, &options)?;
-                tiles.push(Tile {
-                    image,
-                    label: format!("{} — {vname}", v.label),
-                });
-            }
-        }
+        // Every (view, surface) picture in parallel, in the composite's order.
+        let cams: Vec<Camera> = VIEWS
+            .iter()
+            .map(|(az, el, _)| Camera::framing(lo, hi, *az, *el))
+            .collect();
+        let jobs: Vec<(&RenderMesh, &Camera)> = cams
+            .iter()
+            .flat_map(|cam| meshes.iter().map(move |m| (m, cam)))
+            .collect();
+        let images: Vec<Image> = render::render_many(&jobs, &options)?;
+        let labels = VIEWS
+            .iter()
+            .flat_map(|(_, _, vname)| views.iter().map(move |v| format!("{} — {vname}", v.label)));
+        let tiles: Vec<Tile> = images
+            .into_iter()
+            .zip(labels)
+            .map(|(image, label)| Tile { image, label })
+            .collect();
         let path = out.join(format!("{file}.png"));
         write_composite(&tiles, views.len(), title, legend.as_ref(), &path)?;
         files.push(json!({"file": format!("{file}.png"), "title": title}));
