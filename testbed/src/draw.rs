@@ -108,27 +108,64 @@ pub fn draw(tris: &[[Vertex; 3]], view: &View) -> Result<Image, FilterError> {
             "picture size {w}x{h}: each side from 1 to {MAX_SIDE}"
         )));
     }
-    let mut options = RenderOptions {
+    let options = RenderOptions {
         width: w,
         height: h,
         ..RenderOptions::default()
     };
-    let mesh = if view.wire {
-        // Hidden-line drawing: white faces lit uniformly, dark edges with the depth test.
-        options.ambient = 1.0;
-        options.key = 0.0;
-        options.fill = 0.0;
-        options.specular = 0.0;
-        options.wireframe = Some([0.02, 0.02, 0.08]);
-        let mut m = render_mesh(tris, [1.0, 1.0, 1.0]);
-        m.colors.iter_mut().for_each(|c| *c = [1.0, 1.0, 1.0]);
-        m
-    } else {
-        render_mesh(tris, render::colors::MATERIAL)
-    };
+    let mesh = render_mesh(tris, render::colors::MATERIAL);
     let (lo, hi) = bounds(&mesh);
     let camera = Camera::framing(lo, hi, view.view.0, view.view.1);
+    if view.wire {
+        return Ok(wire_frame(&mesh, &camera, w, h));
+    }
     Ok(render::render(&mesh, &camera, &options)?)
+}
+
+/// Every triangle edge as a one-pixel dark line on white, seen by `camera` as
+/// [`render::render`] projects (XRender's wire-frame: no hidden lines removed).
+fn wire_frame(mesh: &RenderMesh, camera: &Camera, w: u32, h: u32) -> Image {
+    let mut img = Image {
+        width: w,
+        height: h,
+        rgb: vec![255u8; 3 * w as usize * h as usize],
+    };
+    let f = (camera.target - camera.eye).normalize();
+    let r = f.cross(&camera.up).normalize();
+    let u = r.cross(&f);
+    let fpx = (f64::from(h) * 0.5) / (camera.fov_y_degrees.to_radians() * 0.5).tan();
+    let project = |p: &Point3<f64>| -> Option<(f64, f64)> {
+        let d = p - camera.eye;
+        let z = d.dot(&f);
+        (z > 0.0 && z.is_finite()).then(|| {
+            (
+                f64::from(w) * 0.5 + fpx * d.dot(&r) / z,
+                f64::from(h) * 0.5 - fpx * d.dot(&u) / z,
+            )
+        })
+    };
+    for face in &mesh.faces {
+        for k in 0..3 {
+            let (Some(a), Some(b)) = (
+                mesh.positions.get(face[k]).and_then(project),
+                mesh.positions.get(face[(k + 1) % 3]).and_then(project),
+            ) else {
+                continue;
+            };
+            let steps = (b.0 - a.0).abs().max((b.1 - a.1).abs()).ceil().min(1e5) as usize + 1;
+            for i in 0..=steps {
+                let t = i as f64 / steps as f64;
+                let (x, y) = (a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t);
+                if x >= 0.0 && y >= 0.0 && x < f64::from(w) && y < f64::from(h) {
+                    let at = 3 * (y as usize * w as usize + x as usize);
+                    if let Some(px) = img.rgb.get_mut(at..at + 3) {
+                        px.copy_from_slice(&[20, 20, 60]);
+                    }
+                }
+            }
+        }
+    }
+    img
 }
 
 /// Encodes an image as PNG.

@@ -133,7 +133,7 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-    /// A wire-frame picture of the triangles (hidden lines removed), PNG: the seed's XRender.
+    /// A wire-frame picture of the triangles (every edge), PNG: the seed's XRender.
     Wire {
         #[command(flatten)]
         picture: Picture,
