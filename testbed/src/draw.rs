@@ -30,7 +30,7 @@ pub const MAX_SIDE: u32 = 16_384;
 /// Reads every Triangle into a render mesh (unwelded); other records are ignored.
 pub fn collect_triangles(pipe: &mut Pipe) -> Result<Vec<[Vertex; 3]>, FilterError> {
     let mut tris = Vec::new();
-    while let Some(rec) = pipe.next()? {
+    while let Some(rec) = pipe.next_good()? {
         if rec.kind() != "Triangle" {
             continue;
         }

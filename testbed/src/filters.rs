@@ -63,7 +63,7 @@ impl<'a> Pipe<'a> {
     }
 
     /// The next good record; bad ones are skipped (with `keep_going`) or returned as errors.
-    pub fn next(&mut self) -> Result<Option<Record>, StreamError> {
+    pub fn next_good(&mut self) -> Result<Option<Record>, StreamError> {
         loop {
             match self.reader.next_record() {
                 None => return Ok(None),
@@ -203,7 +203,7 @@ pub fn tess(pipe: &mut Pipe, s: usize, fields: CurvatureFields) -> Result<(), Fi
             "tess: -s must be at least 1 segment per edge".into(),
         ));
     }
-    while let Some(rec) = pipe.next()? {
+    while let Some(rec) = pipe.next_good()? {
         let Some(obj) = rec
             .value
             .as_object()
@@ -358,7 +358,7 @@ pub fn colour(
 ) -> Result<(), FilterError> {
     let data_dependent = colouring.data_dependent();
     let mut held: Vec<(Record, [f64; 3])> = Vec::new();
-    while let Some(mut rec) = pipe.next()? {
+    while let Some(mut rec) = pipe.next_good()? {
         if rec.kind() != "Triangle" {
             pipe.write(&rec.value, &rec)?;
             continue;

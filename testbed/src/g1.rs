@@ -80,6 +80,9 @@ fn bits(p: &nalgebra::Point3<f64>) -> [u64; 3] {
     ]
 }
 
+/// One patch edge on a boundary: patch index, edge, traversed against the canonical order.
+type Use = (usize, usize, bool);
+
 /// Measures `patches` (each with its record number).
 pub fn measure(patches: &[(usize, BezierTriangle)], samples: usize) -> G1Summary {
     let samples = samples.max(2);
@@ -88,7 +91,7 @@ pub fn measure(patches: &[(usize, BezierTriangle)], samples: usize) -> G1Summary
         ..G1Summary::default()
     };
     // Canonical key: the control points in the lexicographically smaller direction.
-    let mut boundaries: HashMap<Vec<[u64; 3]>, Vec<(usize, usize, bool)>> = HashMap::new();
+    let mut boundaries: HashMap<Vec<[u64; 3]>, Vec<Use>> = HashMap::new();
     for (pi, (_, patch)) in patches.iter().enumerate() {
         for e in 0..3 {
             let Some(curve) = patch.boundary_curve(e) else {
@@ -150,7 +153,7 @@ pub fn measure(patches: &[(usize, BezierTriangle)], samples: usize) -> G1Summary
 /// end, reports on standard error; with `strict` an angle above [`G1_TOLERANCE`] is an error.
 pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, FilterError> {
     let mut patches = Vec::new();
-    while let Some(rec) = pipe.next()? {
+    while let Some(rec) = pipe.next_good()? {
         if rec.kind() == "BezierTriangle" {
             match rec.value.as_object().map(record::bezier_triangle) {
                 Some(Ok(p)) => patches.push((rec.at.record, p)),

@@ -254,12 +254,12 @@ fn filter<T>(
     })
 }
 
+/// What a sink does with the triangles read.
+type SinkFn<'a> =
+    dyn FnMut(Vec<[testbed::record::Vertex; 3]>, &mut dyn Write) -> Result<(), FilterError> + 'a;
+
 /// Runs a filter that ends the pipeline (reads triangles, writes something else).
-fn sink(
-    name: &'static str,
-    c: &Common,
-    f: &mut dyn FnMut(Vec<[testbed::record::Vertex; 3]>, &mut dyn Write) -> Result<(), FilterError>,
-) -> Result<(), FilterError> {
+fn sink(name: &'static str, c: &Common, f: &mut SinkFn) -> Result<(), FilterError> {
     let mut input = open_input(&c.input)?;
     let mut nothing = std::io::sink();
     let tris = {

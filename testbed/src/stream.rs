@@ -181,32 +181,30 @@ impl<R: BufRead> RecordReader<R> {
     }
 
     fn next_json(&mut self) -> Result<Option<Record>, StreamError> {
-        loop {
-            if self.skip_space()?.is_none() {
-                return Ok(None);
-            }
-            self.buf.clear();
-            let at_line = self.line;
-            self.inner
-                .read_until(b'\n', &mut self.buf)
-                .map_err(|e| StreamError::io("reading the input", e))?;
-            self.line += 1;
-            self.count += 1;
-            let at = Position {
-                record: self.count,
-                line: at_line,
-            };
-            return match serde_json::from_slice::<Value>(&self.buf) {
-                Ok(value @ Value::Object(_)) => Ok(Some(Record { value, at })),
-                Ok(_) => Err(StreamError::Syntax {
-                    at,
-                    message: "a record must be a JSON object".into(),
-                }),
-                Err(e) => Err(StreamError::Syntax {
-                    at,
-                    message: format!("bad JSON: {e}"),
-                }),
-            };
+        if self.skip_space()?.is_none() {
+            return Ok(None);
+        }
+        self.buf.clear();
+        let at_line = self.line;
+        self.inner
+            .read_until(b'\n', &mut self.buf)
+            .map_err(|e| StreamError::io("reading the input", e))?;
+        self.line += 1;
+        self.count += 1;
+        let at = Position {
+            record: self.count,
+            line: at_line,
+        };
+        match serde_json::from_slice::<Value>(&self.buf) {
+            Ok(value @ Value::Object(_)) => Ok(Some(Record { value, at })),
+            Ok(_) => Err(StreamError::Syntax {
+                at,
+                message: "a record must be a JSON object".into(),
+            }),
+            Err(e) => Err(StreamError::Syntax {
+                at,
+                message: format!("bad JSON: {e}"),
+            }),
         }
     }
 

@@ -1,5 +1,6 @@
 //! The seed's Examples 1–5 (`examples/example*.sh`) run with the test binary into a temporary
 //! directory; every picture must exist, have the examples' size and not be blank.
+#![allow(clippy::expect_used, clippy::unwrap_used)] // tests: a failed step should stop loudly
 
 use std::path::Path;
 use std::process::Command;

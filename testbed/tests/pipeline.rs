@@ -1,5 +1,6 @@
 //! The filters as processes: pass-through of unknown fields, formats, errors naming the record,
 //! `--keep-going`, and hostile streams (truncated, mutated) that must never panic.
+#![allow(clippy::expect_used, clippy::unwrap_used)] // tests: a failed step should stop loudly
 
 use std::io::Write;
 use std::process::{Command, Output, Stdio};
