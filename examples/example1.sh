@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Example 1 of the seed (§3): a shaded picture of the octahedron's surface.
+#   % Piper < octa.m | Tess -s 8 | Mat0 | Sgp | Render > octa.wff
+# Piper's scheme is not available (its construction could not be recovered); the modified
+# Shirman–Séquin scheme stands in. Sgp is not needed: render reads the triangle records.
+. "$(dirname "$0")/common.sh"
+tb fit --scheme shirman-sequin < "$DATA" | tb tess -s 8 | tb mat0 | tb render > "$OUT/example1.png"

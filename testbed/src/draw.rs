@@ -1,0 +1,244 @@
+//! The ends of the pipeline: `render` (the seed's Sgp | Render), `wire` (Sgp | XRender) and
+//! `to-mesh` (a mesh file).
+//!
+//! The triangles are drawn as they come, unwelded (each record's three vertices), with their
+//! normals (the geometric normal where a vertex has none) and colours (the uniform material
+//! where a vertex has none). The camera frames the triangles' bounding box from the given
+//! azimuth and elevation.
+
+use std::collections::HashMap;
+use std::io::Write;
+use std::path::Path;
+
+use nalgebra::{Point3, Vector3};
+use render::{Camera, Image, RenderMesh, RenderOptions};
+
+use crate::error::FilterError;
+use crate::filters::Pipe;
+use crate::record::{self, Vertex};
+
+/// Default view: azimuth and elevation in degrees (the octahedron's three front faces).
+pub const DEFAULT_VIEW: (f64, f64) = (35.0, 25.0);
+
+/// Default picture size (the examples' size).
+pub const DEFAULT_SIZE: (u32, u32) = (400, 300);
+
+/// Largest picture side accepted: a 16k image is 768 MB of RGB, the most a shared machine
+/// should be asked for.
+pub const MAX_SIDE: u32 = 16_384;
+
+/// Reads every Triangle into a render mesh (unwelded); other records are ignored.
+pub fn collect_triangles(pipe: &mut Pipe) -> Result<Vec<[Vertex; 3]>, FilterError> {
+    let mut tris = Vec::new();
+    while let Some(rec) = pipe.next_good()? {
+        if rec.kind() != "Triangle" {
+            continue;
+        }
+        match rec.value.as_object().map(record::triangle) {
+            Some(Ok(t)) => tris.push(t),
+            Some(Err(e)) => pipe.bad_field(&rec, e)?,
+            None => {}
+        }
+    }
+    if pipe.skipped > 0 {
+        eprintln!(
+            "{}: {} bad record(s) skipped (--keep-going)",
+            pipe.name, pipe.skipped
+        );
+    }
+    Ok(tris)
+}
+
+/// Triangles to a render mesh.
+pub fn render_mesh(tris: &[[Vertex; 3]], default_color: [f32; 3]) -> RenderMesh {
+    let mut m = RenderMesh {
+        positions: Vec::with_capacity(tris.len() * 3),
+        normals: Vec::with_capacity(tris.len() * 3),
+        colors: Vec::with_capacity(tris.len() * 3),
+        faces: Vec::with_capacity(tris.len()),
+    };
+    for t in tris {
+        let geometric = (t[1].pos - t[0].pos).cross(&(t[2].pos - t[0].pos));
+        let base = m.positions.len();
+        for v in t {
+            m.positions.push(v.pos);
+            m.normals.push(v.norm.unwrap_or(geometric));
+            m.colors.push(v.color.unwrap_or(default_color));
+        }
+        m.faces.push([base, base + 1, base + 2]);
+    }
+    m
+}
+
+/// Bounding box of the mesh's finite positions (a unit box at the origin when empty).
+fn bounds(m: &RenderMesh) -> (Point3<f64>, Point3<f64>) {
+    let mut lo = Point3::from(Vector3::repeat(f64::INFINITY));
+    let mut hi = Point3::from(Vector3::repeat(f64::NEG_INFINITY));
+    for p in m
+        .positions
+        .iter()
+        .filter(|p| p.iter().all(|x| x.is_finite()))
+    {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    if lo.x > hi.x {
+        (Point3::origin(), Point3::new(1.0, 1.0, 1.0))
+    } else {
+        (lo, hi)
+    }
+}
+
+/// How a picture is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// Azimuth and elevation, degrees.
+    pub view: (f64, f64),
+    /// Width and height, pixels.
+    pub size: (u32, u32),
+    /// Wire-frame (XRender) instead of shaded.
+    pub wire: bool,
+}
+
+/// Draws triangles.
+pub fn draw(tris: &[[Vertex; 3]], view: &View) -> Result<Image, FilterError> {
+    let (w, h) = view.size;
+    if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
+        return Err(FilterError::Usage(format!(
+            "picture size {w}x{h}: each side from 1 to {MAX_SIDE}"
+        )));
+    }
+    let options = RenderOptions {
+        width: w,
+        height: h,
+        ..RenderOptions::default()
+    };
+    let mesh = render_mesh(tris, render::colors::MATERIAL);
+    let (lo, hi) = bounds(&mesh);
+    let camera = Camera::framing(lo, hi, view.view.0, view.view.1);
+    if view.wire {
+        return Ok(wire_frame(&mesh, &camera, w, h));
+    }
+    Ok(render::render(&mesh, &camera, &options)?)
+}
+
+/// Every triangle edge as a one-pixel dark line on white, seen by `camera` as
+/// [`render::render`] projects (XRender's wire-frame: no hidden lines removed).
+fn wire_frame(mesh: &RenderMesh, camera: &Camera, w: u32, h: u32) -> Image {
+    let mut img = Image {
+        width: w,
+        height: h,
+        rgb: vec![255u8; 3 * w as usize * h as usize],
+    };
+    let f = (camera.target - camera.eye).normalize();
+    let r = f.cross(&camera.up).normalize();
+    let u = r.cross(&f);
+    let fpx = (f64::from(h) * 0.5) / (camera.fov_y_degrees.to_radians() * 0.5).tan();
+    let project = |p: &Point3<f64>| -> Option<(f64, f64)> {
+        let d = p - camera.eye;
+        let z = d.dot(&f);
+        (z > 0.0 && z.is_finite()).then(|| {
+            (
+                f64::from(w) * 0.5 + fpx * d.dot(&r) / z,
+                f64::from(h) * 0.5 - fpx * d.dot(&u) / z,
+            )
+        })
+    };
+    for face in &mesh.faces {
+        for k in 0..3 {
+            let (Some(a), Some(b)) = (
+                mesh.positions.get(face[k]).and_then(project),
+                mesh.positions.get(face[(k + 1) % 3]).and_then(project),
+            ) else {
+                continue;
+            };
+            let steps = (b.0 - a.0).abs().max((b.1 - a.1).abs()).ceil().min(1e5) as usize + 1;
+            for i in 0..=steps {
+                let t = i as f64 / steps as f64;
+                let (x, y) = (a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t);
+                if x >= 0.0 && y >= 0.0 && x < f64::from(w) && y < f64::from(h) {
+                    let at = 3 * (y as usize * w as usize + x as usize);
+                    if let Some(px) = img.rgb.get_mut(at..at + 3) {
+                        px.copy_from_slice(&[20, 20, 60]);
+                    }
+                }
+            }
+        }
+    }
+    img
+}
+
+/// Encodes an image as PNG.
+pub fn write_png(image: &Image, out: &mut dyn Write) -> Result<(), FilterError> {
+    let png_err = |e: png::EncodingError| FilterError::Png(e.to_string());
+    let mut enc = png::Encoder::new(out, image.width, image.height);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    let mut writer = enc.write_header().map_err(png_err)?;
+    writer.write_image_data(&image.rgb).map_err(png_err)?;
+    writer.finish().map_err(png_err)
+}
+
+/// Triangles welded by exact position into a raw mesh with normals (the first seen at a
+/// position) and colours (when every vertex has one).
+pub fn to_raw(tris: &[[Vertex; 3]]) -> meshio::RawMesh {
+    let mut index: HashMap<[u64; 3], usize> = HashMap::new();
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    let mut colors = Vec::new();
+    let all_normals = tris.iter().flatten().all(|v| v.norm.is_some());
+    let all_colors = tris.iter().flatten().all(|v| v.color.is_some());
+    let mut faces = Vec::with_capacity(tris.len());
+    for t in tris {
+        let mut f = [0usize; 3];
+        for (slot, v) in f.iter_mut().zip(t) {
+            let key = [
+                (v.pos.x + 0.0).to_bits(),
+                (v.pos.y + 0.0).to_bits(),
+                (v.pos.z + 0.0).to_bits(),
+            ];
+            *slot = *index.entry(key).or_insert_with(|| {
+                positions.push(v.pos);
+                normals.push(v.norm.unwrap_or_else(Vector3::z));
+                colors.push(v.color.unwrap_or(render::colors::MATERIAL));
+                positions.len() - 1
+            });
+        }
+        faces.push(f);
+    }
+    let mut raw = meshio::RawMesh::from_triangles(positions, &faces);
+    if all_normals {
+        raw.normals = Some(normals);
+    }
+    if all_colors {
+        raw.colors = Some(colors);
+    }
+    raw
+}
+
+/// Writes triangles as a mesh file, the format by `path`'s extension, atomically.
+pub fn write_mesh(tris: &[[Vertex; 3]], path: &Path) -> Result<(), FilterError> {
+    let format = meshio::format_for_path(path)
+        .filter(|f| f.can_write())
+        .ok_or_else(|| {
+            FilterError::Usage(format!(
+                "to-mesh: {} names no writable mesh format (.ply, .obj, .glb, .stl, .off, .m)",
+                path.display()
+            ))
+        })?;
+    let raw = to_raw(tris);
+    let bytes = meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|e| {
+        FilterError::MeshWrite {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        }
+    })?;
+    render::write_atomic(path, &bytes)?;
+    eprintln!(
+        "to-mesh: {} triangles, {} vertices → {}",
+        raw.num_faces(),
+        raw.num_vertices(),
+        path.display()
+    );
+    Ok(())
+}

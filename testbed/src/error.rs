@@ -1,0 +1,166 @@
+//! Typed errors of the stream readers, writers and filters.
+
+/// Where a record starts in its stream: its number (1-based, counting every record read,
+/// good or bad) and the line of its first byte (1-based; `0` for the binary format, which has
+/// no lines).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Position {
+    /// Record number, from 1.
+    pub record: usize,
+    /// Line of the record's first byte, from 1 (0: not a text stream).
+    pub line: usize,
+}
+
+impl std::fmt::Display for Position {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.line > 0 {
+            write!(f, "record {} (line {})", self.record, self.line)
+        } else {
+            write!(f, "record {}", self.record)
+        }
+    }
+}
+
+/// A field of a record that a filter needs is missing or malformed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("field `{field}`: {message}")]
+pub struct FieldError {
+    /// The field's path in the record (`vertex1.pos`, `points[3]`).
+    pub field: String,
+    /// What is wrong with it.
+    pub message: String,
+}
+
+impl FieldError {
+    /// A field error at `field`.
+    pub fn new(field: impl Into<String>, message: impl Into<String>) -> Self {
+        FieldError {
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+}
+
+/// Why a stream could not be read or written, or a record could not be used.
+#[derive(Debug, thiserror::Error)]
+pub enum StreamError {
+    /// Reading or writing the underlying file or pipe failed.
+    #[error("{context}: {source}")]
+    Io {
+        /// What was being read or written.
+        context: String,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// A record could not be parsed (the stream's syntax).
+    #[error("{at}: {message}")]
+    Syntax {
+        /// Where the record starts.
+        at: Position,
+        /// What is wrong.
+        message: String,
+    },
+    /// A record parsed but a field a filter needs is missing or malformed.
+    #[error("{at} ({kind}): {source}")]
+    Field {
+        /// Where the record starts.
+        at: Position,
+        /// The record's type.
+        kind: String,
+        /// The field and what is wrong with it.
+        source: FieldError,
+    },
+    /// The stream's first bytes name no known format.
+    #[error("unrecognised stream: the first byte {found:?} starts neither JSON Lines (`{{`), a dstruct (`(`) nor the binary form (`TBIN`)")]
+    UnknownFormat {
+        /// The first non-space byte, as a character.
+        found: char,
+    },
+    /// A binary stream is damaged in a way that cannot be skipped (records have no
+    /// separators to resynchronise on).
+    #[error("binary stream, {at}: {message}")]
+    Binary {
+        /// The record being read.
+        at: Position,
+        /// What is wrong.
+        message: String,
+    },
+    /// A record cannot be written in the chosen format.
+    #[error("{at}: cannot write as {format}: {message}")]
+    Unwritable {
+        /// The record.
+        at: Position,
+        /// The output format.
+        format: &'static str,
+        /// Why.
+        message: String,
+    },
+}
+
+impl StreamError {
+    /// True for errors confined to one record, which `--keep-going` may skip: syntax errors in
+    /// a text stream and field errors. I/O errors, unknown formats and damaged binary streams
+    /// end the run.
+    pub fn is_record_error(&self) -> bool {
+        matches!(
+            self,
+            StreamError::Syntax { .. } | StreamError::Field { .. } | StreamError::Unwritable { .. }
+        )
+    }
+
+    /// An I/O error with its context.
+    pub fn io(context: impl Into<String>, source: std::io::Error) -> Self {
+        StreamError::Io {
+            context: context.into(),
+            source,
+        }
+    }
+}
+
+/// Why a filter failed as a whole.
+#[derive(Debug, thiserror::Error)]
+pub enum FilterError {
+    /// The record stream.
+    #[error(transparent)]
+    Stream(#[from] StreamError),
+    /// An option is invalid.
+    #[error("{0}")]
+    Usage(String),
+    /// Reading the input mesh failed.
+    #[error(transparent)]
+    MeshIo(#[from] meshio::MeshIoError),
+    /// Repairing or completing the input mesh failed.
+    #[error("preparing the mesh: {0}")]
+    Prepare(#[from] estimate::PrepareError),
+    /// Fitting failed.
+    #[error("fitting: {0}")]
+    Fit(#[from] surface::FitError),
+    /// Tessellation failed.
+    #[error("tessellating: {0}")]
+    Tess(#[from] surface::TessError),
+    /// A data set could not be built.
+    #[error("data set: {0}")]
+    DataSet(#[from] surface::DataSetError),
+    /// Rendering failed.
+    #[error("rendering: {0}")]
+    Render(#[from] render::RenderError),
+    /// Encoding the PNG failed.
+    #[error("encoding PNG: {0}")]
+    Png(String),
+    /// Writing a mesh file failed.
+    #[error("writing {path}: {message}")]
+    MeshWrite {
+        /// The file.
+        path: std::path::PathBuf,
+        /// Why.
+        message: String,
+    },
+    /// `g1 --strict`: a boundary exceeds the tolerance.
+    #[error("G1 defect {angle:.3e} rad exceeds the tolerance {tolerance:.1e} rad")]
+    G1Exceeded {
+        /// The largest angle measured.
+        angle: f64,
+        /// The tolerance.
+        tolerance: f64,
+    },
+}

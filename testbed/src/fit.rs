@@ -1,0 +1,160 @@
+//! The head of the pipeline: a mesh in, patches (or, sampled, triangles) out — the seed's
+//! Fitter0, Piper, Nielson, … with the workbench's schemes standing in.
+//!
+//! The mesh is read from bytes in any `meshio` format, the format sniffed from the content
+//! (so `fit < octa.m` works), repaired and completed by an estimator (`estimate::prepare`:
+//! normals kept when the file has them, curvature estimated), fitted in the working frame,
+//! and written back in the file's coordinates.
+//!
+//! Records: `{"type":"BezierTriangle","degree":n,"points":[…],"face":f,"subpatch":s,
+//! "scheme":"name"}`; with `sample = Some(N)` the fit is tessellated here
+//! (`surface::tessellate_fit`) and `Triangle`s are written instead, with `face`, `subpatch`
+//! and `scheme` after the vertices — the shape of the seed's Example 5, where a fitter
+//! samples its own surface.
+
+use std::path::Path;
+
+use estimate::EstimateChoice;
+use serde_json::{Map, Value};
+
+use crate::error::{FilterError, Position};
+use crate::filters::{triangle_value, CurvatureFields, Sample};
+use crate::record;
+use crate::stream::RecordWriter;
+
+/// How to fit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitOptions {
+    /// Scheme name (`surface::scheme_names`).
+    pub scheme: String,
+    /// Boundary-curve method (`chord`, `dbhs`, `optimized`).
+    pub curves: String,
+    /// Estimator for what the file lacks (`none` or an estimator's name).
+    pub estimate: String,
+    /// Estimate normals even where the file has them.
+    pub replace_normals: bool,
+    /// Tessellate here at this density and write triangles.
+    pub sample: Option<usize>,
+    /// Curvatures written with sampled triangles.
+    pub fields: CurvatureFields,
+}
+
+/// A mesh for fitting: prepared from bytes, or a named data set.
+pub struct Input {
+    /// The mesh in the working frame.
+    pub mesh: surface::Mesh,
+    /// The way back to the file's coordinates.
+    pub frame: surface::Frame,
+}
+
+/// Reads, repairs and completes a mesh from `bytes` (`path` names it and may pick the format
+/// by extension; the content decides when it is recognisably another format).
+pub fn prepare_bytes(
+    path: &Path,
+    bytes: &[u8],
+    estimate: &str,
+    replace_normals: bool,
+) -> Result<Input, FilterError> {
+    let raw = meshio::read_bytes(path, bytes)?;
+    let choice = EstimateChoice::parse(estimate)
+        .map_err(|e| FilterError::Usage(format!("--estimate {estimate}: {e}")))?;
+    let prepared = estimate::prepare(&raw, choice, replace_normals)?;
+    for line in prepared.summary_lines() {
+        eprintln!("fit: {line}");
+    }
+    Ok(Input {
+        mesh: prepared.mesh,
+        frame: prepared.frame,
+    })
+}
+
+/// A named data set (`ring`, `sphere`, `capsule`, `octa`), optionally `NAME:RESOLUTION`.
+pub fn dataset(spec: &str) -> Result<Input, FilterError> {
+    let (name, res) = match spec.split_once(':') {
+        Some((n, r)) => (
+            n,
+            Some(r.parse::<usize>().map_err(|_| {
+                FilterError::Usage(format!("--dataset {spec}: resolution must be an integer"))
+            })?),
+        ),
+        None => (spec, None),
+    };
+    let data = surface::dataset_by_name(name, res)?;
+    Ok(Input {
+        mesh: data.mesh,
+        frame: surface::Frame::identity(),
+    })
+}
+
+/// Fits `input` and writes its records.
+pub fn fit<W: std::io::Write>(
+    input: &Input,
+    options: &FitOptions,
+    out: &mut RecordWriter<W>,
+) -> Result<(), FilterError> {
+    let scheme = surface::scheme_by_name(&options.scheme, &surface::SchemeOptions::default())
+        .map_err(|e| FilterError::Usage(e.to_string()))?;
+    let method = curves::method_by_name(&options.curves, &curves::MethodOptions::default())
+        .map_err(|e| FilterError::Usage(e.to_string()))?;
+    let fitted = surface::fit_scheme(&input.mesh, scheme.as_ref(), method.as_ref())?;
+    if !fitted.face_fallbacks.is_empty() {
+        eprintln!(
+            "fit: {} face(s) fitted with the C0 fallback patch",
+            fitted.face_fallbacks.len()
+        );
+    }
+    let per_face = fitted.layout.patches_per_face().max(1);
+    let scheme_name = Value::from(fitted.scheme);
+    let mut at = Position::default();
+    if let Some(s) = options.sample {
+        if s == 0 {
+            return Err(FilterError::Usage("fit --sample must be at least 1".into()));
+        }
+        let mut t = surface::tessellate_fit(&input.mesh, &fitted, s)?;
+        input.frame.tessellation_to_world(&mut t);
+        for (fi, f) in t.faces.iter().enumerate() {
+            let sample = |i: usize| Sample {
+                pos: t.positions[i],
+                norm: t.normals[i],
+                kg: t.gaussian[i],
+                km: t.mean[i],
+            };
+            let patch = t.patch_of_face.get(fi).copied().unwrap_or(0);
+            let mut carried = Map::new();
+            carried.insert("face".into(), Value::from(patch / per_face));
+            carried.insert("subpatch".into(), Value::from(patch % per_face));
+            carried.insert("scheme".into(), scheme_name.clone());
+            let v = triangle_value(
+                &[sample(f[0]), sample(f[1]), sample(f[2])],
+                options.fields,
+                carried.iter(),
+            );
+            at.record += 1;
+            out.write(&v, at)?;
+        }
+    } else {
+        for (i, net) in fitted.nets().enumerate() {
+            let mut m = Map::new();
+            m.insert("type".into(), Value::from("BezierTriangle"));
+            m.insert("degree".into(), Value::from(fitted.layout.degree));
+            m.insert(
+                "points".into(),
+                Value::Array(
+                    net.iter()
+                        .map(|p| {
+                            let q = input.frame.to_world(p);
+                            record::arr3([q.x, q.y, q.z])
+                        })
+                        .collect(),
+                ),
+            );
+            m.insert("face".into(), Value::from(i / per_face));
+            m.insert("subpatch".into(), Value::from(i % per_face));
+            m.insert("scheme".into(), scheme_name.clone());
+            at.record += 1;
+            out.write(&Value::Object(m), at)?;
+        }
+    }
+    out.finish()?;
+    Ok(())
+}

@@ -1,0 +1,30 @@
+//! The testbed pipeline of Lounsbery et al. (1990), *A testbed for the comparison of
+//! parametric surface methods* (seed `lounsbery-1990-testbed.txt`, §§2–3.5): standalone
+//! filters connected by pipes, passing a stream of self-describing records.
+//!
+//! * [`stream`] — records in and out: JSON Lines (default), the seed's dstruct external
+//!   format ([`dstruct`]), a self-describing binary form ([`binary`]); the input format is
+//!   detected, the output follows it unless chosen;
+//! * [`record`] — the record schemas (`BezierTriangle`, `Triangle`) and typed field access;
+//! * [`fit`](mod@fit) — the head: a mesh file to patches (Fitter0, Piper, … by the
+//!   workbench's schemes), or sampled straight to triangles (Example 5);
+//! * [`filters`] — Tess, Mat0, KColor, Radial, and the pass-through rules;
+//! * [`g1`](mod@g1) — G1 as a filter: records through, normal angles along shared boundaries
+//!   on standard error;
+//! * [`draw`] — the tail: Render (shaded PNG), XRender (wire-frame PNG), a mesh file.
+//!
+//! Every filter keeps the fields and records it does not use (see [`filters`] for the fields
+//! a transforming filter carries over), so a field added at the head arrives at the end.
+
+pub mod binary;
+pub mod draw;
+pub mod dstruct;
+pub mod error;
+pub mod filters;
+pub mod fit;
+pub mod g1;
+pub mod record;
+pub mod stream;
+
+pub use error::{FieldError, FilterError, Position, StreamError};
+pub use stream::{Format, Record, RecordReader, RecordWriter};

@@ -1,0 +1,420 @@
+//! `testbed`: the pipeline's filters as subcommands (see the library's docs and
+//! `examples/` at the repository root).
+//!
+//! ```sh
+//! testbed fit --scheme shirman-sequin < data/octa.m | testbed tess -s 8 | testbed mat0 \
+//!     | testbed render > octa.png
+//! ```
+
+use std::io::{BufRead, BufReader, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+use testbed::draw::{self, View};
+use testbed::filters::{self, CurvatureFields, Pipe};
+use testbed::fit::{self, FitOptions};
+use testbed::{FilterError, Format, RecordWriter};
+
+/// Filters of the surface-interpolation testbed (Lounsbery et al. 1990), connected by pipes.
+#[derive(Parser, Debug)]
+#[command(name = "testbed", version)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// Options of every record filter.
+#[derive(Args, Debug, Clone)]
+struct Common {
+    /// Read this file instead of standard input.
+    #[arg(long, global = true)]
+    input: Option<PathBuf>,
+    /// Write this file (atomically) instead of standard output.
+    #[arg(long, global = true)]
+    output: Option<PathBuf>,
+    /// Output format (default: the input's; JSON Lines for fit).
+    #[arg(long, global = true, value_enum)]
+    format: Option<Format>,
+    /// Skip malformed records (counted on standard error) instead of stopping.
+    #[arg(long, global = true)]
+    keep_going: bool,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// A mesh (any format, sniffed; `.m` included) to BezierTriangle records, or with
+    /// `--sample N` straight to Triangle records.
+    Fit {
+        /// Surface scheme (flat, shirman-sequin, pn-triangles, phong, clough-tocher,
+        /// powell-sabin).
+        #[arg(long, default_value = surface::DEFAULT_SCHEME)]
+        scheme: String,
+        /// Boundary-curve construction (chord, dbhs, optimized).
+        #[arg(long, default_value = "chord")]
+        curves: String,
+        /// Estimator for what the mesh lacks (`none`, hybrid, jet, …).
+        #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR)]
+        estimate: String,
+        /// Estimate normals even where the mesh has them.
+        #[arg(long)]
+        replace_normals: bool,
+        /// A named data set (ring, sphere, capsule, octa; `NAME:RESOLUTION`) instead of a mesh.
+        #[arg(long)]
+        dataset: Option<String>,
+        /// Tessellate here at N segments per patch edge and write triangles (Example 5).
+        #[arg(long)]
+        sample: Option<usize>,
+        /// With --sample: write Gaussian curvature.
+        #[arg(long)]
+        kg: bool,
+        /// With --sample: write mean curvature.
+        #[arg(long)]
+        km: bool,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// BezierTriangles to Triangles (s² per patch); a patch's other fields go to its triangles.
+    Tess {
+        /// Segments per patch edge.
+        #[arg(short = 's', default_value_t = 8)]
+        s: usize,
+        /// Write Gaussian curvature `kg` at the vertices.
+        #[arg(long)]
+        kg: bool,
+        /// Write mean curvature `km` at the vertices.
+        #[arg(long)]
+        km: bool,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// Passes records through; measures normal angles along shared patch boundaries.
+    G1 {
+        /// Exit with an error when the largest angle exceeds the tolerance (1e-6 rad).
+        #[arg(long)]
+        strict: bool,
+        /// Samples per boundary, ends included.
+        #[arg(long, default_value_t = testbed::g1::DEFAULT_SAMPLES)]
+        samples: usize,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// The uniform material colour at every vertex.
+    Mat0 {
+        #[command(flatten)]
+        common: Common,
+    },
+    /// Diverging colours of the curvature (default range ±the 95% quantile of |kg|).
+    Kcolor {
+        /// Colour range `A:B` (mapped onto blue–grey–red).
+        #[arg(long, allow_hyphen_values = true)]
+        range: Option<String>,
+        /// Which curvature: kg (Gaussian) or km (mean).
+        #[arg(long, default_value = "kg")]
+        field: String,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// Sequential colours of the distance to the true surface (and `dist` at each vertex).
+    Radial {
+        /// The true surface: ring, sphere, capsule (octa lies on the unit sphere).
+        #[arg(long)]
+        surface: String,
+        /// Colour range `A:B` of |distance| (default 0 to its 95% quantile).
+        #[arg(long, allow_hyphen_values = true)]
+        range: Option<String>,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// A shaded picture of the triangles, PNG.
+    Render {
+        #[command(flatten)]
+        picture: Picture,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// A wire-frame picture of the triangles (every edge), PNG: the seed's XRender.
+    Wire {
+        #[command(flatten)]
+        picture: Picture,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// The triangles as a mesh file (welded by position), format by extension.
+    ToMesh {
+        /// The mesh file (.ply, .obj, .glb, .off, .stl, .m).
+        #[arg(long)]
+        out: PathBuf,
+        #[command(flatten)]
+        common: Common,
+    },
+}
+
+/// Picture options.
+#[derive(Args, Debug, Clone)]
+struct Picture {
+    /// View direction `AZ,EL` in degrees.
+    #[arg(long, allow_hyphen_values = true)]
+    view: Option<String>,
+    /// Size `WxH` in pixels.
+    #[arg(long)]
+    size: Option<String>,
+}
+
+fn pair<T: std::str::FromStr>(s: &str, sep: char, what: &str) -> Result<(T, T), FilterError> {
+    let bad = || {
+        FilterError::Usage(format!(
+            "{what} `{s}`: expected two numbers separated by `{sep}`"
+        ))
+    };
+    let (a, b) = s.split_once(sep).ok_or_else(bad)?;
+    Ok((
+        a.trim().parse().map_err(|_| bad())?,
+        b.trim().parse().map_err(|_| bad())?,
+    ))
+}
+
+fn range(s: &Option<String>) -> Result<Option<(f64, f64)>, FilterError> {
+    let Some(s) = s else { return Ok(None) };
+    let (a, b): (f64, f64) = pair(s, ':', "--range")?;
+    if !(a.is_finite() && b.is_finite() && a < b) {
+        return Err(FilterError::Usage(format!(
+            "--range {s}: need finite A < B"
+        )));
+    }
+    Ok(Some((a, b)))
+}
+
+fn picture(p: &Picture, wire: bool) -> Result<View, FilterError> {
+    let view = match &p.view {
+        Some(v) => pair::<f64>(v, ',', "--view")?,
+        None => draw::DEFAULT_VIEW,
+    };
+    if !(view.0.is_finite() && view.1.is_finite()) {
+        return Err(FilterError::Usage("--view: finite angles".into()));
+    }
+    let size = match &p.size {
+        Some(s) => pair::<u32>(&s.to_ascii_lowercase(), 'x', "--size")?,
+        None => draw::DEFAULT_SIZE,
+    };
+    Ok(View { view, size, wire })
+}
+
+/// Opens the input.
+fn open_input(path: &Option<PathBuf>) -> Result<Box<dyn BufRead>, FilterError> {
+    Ok(match path {
+        Some(p) => Box::new(BufReader::with_capacity(
+            1 << 16,
+            std::fs::File::open(p)
+                .map_err(|e| testbed::StreamError::io(format!("opening {}", p.display()), e))?,
+        )),
+        None => Box::new(BufReader::with_capacity(1 << 16, std::io::stdin().lock())),
+    })
+}
+
+/// Runs `f` on the output: standard output, or a file written atomically.
+fn with_output(
+    path: &Option<PathBuf>,
+    f: &mut dyn FnMut(&mut dyn Write) -> Result<(), FilterError>,
+) -> Result<(), FilterError> {
+    match path {
+        None => {
+            let stdout = std::io::stdout();
+            let mut lock = stdout.lock();
+            f(&mut lock)?;
+            lock.flush()
+                .map_err(|e| testbed::StreamError::io("writing the output", e).into())
+        }
+        Some(p) => {
+            let mut failure = None;
+            let result = render::write_atomic_with(p, &mut |w| {
+                f(w).map_err(|e| {
+                    failure = Some(e);
+                    std::io::Error::other("the filter failed")
+                })
+            });
+            match failure {
+                Some(e) => Err(e),
+                None => result.map_err(FilterError::from),
+            }
+        }
+    }
+}
+
+/// Runs a record filter.
+fn filter<T>(
+    name: &'static str,
+    c: &Common,
+    f: &mut dyn FnMut(&mut Pipe) -> Result<T, FilterError>,
+) -> Result<(), FilterError> {
+    let mut input = open_input(&c.input)?;
+    with_output(&c.output, &mut |out| {
+        let mut pipe = Pipe::new(name, &mut *input, out, c.format, c.keep_going);
+        f(&mut pipe).map(|_| ())
+    })
+}
+
+/// What a sink does with the triangles read.
+type SinkFn<'a> =
+    dyn FnMut(Vec<[testbed::record::Vertex; 3]>, &mut dyn Write) -> Result<(), FilterError> + 'a;
+
+/// Runs a filter that ends the pipeline (reads triangles, writes something else).
+fn sink(name: &'static str, c: &Common, f: &mut SinkFn) -> Result<(), FilterError> {
+    let mut input = open_input(&c.input)?;
+    let mut nothing = std::io::sink();
+    let tris = {
+        let mut pipe = Pipe::new(name, &mut *input, &mut nothing, None, c.keep_going);
+        draw::collect_triangles(&mut pipe)?
+    };
+    if tris.is_empty() {
+        eprintln!("{name}: no triangles in the input");
+    }
+    let mut tris = Some(tris);
+    with_output(&c.output, &mut |out| {
+        f(tris.take().unwrap_or_default(), out)
+    })
+}
+
+fn run(cli: Cli) -> Result<(), FilterError> {
+    match cli.command {
+        Command::Fit {
+            scheme,
+            curves,
+            estimate,
+            replace_normals,
+            dataset,
+            sample,
+            kg,
+            km,
+            common,
+        } => {
+            let input = match &dataset {
+                Some(d) => fit::dataset(d)?,
+                None => {
+                    let (name, bytes) = match &common.input {
+                        Some(p) => (
+                            p.clone(),
+                            std::fs::read(p).map_err(|e| {
+                                testbed::StreamError::io(format!("reading {}", p.display()), e)
+                            })?,
+                        ),
+                        None => {
+                            let mut b = Vec::new();
+                            std::io::Read::read_to_end(&mut std::io::stdin().lock(), &mut b)
+                                .map_err(|e| testbed::StreamError::io("reading the input", e))?;
+                            (PathBuf::from("<standard input>"), b)
+                        }
+                    };
+                    fit::prepare_bytes(&name, &bytes, &estimate, replace_normals)?
+                }
+            };
+            let options = FitOptions {
+                scheme,
+                curves,
+                estimate,
+                replace_normals,
+                sample,
+                fields: CurvatureFields { kg, km },
+            };
+            with_output(&common.output, &mut |out| {
+                let mut w = RecordWriter::new(out, common.format.or(Some(Format::Json)));
+                fit::fit(&input, &options, &mut w)
+            })
+        }
+        Command::Tess { s, kg, km, common } => filter("tess", &common, &mut |p| {
+            filters::tess(p, s, CurvatureFields { kg, km })
+        }),
+        Command::G1 {
+            strict,
+            samples,
+            common,
+        } => filter("g1", &common, &mut |p| testbed::g1::g1(p, strict, samples)),
+        Command::Mat0 { common } => filter("mat0", &common, &mut |p| {
+            filters::colour(p, &filters::Mat0, "", None)
+        }),
+        Command::Kcolor {
+            range: r,
+            field,
+            common,
+        } => {
+            if field != "kg" && field != "km" {
+                return Err(FilterError::Usage(format!(
+                    "kcolor --field {field}: kg or km"
+                )));
+            }
+            let r = range(&r)?;
+            filter("kcolor", &common, &mut |p| {
+                filters::colour(p, &filters::KColor, &field, r)
+            })
+        }
+        Command::Radial {
+            surface,
+            range: r,
+            common,
+        } => {
+            let name = if surface == "octa" {
+                "sphere"
+            } else {
+                surface.as_str()
+            };
+            if !["ring", "sphere", "capsule"].contains(&name) {
+                return Err(FilterError::Usage(format!(
+                    "radial --surface {surface}: ring, sphere or capsule"
+                )));
+            }
+            // The data set's analytic surface (the coarsest sampling: only the surface is used).
+            let data = surface::dataset_by_name(name, Some(if name == "sphere" { 0 } else { 4 }))
+                .or_else(|_| surface::dataset_by_name(name, None))?;
+            let colouring = filters::Radial {
+                surface: data.surface,
+            };
+            let r = range(&r)?;
+            filter("radial", &common, &mut |p| {
+                filters::colour(p, &colouring, "", r)
+            })
+        }
+        Command::Render {
+            picture: pic,
+            common,
+        } => {
+            let view = picture(&pic, false)?;
+            sink("render", &common, &mut |tris, out| {
+                draw::write_png(&draw::draw(&tris, &view)?, out)
+            })
+        }
+        Command::Wire {
+            picture: pic,
+            common,
+        } => {
+            let view = picture(&pic, true)?;
+            sink("wire", &common, &mut |tris, out| {
+                draw::write_png(&draw::draw(&tris, &view)?, out)
+            })
+        }
+        Command::ToMesh { out, common } => sink("to-mesh", &common, &mut |tris, _| {
+            draw::write_mesh(&tris, &out)
+        }),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let name = match &cli.command {
+        Command::Fit { .. } => "fit",
+        Command::Tess { .. } => "tess",
+        Command::G1 { .. } => "g1",
+        Command::Mat0 { .. } => "mat0",
+        Command::Kcolor { .. } => "kcolor",
+        Command::Radial { .. } => "radial",
+        Command::Render { .. } => "render",
+        Command::Wire { .. } => "wire",
+        Command::ToMesh { .. } => "to-mesh",
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("testbed {name}: error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,478 @@
+//! Record streams: reading with the format detected, writing in a chosen format.
+//!
+//! A record is a JSON object (order preserved) with a string field `type` naming it. The
+//! formats:
+//!
+//! * [`Format::Json`] — JSON Lines, one object per line (the default);
+//! * [`Format::Dstruct`] — the seed's dstruct external format ([`crate::dstruct`]), one
+//!   record per line when written, any layout when read;
+//! * [`Format::Binary`] — the self-describing binary form ([`crate::binary`]).
+//!
+//! The input format is detected from the first non-space byte: `{` JSON Lines, `(` or `%` a
+//! dstruct stream, `T` (of the magic `TBIN1`) the binary form. An empty input is an empty
+//! stream in any format.
+
+use std::io::{BufRead, Write};
+
+use serde_json::Value;
+
+use crate::binary;
+use crate::dstruct;
+use crate::error::{Position, StreamError};
+
+/// A stream format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// JSON Lines.
+    Json,
+    /// The dstruct external format of the seed's Figure 1.
+    Dstruct,
+    /// The self-describing binary form.
+    Binary,
+}
+
+impl Format {
+    /// The name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Json => "json",
+            Format::Dstruct => "dstruct",
+            Format::Binary => "binary",
+        }
+    }
+}
+
+/// One record read, with where it started.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Record {
+    /// The record: a JSON object.
+    pub value: Value,
+    /// Where it started.
+    pub at: Position,
+}
+
+impl Record {
+    /// The record's `type` (empty when absent).
+    pub fn kind(&self) -> &str {
+        self.value.get("type").and_then(Value::as_str).unwrap_or("")
+    }
+}
+
+/// Reads records from a byte stream.
+pub struct RecordReader<R: BufRead> {
+    inner: R,
+    format: Option<Format>,
+    /// Records seen (good and bad).
+    count: usize,
+    /// Lines consumed so far (text formats).
+    line: usize,
+    buf: Vec<u8>,
+    decoder: binary::Decoder,
+    fatal: bool,
+}
+
+impl<R: BufRead> RecordReader<R> {
+    /// A reader over `inner`; the format is detected on the first read.
+    pub fn new(inner: R) -> Self {
+        RecordReader {
+            inner,
+            format: None,
+            count: 0,
+            line: 1,
+            buf: Vec::new(),
+            decoder: binary::Decoder::default(),
+            fatal: false,
+        }
+    }
+
+    /// The detected format (`None` before the first record or for an empty stream).
+    pub fn format(&self) -> Option<Format> {
+        self.format
+    }
+
+    /// Skips white space (counting lines); the next byte, if any.
+    fn skip_space(&mut self) -> Result<Option<u8>, StreamError> {
+        loop {
+            let buf = self
+                .inner
+                .fill_buf()
+                .map_err(|e| StreamError::io("reading the input", e))?;
+            if buf.is_empty() {
+                return Ok(None);
+            }
+            let mut used = 0;
+            let mut found = None;
+            for &c in buf {
+                if c.is_ascii_whitespace() {
+                    if c == b'\n' {
+                        self.line += 1;
+                    }
+                    used += 1;
+                } else {
+                    found = Some(c);
+                    break;
+                }
+            }
+            self.inner.consume(used);
+            if found.is_some() {
+                return Ok(found);
+            }
+        }
+    }
+
+    fn detect(&mut self) -> Result<Option<Format>, StreamError> {
+        if let Some(f) = self.format {
+            return Ok(Some(f));
+        }
+        let Some(c) = self.skip_space()? else {
+            return Ok(None);
+        };
+        let format = match c {
+            b'{' => Format::Json,
+            b'(' | b'%' => Format::Dstruct,
+            b'T' => {
+                let mut magic = [0u8; 6];
+                let ok = std::io::Read::read_exact(&mut self.inner, &mut magic).is_ok()
+                    && magic == binary::MAGIC;
+                if !ok {
+                    self.fatal = true;
+                    return Err(StreamError::UnknownFormat { found: 'T' });
+                }
+                Format::Binary
+            }
+            other => {
+                self.fatal = true;
+                return Err(StreamError::UnknownFormat {
+                    found: other as char,
+                });
+            }
+        };
+        self.format = Some(format);
+        Ok(Some(format))
+    }
+
+    /// The next record: `None` at the end, `Some(Err)` for a bad record (after which reading
+    /// may continue when [`StreamError::is_record_error`]) or a fatal error (after which the
+    /// reader returns `None`).
+    pub fn next_record(&mut self) -> Option<Result<Record, StreamError>> {
+        if self.fatal {
+            return None;
+        }
+        let format = match self.detect() {
+            Ok(Some(f)) => f,
+            Ok(None) => return None,
+            Err(e) => return Some(Err(e)),
+        };
+        let result = match format {
+            Format::Json => self.next_json(),
+            Format::Dstruct => self.next_dstruct(),
+            Format::Binary => self.next_binary(),
+        };
+        match result {
+            Ok(None) => None,
+            Ok(Some(r)) => Some(Ok(r)),
+            Err(e) => {
+                if !e.is_record_error() {
+                    self.fatal = true;
+                }
+                Some(Err(e))
+            }
+        }
+    }
+
+    fn next_json(&mut self) -> Result<Option<Record>, StreamError> {
+        if self.skip_space()?.is_none() {
+            return Ok(None);
+        }
+        self.buf.clear();
+        let at_line = self.line;
+        self.inner
+            .read_until(b'\n', &mut self.buf)
+            .map_err(|e| StreamError::io("reading the input", e))?;
+        self.line += 1;
+        self.count += 1;
+        let at = Position {
+            record: self.count,
+            line: at_line,
+        };
+        match serde_json::from_slice::<Value>(&self.buf) {
+            Ok(value @ Value::Object(_)) => Ok(Some(Record { value, at })),
+            Ok(_) => Err(StreamError::Syntax {
+                at,
+                message: "a record must be a JSON object".into(),
+            }),
+            Err(e) => Err(StreamError::Syntax {
+                at,
+                message: format!("bad JSON: {e}"),
+            }),
+        }
+    }
+
+    fn next_dstruct(&mut self) -> Result<Option<Record>, StreamError> {
+        // Skip white space and comments before the record.
+        loop {
+            match self.skip_space()? {
+                None => return Ok(None),
+                Some(b'%') => {
+                    let mut sink = Vec::new();
+                    self.inner
+                        .read_until(b'\n', &mut sink)
+                        .map_err(|e| StreamError::io("reading the input", e))?;
+                    if sink.last() == Some(&b'\n') {
+                        self.line += 1;
+                    }
+                }
+                Some(_) => break,
+            }
+        }
+        let at_line = self.line;
+        self.count += 1;
+        let at = Position {
+            record: self.count,
+            line: at_line,
+        };
+        // Collect up to the `;` outside strings and comments.
+        self.buf.clear();
+        let (mut in_string, mut escape, mut comment) = (false, false, false);
+        let mut ended = false;
+        while !ended {
+            let chunk = self
+                .inner
+                .fill_buf()
+                .map_err(|e| StreamError::io("reading the input", e))?;
+            if chunk.is_empty() {
+                break;
+            }
+            let mut used = 0;
+            for &c in chunk {
+                used += 1;
+                if c == b'\n' {
+                    self.line += 1;
+                    comment = false;
+                }
+                if comment {
+                    continue;
+                }
+                if in_string {
+                    if escape {
+                        escape = false;
+                    } else if c == b'\\' {
+                        escape = true;
+                    } else if c == b'"' {
+                        in_string = false;
+                    }
+                } else if c == b'"' {
+                    in_string = true;
+                } else if c == b'%' {
+                    comment = true;
+                } else if c == b';' {
+                    ended = true;
+                    break;
+                }
+            }
+            self.buf.extend_from_slice(&chunk[..used]);
+            self.inner.consume(used);
+        }
+        if !ended {
+            return Err(StreamError::Syntax {
+                at,
+                message: "the stream ends inside a record (no terminating `;`)".into(),
+            });
+        }
+        dstruct::parse_record(&self.buf)
+            .map(|value| Some(Record { value, at }))
+            .map_err(|e| {
+                let (line, col) = line_col(&self.buf, e.offset);
+                StreamError::Syntax {
+                    at,
+                    message: format!(
+                        "{} (at line {}, column {})",
+                        e.message,
+                        at_line + line,
+                        col + 1
+                    ),
+                }
+            })
+    }
+
+    fn next_binary(&mut self) -> Result<Option<Record>, StreamError> {
+        let at = Position {
+            record: self.count + 1,
+            line: 0,
+        };
+        match self.decoder.next(&mut self.inner) {
+            Ok(None) => Ok(None),
+            Ok(Some(value)) => {
+                self.count += 1;
+                Ok(Some(Record { value, at }))
+            }
+            Err(message) => Err(StreamError::Binary { at, message }),
+        }
+    }
+}
+
+/// Line (from 0) and column (from 0, bytes) of `offset` in `text`.
+fn line_col(text: &[u8], offset: usize) -> (usize, usize) {
+    let before = text.get(..offset).unwrap_or(text);
+    let line = before.iter().filter(|&&c| c == b'\n').count();
+    let col = before.iter().rev().take_while(|&&c| c != b'\n').count();
+    (line, col)
+}
+
+/// Writes records in one format, buffered.
+pub struct RecordWriter<W: Write> {
+    out: W,
+    format: Option<Format>,
+    buf: Vec<u8>,
+    encoder: binary::Encoder,
+    written: usize,
+}
+
+/// Buffered bytes written out when this many have accumulated.
+const FLUSH_BYTES: usize = 1 << 16;
+
+impl<W: Write> RecordWriter<W> {
+    /// A writer in `format`; `None`: decided by [`RecordWriter::default_format`] before the
+    /// first record (JSON if never decided).
+    pub fn new(out: W, format: Option<Format>) -> Self {
+        RecordWriter {
+            out,
+            format,
+            buf: Vec::with_capacity(FLUSH_BYTES * 2),
+            encoder: binary::Encoder::default(),
+            written: 0,
+        }
+    }
+
+    /// Sets the format if none was chosen (a filter's output follows its input's format).
+    pub fn default_format(&mut self, format: Option<Format>) {
+        if self.format.is_none() {
+            self.format = format;
+        }
+    }
+
+    /// Records written so far.
+    pub fn written(&self) -> usize {
+        self.written
+    }
+
+    /// Writes one record; `at` names it in errors.
+    pub fn write(&mut self, record: &Value, at: Position) -> Result<(), StreamError> {
+        let format = *self.format.get_or_insert(Format::Json);
+        let unwritable = |message: String| StreamError::Unwritable {
+            at,
+            format: format.name(),
+            message,
+        };
+        match format {
+            Format::Json => {
+                if !record.is_object() {
+                    return Err(unwritable("a record must be an object".into()));
+                }
+                serde_json::to_writer(&mut self.buf, record)
+                    .map_err(|e| unwritable(e.to_string()))?;
+                self.buf.push(b'\n');
+            }
+            Format::Dstruct => dstruct::write_record(&mut self.buf, record).map_err(unwritable)?,
+            Format::Binary => {
+                if !record.is_object() {
+                    return Err(unwritable("a record must be an object".into()));
+                }
+                self.encoder
+                    .write(record, &mut self.buf)
+                    .map_err(unwritable)?
+            }
+        }
+        self.written += 1;
+        if self.buf.len() >= FLUSH_BYTES {
+            self.flush_buf()?;
+        }
+        Ok(())
+    }
+
+    fn flush_buf(&mut self) -> Result<(), StreamError> {
+        self.out
+            .write_all(&self.buf)
+            .map_err(|e| StreamError::io("writing the output", e))?;
+        self.buf.clear();
+        Ok(())
+    }
+
+    /// Writes out everything buffered and flushes.
+    pub fn finish(&mut self) -> Result<(), StreamError> {
+        self.flush_buf()?;
+        self.out
+            .flush()
+            .map_err(|e| StreamError::io("writing the output", e))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read_all(bytes: &[u8]) -> Vec<Result<Record, String>> {
+        let mut r = RecordReader::new(bytes);
+        let mut out = Vec::new();
+        while let Some(x) = r.next_record() {
+            out.push(x.map_err(|e| e.to_string()));
+        }
+        out
+    }
+
+    #[test]
+    fn formats_detected_and_positions_named() {
+        let json = b"\n{\"type\":\"A\",\"x\":1}\n\n{\"type\":\"B\"\n{\"type\":\"C\"}\n";
+        let got = read_all(json);
+        assert_eq!(got.len(), 3);
+        assert!(got[0].is_ok());
+        let e = got[1].as_ref().expect_err("bad line");
+        assert!(e.contains("record 2 (line 4)"), "{e}");
+        assert_eq!(got[2].as_ref().map(|r| r.at.record).ok(), Some(3));
+
+        let ds = b"% comment\n(A . (x . 1));\n(B . (x . ));\n(C . (y . \"a;b\"));";
+        let got = read_all(ds);
+        assert_eq!(got.len(), 3);
+        assert_eq!(
+            got[0].as_ref().map(|r| r.value.clone()).ok(),
+            Some(serde_json::json!({"type":"A","x":1}))
+        );
+        let e = got[1].as_ref().expect_err("bad record");
+        assert!(e.contains("record 2 (line 3)"), "{e}");
+        assert_eq!(
+            got[2].as_ref().map(|r| r.value["y"].clone()).ok(),
+            Some(Value::from("a;b"))
+        );
+        let got = read_all(b"(A . (x . 1)");
+        assert!(got[0].as_ref().is_err_and(|e| e.contains("terminating")));
+        let got = read_all(b"  <html>");
+        assert_eq!(got.len(), 1);
+        assert!(got[0].is_err());
+        assert!(read_all(b"   \n ").is_empty());
+    }
+
+    #[test]
+    fn every_format_round_trips() {
+        let records: Vec<Value> = vec![
+            serde_json::json!({"type":"Triangle","vertex1":{"pos":[1.5,0.1,-3.0e-7]},"provenance":"x"}),
+            serde_json::json!({"type":"BezierTriangle","degree":1,"points":[[0.0,0.0,0.0]],"face":2}),
+        ];
+        for format in [Format::Json, Format::Dstruct, Format::Binary] {
+            let mut bytes = Vec::new();
+            {
+                let mut w = RecordWriter::new(&mut bytes, Some(format));
+                for r in &records {
+                    w.write(r, Position::default()).expect("writes");
+                }
+                w.finish().expect("flushes");
+            }
+            let mut reader = RecordReader::new(&bytes[..]);
+            let mut back = Vec::new();
+            while let Some(r) = reader.next_record() {
+                back.push(r.expect("reads").value);
+            }
+            assert_eq!(reader.format(), Some(format));
+            assert_eq!(back, records, "{format:?}");
+        }
+    }
+}
