@@ -15,6 +15,7 @@
 //! Everything is `f64` with nalgebra points; every vertex of the input keeps its index through
 //! a step, new vertices follow in the order each scheme documents.
 
+pub mod bench_meshes;
 pub mod catmull_clark;
 pub mod error;
 pub mod loop_scheme;

@@ -242,13 +242,16 @@ fn one_ring_patch(mesh: &PolyMesh, v: usize) -> Result<PolyMesh, SubdivError> {
 }
 
 /// Newell's vector of a polygon: twice its area times its unit normal (for a planar polygon).
+/// Computed from offsets to the first corner, so a polygon far smaller than its distance to
+/// the origin keeps its precision.
 pub(crate) fn newell(positions: &[Point3<f64>], face: &[u32]) -> Vector3<f64> {
     let mut n = Vector3::zeros();
     let k = face.len();
-    for i in 0..k {
-        let a = positions[face[i] as usize];
-        let b = positions[face[(i + 1) % k] as usize];
-        n += a.coords.cross(&b.coords);
+    let o = positions[face[0] as usize];
+    for i in 1..k.saturating_sub(1) {
+        let a = positions[face[i] as usize] - o;
+        let b = positions[face[i + 1] as usize] - o;
+        n += a.cross(&b);
     }
     n
 }
