@@ -130,7 +130,7 @@ pub(crate) fn times_four_pow(n: u64, k: u32) -> Option<u64> {
 const NORMAL_STEPS: usize = 26;
 
 /// Largest number of local steps for a limit position; the loop stops earlier when the
-/// vertex moves by less than 10⁻¹⁶ of the ring's size.
+/// vertex moves by less than 10⁻¹⁶ of the size of its position and one-ring.
 const POSITION_STEPS: usize = 200;
 
 /// The limit position and unit normal at `v` by subdividing only its one-ring, for vertices
@@ -155,33 +155,33 @@ pub(crate) fn local_limit(
     if mesh.vertex_kind(v) == VertexKind::Isolated {
         return Ok((mesh.positions()[v], Vector3::zeros()));
     }
-    let mut patch = one_ring_patch(mesh, v)?;
-    let mut centre = 0usize;
+    // The patch is kept centred on the vertex (vertex 0, at the origin; the scheme is affine
+    // invariant), so its shrinking faces keep full relative precision however small they get.
+    let mut origin = mesh.positions()[v].coords;
+    let mut patch = recentre(one_ring_patch(mesh, v)?, origin)?;
+    // Absolute scale of the answer: a move below 10⁻¹⁶ of it no longer changes it.
+    let scale = origin.norm()
+        + patch
+            .positions()
+            .iter()
+            .map(|q| q.coords.norm())
+            .fold(0.0, f64::max);
     let steps = if want_normal {
         NORMAL_STEPS
     } else {
         POSITION_STEPS
     };
-    let mut last = patch.positions()[centre];
     for _ in 0..steps {
         let fine = scheme.step(&patch)?;
-        // The centre keeps its index through a step.
-        let p = fine.positions()[centre];
-        let moved = (p - last).norm();
-        last = p;
-        patch = one_ring_patch(&fine, centre)?;
-        centre = 0;
-        if !want_normal {
-            let size = patch
-                .positions()
-                .iter()
-                .map(|q| (q - p).norm())
-                .fold(0.0, f64::max);
-            if moved <= 1e-16 * size.max(f64::MIN_POSITIVE) || moved == 0.0 {
-                break;
-            }
+        // The centre keeps its index 0 through a step; it was at the origin before it.
+        let shift = fine.positions()[0].coords;
+        origin += shift;
+        patch = recentre(one_ring_patch(&fine, 0)?, shift)?;
+        if !want_normal && shift.norm() <= 1e-16 * scale {
+            break;
         }
     }
+    let last = Point3::from(origin);
     let mut normal = Vector3::zeros();
     if want_normal {
         for face in patch.faces() {
@@ -193,6 +193,12 @@ pub(crate) fn local_limit(
         }
     }
     Ok((last, normal))
+}
+
+/// `mesh` moved by `−by`.
+fn recentre(mesh: PolyMesh, by: Vector3<f64>) -> Result<PolyMesh, SubdivError> {
+    let moved = mesh.positions().iter().map(|p| p - by).collect();
+    mesh.with_positions(moved)
 }
 
 /// The faces at `v` as a mesh of their own with `v` as vertex 0, crease tags kept.

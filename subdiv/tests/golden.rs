@@ -11,6 +11,8 @@
 //! one within [`TOLERANCE`]; the matching must be a bijection, and the faces must be the same
 //! cyclic vertex sequences (orientation included) under it.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use std::path::PathBuf;
 
 use meshio::Polygons;

@@ -1,6 +1,8 @@
 //! Limit stencils against many subdivision steps, limit normals against finite differences of
 //! the limit surface, on irregular valences 3–8; and the locality the tests rely on.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 mod common;
 
 use common::{angle, mixed_polygons, patch_after, track};
