@@ -35,7 +35,7 @@
 //! limits, and every face of the stepped mesh is a quad. Crease and boundary vertices have the
 //! cubic B-spline limit `(a + 4p + b)/6` of their crease line (on any mesh: the crease line's
 //! points follow the curve rules alone); corners stay; darts and the normals of crease,
-//! boundary and corner vertices come from [`crate::scheme::local_limit`].
+//! boundary and corner vertices come from the crate-internal `scheme::local_limit`.
 
 use std::f64::consts::PI;
 

@@ -32,7 +32,7 @@
 //! `t1 = Σ cos(2πi/n) q_i`, `t2 = Σ sin(2πi/n) q_i` and the normal `t1 × t2` (the ring runs
 //! counter-clockwise). On a crease or boundary the crease line is a uniform cubic B-spline,
 //! whose limit at a vertex is `(a + 4p + b)/6`. Corners stay where they are. Darts and the
-//! normals of crease, boundary and corner vertices come from [`crate::scheme::local_limit`].
+//! normals of crease, boundary and corner vertices come from the crate-internal `scheme::local_limit`.
 
 use nalgebra::{Point3, Vector3};
 

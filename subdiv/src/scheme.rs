@@ -1,6 +1,6 @@
 //! The [`Subdivision`] trait, the registry of schemes by name ([`SCHEMES`]), repeated
 //! subdivision under a size limit ([`subdivide`]), and what both schemes share for limit
-//! normals at vertices without a closed-form stencil ([`local_limit`]).
+//! normals at vertices without a closed-form stencil (`local_limit`, crate-internal).
 
 use meshio::Polygons;
 use nalgebra::{Point3, Vector3};
