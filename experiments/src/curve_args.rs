@@ -61,7 +61,8 @@ pub struct InteriorOption {
 /// `--scheme` and the options of the schemes that have any.
 #[derive(clap::Args, Debug, Clone)]
 pub struct SchemeOption {
-    /// Surface scheme (`surface::scheme::REGISTRY`).
+    /// Surface scheme (`surface::scheme::REGISTRY`; in `fit` also the subdivision schemes
+    /// `loop`, `loop-warren`, `catmull-clark` of `subdiv::SCHEMES`, with `--levels`).
     #[arg(long, default_value = surface::DEFAULT_SCHEME, value_parser = scheme_names())]
     pub scheme: String,
     /// Shape factor α of the `phong` scheme (0: flat triangles; Boubekeur and Alexa: 3/4).
@@ -85,9 +86,15 @@ impl SchemeOption {
     }
 }
 
-/// The registered scheme names as the values `--scheme` accepts.
+/// The registered scheme names as the values `--scheme` accepts: the Bézier schemes, then the
+/// subdivision schemes (`fit` only).
 fn scheme_names() -> PossibleValuesParser {
-    PossibleValuesParser::new(surface::scheme::REGISTRY.iter().map(|e| e.name))
+    PossibleValuesParser::new(
+        surface::scheme::REGISTRY
+            .iter()
+            .map(|e| e.name)
+            .chain(subdiv::SCHEMES.iter().map(|e| e.name)),
+    )
 }
 
 /// `--curves` (one construction) with [`CurveOptions`] and [`InteriorOption`]: how `fit` builds

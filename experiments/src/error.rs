@@ -70,6 +70,15 @@ pub enum ExperimentError {
     /// against the registry by the command-line parser).
     #[error(transparent)]
     Method(#[from] curves::UnknownMethod),
+    /// Subdivision could not run (an unknown scheme, non-triangles for Loop, a non-manifold
+    /// spot, or more faces than the limit).
+    #[error("{subject}: subdivision")]
+    Subdivision {
+        /// The input.
+        subject: String,
+        /// Why.
+        source: subdiv::SubdivError,
+    },
     /// A surface scheme name is not registered.
     #[error(transparent)]
     Scheme(#[from] surface::UnknownScheme),

@@ -49,6 +49,10 @@ pub struct FitArgs {
     /// and write the welded triangle mesh to `--mesh-out`.
     #[arg(long, default_value_t = 4)]
     tess: usize,
+    /// Subdivision steps for `--scheme loop|loop-warren|catmull-clark` (the control mesh after
+    /// them goes to `--mesh-out`).
+    #[arg(long, default_value_t = 3)]
+    levels: u32,
     /// Exit with status 1 when anything was not as asked: a repaired file, a fallback face, a
     /// degenerate edge, a curve that fell back to the chord choice, an optimization that did
     /// not converge (all are counted in the summary either way).
@@ -63,6 +67,18 @@ pub struct FitArgs {
 
 /// Runs the experiment.
 pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
+    if subdiv::SCHEMES
+        .iter()
+        .any(|e| e.name == args.fit.scheme.scheme)
+    {
+        return crate::subdivide::run(
+            &args.input.data,
+            args.input.resolution,
+            &args.fit.scheme.scheme,
+            args.levels,
+            args.mesh_out.as_deref(),
+        );
+    }
     check_f64(
         "beta",
         args.beta,

@@ -107,3 +107,65 @@ fn fit_writes_any_scheme_and_refuses_interior_choices_it_lacks() {
     assert_ne!(code, 0);
     assert!(err.contains("clough-tocher"), "{err}");
 }
+
+/// `fit --scheme loop|catmull-clark --levels N --mesh-out` writes the control mesh after N
+/// steps (4ᴺ times the faces), keeps an OBJ's quads for Catmull–Clark, reports the distance to
+/// the limit, and refuses a level count whose output would not fit.
+#[test]
+fn fit_subdivides_with_levels_and_refuses_what_would_not_fit() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("octa-loop.obj");
+    let (code, _, err) = common::run(
+        &[
+            "fit",
+            "--data",
+            "octa",
+            "--scheme",
+            "loop",
+            "--levels",
+            "2",
+            "--mesh-out",
+            out.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("data point to limit surface"), "{err}");
+    let raw = meshio::read_file(&out).unwrap();
+    assert_eq!(raw.polygons.len(), 8 * 16);
+    // A cube of quads: one Catmull–Clark step gives 24 quads.
+    let cube = dir.path().join("cube.obj");
+    std::fs::write(
+        &cube,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+         f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n",
+    )
+    .unwrap();
+    let out = dir.path().join("cube-cc.obj");
+    let (code, _, err) = common::run(
+        &[
+            "fit",
+            "--data",
+            cube.to_str().unwrap(),
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "1",
+            "--mesh-out",
+            out.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    let raw = meshio::read_file(&out).unwrap();
+    assert_eq!(raw.polygons.len(), 24);
+    assert!(raw.polygons.iter().all(|p| p.len() == 4));
+    let (code, _, err) = common::run(
+        &[
+            "fit", "--data", "octa", "--scheme", "loop", "--levels", "40",
+        ],
+        "",
+    );
+    assert_ne!(code, 0);
+    assert!(err.contains("over the limit"), "{err}");
+}
