@@ -24,11 +24,20 @@ fn the_study_covers_every_scheme_and_data_set_and_g1_claims_hold() {
     assert_eq!(code, 0, "{err}");
     let report: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
-    let results = report["results"].as_array().unwrap();
+    let all = report["results"].as_array().unwrap();
+    let (subdivision, results): (Vec<_>, Vec<_>) =
+        all.iter().partition(|r| r["kind"] == "subdivision");
     assert_eq!(
         results.len(),
         surface::scheme::REGISTRY.len() * surface::DATASET_NAMES.len()
     );
+    // Loop and Catmull–Clark (Warren's Loop differs from Loop only in β) on every data set,
+    // approximating: the limit moves off the data points, by less than the model size.
+    assert_eq!(subdivision.len(), 2 * surface::DATASET_NAMES.len());
+    for r in &subdivision {
+        let d = r["data_to_limit_max"].as_f64().unwrap();
+        assert!(d > 0.0 && d < 1.0, "{r}");
+    }
     for r in results {
         assert_eq!(r["claim_holds"], true, "{r}");
         assert!(
