@@ -79,13 +79,12 @@ pub fn refuse_overwriting_input(
     Ok(())
 }
 
-/// The extensions of the writable mesh formats, comma-separated (`.obj, .ply, …`; `meshio` lists
-/// only the readable ones).
+/// The extensions of the writable mesh formats as a message lists them (`.obj, .ply, …`;
+/// `meshio::writable_extensions`).
 pub fn writable_extensions() -> String {
-    meshio::FORMATS
+    meshio::writable_extensions()
         .iter()
-        .filter(|f| f.can_write())
-        .flat_map(|f| f.extensions().iter().map(|e| format!(".{e}")))
+        .map(|e| format!(".{e}"))
         .collect::<Vec<_>>()
         .join(", ")
 }

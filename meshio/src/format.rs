@@ -101,6 +101,16 @@ pub fn format_for_path(path: &Path) -> Option<&'static dyn MeshFormat> {
         .find(|f| f.extensions().iter().any(|e| e.eq_ignore_ascii_case(ext)))
 }
 
+/// The extensions of every writable format, in registry order (`["obj", "ply", …]`), for
+/// messages that say what an output path may end in.
+pub fn writable_extensions() -> Vec<&'static str> {
+    FORMATS
+        .iter()
+        .filter(|f| f.can_write())
+        .flat_map(|f| f.extensions().iter().copied())
+        .collect()
+}
+
 /// The first readable format that recognises `bytes`.
 pub fn sniff_format(bytes: &[u8]) -> Option<&'static dyn MeshFormat> {
     FORMATS

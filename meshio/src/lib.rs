@@ -38,6 +38,6 @@ mod util;
 pub use error::{Location, MeshIoError, ReadError, WriteError};
 pub use format::{
     format_by_name, format_for_path, read_bytes, read_file, readable_extensions, sniff_format,
-    write_bytes, MeshFormat, WriteOptions, FORMATS,
+    writable_extensions, write_bytes, MeshFormat, WriteOptions, FORMATS,
 };
 pub use raw::{Polygons, RawMesh, VertexProperties};

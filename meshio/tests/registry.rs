@@ -147,3 +147,17 @@ fn octa_reads_from_the_repository() {
     assert!(mesh.polygons.all_triangles());
     assert_eq!(mesh.normals.as_ref().map(Vec::len), Some(6));
 }
+
+/// The writable extensions are exactly those of the formats that write: glTF binary is among
+/// them (write-only), and every one names a format that can write.
+#[test]
+fn writable_extensions_are_the_writers() {
+    let ext = meshio::writable_extensions();
+    for e in ["obj", "ply", "stl", "off", "m", "glb"] {
+        assert!(ext.contains(&e), "{e} missing from {ext:?}");
+    }
+    for e in &ext {
+        let f = meshio::format_for_path(std::path::Path::new(&format!("x.{e}"))).unwrap();
+        assert!(f.can_write(), "{e}");
+    }
+}
