@@ -8,21 +8,8 @@ use nalgebra::{Matrix3, Vector3};
 const FD: f64 = 1e-7;
 const STEP: f64 = 1e-6;
 
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-    fn vec(&mut self) -> Vector3<f64> {
-        Vector3::new(self.next(), self.next(), self.next())
-    }
-}
+mod common;
+use common::Rng;
 
 /// Checks `grad` against central differences of `f` along each coordinate of the vector at
 /// `slot` of `args`.

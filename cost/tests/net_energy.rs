@@ -21,30 +21,19 @@ const STEP: f64 = 1e-6;
 /// Relative rounding of a sum of a few hundred terms: 100 ε.
 const ROUNDING: f64 = 100.0 * f64::EPSILON;
 
-struct Rng(u64);
+mod common;
+use common::Rng;
 
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-    fn vec(&mut self) -> Vector3<f64> {
-        Vector3::new(self.next(), self.next(), self.next())
-    }
-    fn triangle(&mut self) -> [Vector2<f64>; 3] {
-        loop {
-            let t = [
-                Vector2::new(self.next(), self.next()) * 3.0,
-                Vector2::new(self.next(), self.next()) * 3.0,
-                Vector2::new(self.next(), self.next()) * 3.0,
-            ];
-            if area(t) > 0.3 {
-                return t;
-            }
+/// A random domain triangle of area above 0.3.
+fn triangle(rng: &mut Rng) -> [Vector2<f64>; 3] {
+    loop {
+        let t = [
+            Vector2::new(rng.next(), rng.next()) * 3.0,
+            Vector2::new(rng.next(), rng.next()) * 3.0,
+            Vector2::new(rng.next(), rng.next()) * 3.0,
+        ];
+        if area(t) > 0.3 {
+            return t;
         }
     }
 }
@@ -100,7 +89,7 @@ fn integrate(t: [Vector2<f64>; 3], f: impl Fn(Vector2<f64>) -> f64) -> f64 {
 fn membrane_of_the_identity_is_twice_the_area() {
     let mut rng = Rng(7);
     for n in 1..=6 {
-        let t = rng.triangle();
+        let t = triangle(&mut rng);
         let e = NetEnergy::<200>::new(SobolevEnergy::Membrane, n, &[t]).unwrap();
         let net: Vec<Vector3<f64>> = multi_indices(n)
             .into_iter()
@@ -122,7 +111,7 @@ fn energies_of_quadratic_maps_match_closed_forms() {
     let mut rng = Rng(11);
     for n in 2..=6 {
         for _ in 0..5 {
-            let t = rng.triangle();
+            let t = triangle(&mut rng);
             let q: [Matrix3<f64>; 3] = std::array::from_fn(|_| {
                 let m = Matrix3::from_fn(|_, _| rng.next());
                 m + m.transpose()
@@ -167,7 +156,7 @@ fn energies_of_quadratic_maps_match_closed_forms() {
 fn energies_are_invariant_under_rigid_motions_and_linear_in_scale_squared() {
     let mut rng = Rng(13);
     for kind in [SobolevEnergy::Membrane, SobolevEnergy::ThinPlate] {
-        let domains = [rng.triangle(), rng.triangle()];
+        let domains = [triangle(&mut rng), triangle(&mut rng)];
         let e = NetEnergy::<200>::new(kind, 4, &domains).unwrap();
         let net: Vec<Vector3<f64>> = (0..2 * num_points(4)).map(|_| rng.vec()).collect();
         let rot = Rotation3::from_axis_angle(&Vector3::y_axis(), 0.7)
@@ -213,7 +202,7 @@ fn energy_gradients_match_finite_differences_at_random_nets() {
     let mut rng = Rng(17);
     for kind in [SobolevEnergy::Membrane, SobolevEnergy::ThinPlate] {
         for n in 2..=5 {
-            let domains = [rng.triangle(), rng.triangle(), rng.triangle()];
+            let domains = [triangle(&mut rng), triangle(&mut rng), triangle(&mut rng)];
             let e = NetEnergy::<300>::new(kind, n, &domains).unwrap();
             assert_eq!(e.residuals_used(), 3 * kind.residuals_per_net(n));
             let net: Vec<Vector3<f64>> = (0..3 * num_points(n)).map(|_| rng.vec()).collect();
@@ -352,7 +341,7 @@ fn composition_applies_the_chain_rule() {
             .collect(),
         quad: (0..points).map(|_| rng.vec() * 0.3).collect(),
     };
-    let domains = [rng.triangle(), rng.triangle(), rng.triangle()];
+    let domains = [triangle(&mut rng), triangle(&mut rng), triangle(&mut rng)];
     let energy = NetEnergy::<162>::new(SobolevEnergy::ThinPlate, n, &domains).unwrap();
     let problem = Composed::new(energy, construction);
     let x = SVector::<f64, 6>::from_fn(|_, _| rng.next());

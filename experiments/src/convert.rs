@@ -34,13 +34,7 @@ pub struct ConvertArgs {
 /// Runs the conversion.
 pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     let t0 = Instant::now();
-    let format = meshio::format_for_path(&args.out)
-        .filter(|f| f.can_write())
-        .ok_or_else(|| ExperimentError::UnsupportedOutputFormat {
-            option: "--out",
-            path: args.out.clone(),
-            writable: crate::output::writable_extensions(),
-        })?;
+    let format = crate::output::mesh_format_for("--out", &args.out)?;
     let loaded = load(&args.input)?;
     crate::output::refuse_overwriting_input("--out", &args.out, &args.input.data)?;
     let mut world = loaded.mesh.clone();

@@ -177,13 +177,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         })?;
         frame.tessellation_to_world(&mut tess);
         crate::output::refuse_overwriting_input("--mesh-out", path, &args.input.data)?;
-        let format = meshio::format_for_path(path)
-            .filter(|f| f.can_write())
-            .ok_or_else(|| ExperimentError::UnsupportedOutputFormat {
-                option: "--mesh-out",
-                path: path.clone(),
-                writable: crate::output::writable_extensions(),
-            })?;
+        let format = crate::output::mesh_format_for("--mesh-out", path)?;
         let raw = tessellation_to_raw(&tess);
         let bytes =
             meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|source| {

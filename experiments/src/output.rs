@@ -79,6 +79,21 @@ pub fn refuse_overwriting_input(
     Ok(())
 }
 
+/// The writable mesh format `path`'s extension names, or the error naming `option` and the
+/// extensions that would do.
+pub fn mesh_format_for(
+    option: &'static str,
+    path: &Path,
+) -> Result<&'static dyn meshio::MeshFormat, ExperimentError> {
+    meshio::format_for_path(path)
+        .filter(|f| f.can_write())
+        .ok_or_else(|| ExperimentError::UnsupportedOutputFormat {
+            option,
+            path: path.to_path_buf(),
+            writable: writable_extensions(),
+        })
+}
+
 /// The extensions of the writable mesh formats as a message lists them (`.obj, .ply, …`;
 /// `meshio::writable_extensions`).
 pub fn writable_extensions() -> String {

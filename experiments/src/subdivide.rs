@@ -56,13 +56,7 @@ pub fn run(
     let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len().max(1) as f64).sqrt();
     if let Some(path) = mesh_out {
         crate::output::refuse_overwriting_input("--mesh-out", path, data)?;
-        let format = meshio::format_for_path(path)
-            .filter(|f| f.can_write())
-            .ok_or_else(|| ExperimentError::UnsupportedOutputFormat {
-                option: "--mesh-out",
-                path: path.to_path_buf(),
-                writable: crate::output::writable_extensions(),
-            })?;
+        let format = crate::output::mesh_format_for("--mesh-out", path)?;
         let bytes = meshio::write_bytes(&refined.to_raw(), format, &meshio::WriteOptions::new())
             .map_err(|source| ExperimentError::MeshWrite {
                 path: path.to_path_buf(),

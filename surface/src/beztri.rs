@@ -178,6 +178,26 @@ impl SampleWeights {
     }
 }
 
+/// Position and partials of the net `points` (net order, of the weights' degree) at the
+/// weights' sample: six weighted sums, no allocation. For nets held in a shared buffer (a
+/// [`crate::fit::Fit`]'s points) without building a [`BezierTriangle`].
+pub fn net_derivatives(points: &[Point3<f64>], weights: &SampleWeights) -> Derivatives {
+    let mut acc = [Vector3::zeros(); 6];
+    for (b, w) in points.iter().zip(&weights.weights) {
+        for (a, wk) in acc.iter_mut().zip(w) {
+            *a += b.coords * *wk;
+        }
+    }
+    Derivatives {
+        p: Point3::from(acc[0]),
+        du: acc[1],
+        dv: acc[2],
+        duu: acc[3],
+        duv: acc[4],
+        dvv: acc[5],
+    }
+}
+
 /// A triangular Bézier patch of degree `n ≥ 0` in space.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BezierTriangle {
@@ -293,23 +313,7 @@ impl BezierTriangle {
     /// [`BezierTriangle::derivatives`] at the point of precomputed `weights` (same degree), by
     /// six weighted sums; `None` when the degrees differ.
     pub fn derivatives_with(&self, weights: &SampleWeights) -> Option<Derivatives> {
-        if weights.degree != self.degree {
-            return None;
-        }
-        let mut acc = [Vector3::zeros(); 6];
-        for (b, w) in self.points.iter().zip(&weights.weights) {
-            for (a, wk) in acc.iter_mut().zip(w) {
-                *a += b.coords * *wk;
-            }
-        }
-        Some(Derivatives {
-            p: Point3::from(acc[0]),
-            du: acc[1],
-            dv: acc[2],
-            duu: acc[3],
-            duv: acc[4],
-            dvv: acc[5],
-        })
+        (weights.degree == self.degree).then(|| net_derivatives(&self.points, weights))
     }
 
     /// Unit normal `(r_u × r_v)/|r_u × r_v|` at `(u, v)`; `None` at a singular point

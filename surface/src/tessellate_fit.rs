@@ -31,7 +31,7 @@
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 
-use crate::beztri::{curvature_of, BezierTriangle, Curvature, SampleWeights};
+use crate::beztri::{curvature_of, net_derivatives, BezierTriangle, Curvature, SampleWeights};
 use crate::fit::Fit;
 use crate::mesh::Mesh;
 use crate::scheme::Layout;
@@ -223,20 +223,7 @@ fn evaluate(
     weights: &SampleWeights,
     (u, v, _): (f64, f64, f64),
 ) -> Sample {
-    let mut acc = [Vector3::zeros(); 6];
-    for (b, wk) in net.iter().zip(weights.weights()) {
-        for (a, x) in acc.iter_mut().zip(wk) {
-            *a += b.coords * *x;
-        }
-    }
-    let d = crate::beztri::Derivatives {
-        p: Point3::from(acc[0]),
-        du: acc[1],
-        dv: acc[2],
-        duu: acc[3],
-        duv: acc[4],
-        dvv: acc[5],
-    };
+    let d = net_derivatives(net, weights);
     match curvature_of(&d) {
         Some(c) => Sample {
             p: d.p,
