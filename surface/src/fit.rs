@@ -153,10 +153,7 @@ impl Default for Fit {
     fn default() -> Self {
         Fit {
             scheme: "shirman-sequin",
-            layout: Layout {
-                degree: 4,
-                subs: &CENTROID_SPLIT,
-            },
+            layout: Layout::bezier(4, &CENTROID_SPLIT),
             continuity: Continuity::G1,
             curves: Vec::new(),
             alphas: Vec::new(),
@@ -220,14 +217,18 @@ impl Fit {
 
     /// Patch `i` as a fixed-size quartic net, when the layout is of quartics.
     pub fn quartic_net(&self, i: usize) -> Option<QuarticNet> {
-        (self.layout.degree == 4)
+        (self.layout.degree == 4 && self.layout.is_bezier())
             .then(|| self.net(i))
             .flatten()
             .and_then(|n| n.try_into().ok())
     }
 
     /// Patch `i` as a [`BezierTriangle`].
+    /// `None` when the layout's patches are not Bézier nets ([`crate::patch`]).
     pub fn patch(&self, i: usize) -> Option<BezierTriangle> {
+        if !self.layout.is_bezier() {
+            return None;
+        }
         self.net(i)
             .and_then(|n| BezierTriangle::new(self.layout.degree, n.to_vec()).ok())
     }

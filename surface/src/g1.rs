@@ -19,7 +19,8 @@ use rayon::prelude::*;
 use crate::beztri::SampleWeights;
 use crate::fit::Fit;
 use crate::mesh::Mesh;
-use crate::scheme::{Bary, Layout};
+use crate::patch;
+use crate::scheme::{Bary, Form, Layout};
 
 /// Where a G1 defect was measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -128,12 +129,19 @@ fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     a.cross(b).norm().atan2(a.dot(b))
 }
 
-/// The weights of `r_u` and `r_v` of one patch at one local point, for the control points
-/// whose weights are not zero (on a patch edge only the two rows next to it count).
+/// How to get the normal of one patch at one local point: for a Bézier net, the weights of
+/// `r_u` and `r_v` for the control points whose weights are not zero (on a patch edge only the
+/// two rows next to it count); for a sampled form ([`crate::patch`]), the prepared point.
 #[derive(Clone, Debug)]
 struct Tangents {
     patch: usize,
-    w: Vec<(usize, [f64; 2])>,
+    how: How,
+}
+
+#[derive(Clone, Debug)]
+enum How {
+    Bezier(Vec<(usize, [f64; 2])>),
+    Sampled(&'static dyn patch::SampledForm, Vec<f64>),
 }
 
 impl Tangents {
@@ -141,28 +149,50 @@ impl Tangents {
         // Coordinates that are zero up to the rounding of the inverse are made exactly zero,
         // so the rows away from an edge get exactly zero weight and are skipped.
         let l = local.map(|c| if c.abs() < 1e-13 { 0.0 } else { c });
-        let sw = SampleWeights::new(layout.degree, l[0], l[1]);
-        Tangents {
-            patch,
-            w: sw
-                .weights()
-                .iter()
-                .enumerate()
-                .filter(|(_, w)| w[1] != 0.0 || w[2] != 0.0)
-                .map(|(i, w)| (i, [w[1], w[2]]))
-                .collect(),
+        let how = match layout.form {
+            Form::Bezier => {
+                let sw = SampleWeights::new(layout.degree, l[0], l[1]);
+                How::Bezier(
+                    sw.weights()
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, w)| w[1] != 0.0 || w[2] != 0.0)
+                        .map(|(i, w)| (i, [w[1], w[2]]))
+                        .collect(),
+                )
+            }
+            Form::Sampled(form) => How::Sampled(form, form.prepare(l)),
+        };
+        Tangents { patch, how }
+    }
+
+    /// The patch's position here (sampled forms; Bézier corners are read off the net).
+    fn point(&self, face: &[Point3<f64>], np: usize) -> Option<Point3<f64>> {
+        let net = face.get(self.patch * np..(self.patch + 1) * np)?;
+        match &self.how {
+            How::Sampled(form, p) => Some(form.eval(net, p).p),
+            How::Bezier(_) => None,
         }
     }
 
     /// Unit normal `r_u × r_v` of the face's patch (no threshold: any non-zero cross product).
     fn normal(&self, face: &[Point3<f64>], np: usize) -> Option<Vector3<f64>> {
         let net = face.get(self.patch * np..(self.patch + 1) * np)?;
-        let (mut du, mut dv) = (Vector3::zeros(), Vector3::zeros());
-        for (i, w) in &self.w {
-            let p = net.get(*i)?;
-            du += p.coords * w[0];
-            dv += p.coords * w[1];
-        }
+        let (du, dv) = match &self.how {
+            How::Bezier(w) => {
+                let (mut du, mut dv) = (Vector3::zeros(), Vector3::zeros());
+                for (i, w) in w {
+                    let p = net.get(*i)?;
+                    du += p.coords * w[0];
+                    dv += p.coords * w[1];
+                }
+                (du, dv)
+            }
+            How::Sampled(form, p) => {
+                let d = form.eval(net, p);
+                (d.du, d.dv)
+            }
+        };
         let c = du.cross(&dv);
         let len = c.norm();
         (len > 0.0 && len.is_finite()).then(|| c / len)
@@ -328,7 +358,8 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
             let face = mesh.faces()[f];
             for (i, (point, tangents)) in plan.corners.iter().enumerate() {
                 let v = &mesh.vertices()[face[i]].data;
-                r.position_error = r.position_error.max((pts[*point] - v.p).norm());
+                let at = tangents.point(pts, np).unwrap_or(pts[*point]);
+                r.position_error = r.position_error.max((at - v.p).norm());
                 if fallback[f] {
                     continue;
                 }

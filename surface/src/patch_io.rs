@@ -11,7 +11,8 @@
 //! # Binary
 //!
 //! `BEZPATCH1\n`, then one line of JSON naming the layout,
-//! `{"degree":n,"patches_per_face":p,"faces":F,"points_per_patch":m,"scalar":"f64le"}\n`, then
+//! `{"degree":n,"patches_per_face":p,"faces":F,"points_per_patch":m,"form":"bezier","scalar":"f64le"}\n`
+//! (`form` names the [`crate::patch::SampledForm`] of a patch that is not a Bézier net), then
 //! `F·p·m·3` little-endian `f64`s (patch after patch, each net in net order, x y z per point).
 //! The header is JSON so a reader can check what it gets and a later version can add fields;
 //! the body is the in-memory layout, 24 bytes per control point (2.7–3.2× smaller than the JSON
@@ -24,6 +25,36 @@ use nalgebra::Point3;
 use rayon::prelude::*;
 
 use crate::fit::Fit;
+use crate::scheme::Form;
+
+/// How stored point `k` of a patch maps to the world: positions by `to_world`, directions (a
+/// sampled form's normals) by its linear part, renormalized.
+fn mapped(
+    form: Form,
+    k: usize,
+    p: &Point3<f64>,
+    to_world: &(dyn Fn(&Point3<f64>) -> Point3<f64> + Sync),
+) -> Point3<f64> {
+    match form {
+        Form::Sampled(f) if f.is_direction(k) => {
+            let o = Point3::origin();
+            let d = to_world(&(o + p.coords)) - to_world(&o);
+            if d == p.coords {
+                return *p;
+            }
+            Point3::from(d.try_normalize(0.0).unwrap_or(d))
+        }
+        _ => to_world(p),
+    }
+}
+
+/// The `form` header value of a layout.
+fn form_name(form: Form) -> &'static str {
+    match form {
+        Form::Bezier => "bezier",
+        Form::Sampled(f) => f.name(),
+    }
+}
 
 /// The first bytes of the binary form.
 pub const BINARY_MAGIC: &[u8] = b"BEZPATCH1\n";
@@ -62,6 +93,14 @@ pub fn write_jsonl<W: Write + ?Sized>(
     let per_face = fit.layout.patches_per_face().max(1);
     let degree = fit.layout.degree;
     let np = fit.layout.points_per_patch().max(1);
+    let form = fit.layout.form;
+    let head = match form {
+        Form::Bezier => format!("{{\"type\":\"BezierTriangle\",\"degree\":{degree},\"points\":["),
+        Form::Sampled(f) => format!(
+            "{{\"type\":\"SampledPatch\",\"form\":\"{}\",\"points\":[",
+            f.name()
+        ),
+    };
     let patches = fit.num_patches();
     let chunks: Vec<usize> = (0..patches).step_by(CHUNK).collect();
     // Formatting in parallel, a window of chunks at a time, so memory stays bounded.
@@ -73,12 +112,9 @@ pub fn write_jsonl<W: Write + ?Sized>(
                 let mut s = String::with_capacity((last - first) * (np * 60 + 80));
                 let mut num = ryu::Buffer::new();
                 for i in first..last {
-                    let _ = write!(
-                        s,
-                        "{{\"type\":\"BezierTriangle\",\"degree\":{degree},\"points\":["
-                    );
+                    s.push_str(&head);
                     for (k, p) in fit.points[i * np..(i + 1) * np].iter().enumerate() {
-                        let q = to_world(p);
+                        let q = mapped(form, k, p, to_world);
                         if k > 0 {
                             s.push(',');
                         }
@@ -117,19 +153,21 @@ pub fn write_binary<W: Write + ?Sized>(
     out.write_all(BINARY_MAGIC)?;
     writeln!(
         out,
-        "{{\"degree\":{},\"patches_per_face\":{},\"faces\":{},\"points_per_patch\":{np},\"scalar\":\"f64le\"}}",
+        "{{\"degree\":{},\"patches_per_face\":{},\"faces\":{},\"points_per_patch\":{np},\"form\":\"{}\",\"scalar\":\"f64le\"}}",
         fit.layout.degree,
         fit.layout.patches_per_face(),
         fit.num_patches() / fit.layout.patches_per_face().max(1),
+        form_name(fit.layout.form),
     )?;
+    let form = fit.layout.form;
     let per_chunk = CHUNK * np.max(1);
     for window in fit.points.chunks(per_chunk * 64) {
         let bytes: Vec<Vec<u8>> = window
             .par_chunks(per_chunk)
             .map(|pts| {
                 let mut b = Vec::with_capacity(pts.len() * 24);
-                for p in pts {
-                    let q = to_world(p);
+                for (k, p) in pts.iter().enumerate() {
+                    let q = mapped(form, k % np.max(1), p, to_world);
                     for c in [q.x, q.y, q.z] {
                         b.extend_from_slice(&c.to_le_bytes());
                     }
@@ -167,7 +205,8 @@ pub fn read_binary(bytes: &[u8]) -> Result<(usize, usize, Vec<Point3<f64>>), Pat
         field("faces")?,
         field("points_per_patch")?,
     );
-    if header["scalar"] != "f64le" || np != crate::beztri::num_points(degree) {
+    let bezier = header.get("form").is_none_or(|f| f == "bezier");
+    if header["scalar"] != "f64le" || (bezier && np != crate::beztri::num_points(degree)) {
         return Err(PatchReadError::Header(
             "unsupported scalar type or point count".into(),
         ));

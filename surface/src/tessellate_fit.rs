@@ -31,9 +31,10 @@
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 
-use crate::beztri::{curvature_of, net_derivatives, BezierTriangle, Curvature, SampleWeights};
+use crate::beztri::{curvature_of, BezierTriangle, Curvature};
 use crate::fit::Fit;
 use crate::mesh::Mesh;
+use crate::patch::{self, Prepared};
 use crate::scheme::Layout;
 use crate::tessellate::{nudged_geometry, tessellate, TessError, Tessellation};
 
@@ -50,8 +51,8 @@ enum Slot {
 
 /// What does not depend on the face.
 struct Plan {
-    /// Samples per patch (`(s + 1)(s + 2)/2`) and their weights.
-    weights: Vec<SampleWeights>,
+    /// Samples per patch (`(s + 1)(s + 2)/2`), prepared for evaluation ([`patch::prepare`]).
+    weights: Vec<Prepared>,
     /// Barycentric `(u, v, w)` of each local sample.
     local: Vec<(f64, f64, f64)>,
     /// Per patch of the layout, per local sample: its slot.
@@ -104,8 +105,8 @@ impl Plan {
                 local[local_index(s, i, j)] = (u, v, 1.0 - u - v);
             }
         }
-        for &(u, v, _) in &local {
-            weights.push(SampleWeights::new(layout.degree, u, v));
+        for &(u, v, w) in &local {
+            weights.push(patch::prepare(layout, [u, v, w]));
         }
         // Face lattice point of every (patch, sample).
         let mut edge_points: [Vec<i64>; 3] = Default::default();
@@ -215,34 +216,52 @@ struct Sample {
     nudged: bool,
 }
 
-/// Position and differential geometry of one sample of a net (nudged towards the centre where
-/// the patch is singular, as the positional tessellation does).
+/// Position and differential geometry of one sample of a patch (any form, [`patch`]); nudged
+/// towards the centre where the patch is singular, as the positional tessellation does.
 fn evaluate(
+    layout: &Layout,
     net: &[Point3<f64>],
-    degree: usize,
-    weights: &SampleWeights,
-    (u, v, _): (f64, f64, f64),
+    prepared: &Prepared,
+    (u, v, w): (f64, f64, f64),
 ) -> Sample {
-    let d = net_derivatives(net, weights);
-    match curvature_of(&d) {
-        Some(c) => Sample {
+    let d = patch::eval(layout, net, prepared);
+    if let Some(c) = curvature_of(&d) {
+        return Sample {
             p: d.p,
             c,
             nudged: false,
-        },
-        None => {
-            // Rare: build the patch only here.
-            let bez = BezierTriangle::from_fn(degree, |i, j, k| {
-                net.get(crate::beztri::index(degree, i, j, k))
-                    .copied()
-                    .unwrap_or_else(Point3::origin)
-            });
-            Sample {
-                p: d.p,
-                c: nudged_geometry(&bez, u, v),
-                nudged: true,
-            }
-        }
+        };
+    }
+    // Rare: the general rules only here.
+    let c = if layout.is_bezier() {
+        let degree = layout.degree;
+        let bez = BezierTriangle::from_fn(degree, |i, j, k| {
+            net.get(crate::beztri::index(degree, i, j, k))
+                .copied()
+                .unwrap_or_else(Point3::origin)
+        });
+        nudged_geometry(&bez, u, v)
+    } else {
+        patch::curvature_near(layout, net, [u, v, w])
+            .map(|(c, _)| c)
+            .unwrap_or_else(|| flat_curvature(d.du.cross(&d.dv)))
+    };
+    Sample {
+        p: d.p,
+        c,
+        nudged: true,
+    }
+}
+
+/// Zero curvature with the normal `n` (`+z` where it has no direction): the geometry of a
+/// sample that is singular even a step inside.
+fn flat_curvature(n: nalgebra::Vector3<f64>) -> Curvature {
+    Curvature {
+        normal: n.try_normalize(0.0).unwrap_or_else(Vector3::z),
+        gaussian: 0.0,
+        mean: 0.0,
+        principal: [0.0, 0.0],
+        shape: nalgebra::Matrix3::zeros(),
     }
 }
 
@@ -343,7 +362,6 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
     let mut mean = vec![0.0; total];
     let mut shapes = vec![nalgebra::Matrix3::zeros(); total];
     let mut nudged = vec![false; total];
-    let degree = layout.degree;
     split_blocks(&mut positions, &start)
         .into_par_iter()
         .zip(split_blocks(&mut normals, &start))
@@ -358,7 +376,7 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
                 let mut put = |(p, li): (usize, usize)| {
                     let patch = f * ppf + p;
                     let net = &fit.points[patch * np..(patch + 1) * np];
-                    let x = evaluate(net, degree, &plan.weights[li], plan.local[li]);
+                    let x = evaluate(&layout, net, &plan.weights[li], plan.local[li]);
                     ps[at] = x.p;
                     ns[at] = x.c.normal;
                     ks[at] = x.c.gaussian;

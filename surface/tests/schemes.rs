@@ -25,10 +25,21 @@ const SIMILARITY: f64 = 1e-10;
 /// C0: patches that share a boundary agree there to rounding.
 const C0_TOL: f64 = 1e-12;
 
+/// The point of patch `patch` at local coordinates `l`, through the patch abstraction (any
+/// form); for Bézier layouts checked against de Casteljau's evaluation.
 fn eval(fit: &Fit, patch: usize, l: Bary) -> Point3<f64> {
-    BezierTriangle::new(fit.layout.degree, fit.net(patch).unwrap().to_vec())
-        .unwrap()
-        .eval(l[0], l[1], l[2])
+    let net = fit.net(patch).unwrap();
+    let p = surface::patch::eval_at(&fit.layout, net, l).p;
+    if fit.layout.is_bezier() {
+        let q = BezierTriangle::new(fit.layout.degree, net.to_vec())
+            .unwrap()
+            .eval(l[0], l[1], l[2]);
+        assert!(
+            (p - q).norm() < INTERPOLATION,
+            "patch abstraction vs de Casteljau"
+        );
+    }
+    p
 }
 
 /// The face-domain point of local coordinates `l` in sub-triangle `s`.
@@ -153,9 +164,23 @@ fn every_scheme_is_similarity_invariant() {
         let s = scheme_by_name(e.name, &SchemeOptions::default()).unwrap();
         let a = fit_scheme(&data.mesh, s.as_ref(), chord.as_ref()).unwrap();
         let b = fit_scheme(&moved, s.as_ref(), chord.as_ref()).unwrap();
-        for (p, q) in a.points.iter().zip(&b.points) {
-            let want = rot * p.coords * scale + shift;
-            assert!((want - q.coords).norm() < SIMILARITY, "{}", e.name);
+        if a.layout.is_bezier() {
+            for (p, q) in a.points.iter().zip(&b.points) {
+                let want = rot * p.coords * scale + shift;
+                assert!((want - q.coords).norm() < SIMILARITY, "{}", e.name);
+            }
+        }
+        // Any form: the evaluated surfaces are similar.
+        for patch in 0..a.num_patches() {
+            for l in LOCAL_SAMPLES {
+                let want = rot * eval(&a, patch, l).coords * scale + shift;
+                let got = eval(&b, patch, l);
+                assert!(
+                    (want - got.coords).norm() < SIMILARITY,
+                    "{} patch {patch}",
+                    e.name
+                );
+            }
         }
     }
 }

@@ -216,10 +216,7 @@ impl Scheme for CloughTocher {
     }
 
     fn layout(&self) -> Layout {
-        Layout {
-            degree: 3,
-            subs: &CENTROID_SPLIT,
-        }
+        Layout::bezier(3, &CENTROID_SPLIT)
     }
 
     /// C0 across mesh edges; G1 at the vertices and C1 inside each face (module docs).

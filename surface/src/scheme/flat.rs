@@ -17,10 +17,7 @@ impl Scheme for Flat {
     }
 
     fn layout(&self) -> Layout {
-        Layout {
-            degree: 1,
-            subs: &WHOLE,
-        }
+        Layout::bezier(1, &WHOLE)
     }
 
     fn continuity(&self) -> Continuity {

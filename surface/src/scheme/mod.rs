@@ -20,7 +20,9 @@
 //! `surface/tests/schemes.rs` runs every registered scheme through the common checks).
 
 pub mod clough_tocher;
+pub mod discrete_side_vertex;
 pub mod flat;
+pub mod nielson;
 pub mod phong;
 pub mod pn_triangles;
 pub mod powell_sabin;
@@ -62,24 +64,74 @@ pub const SIX_SPLIT: [[Bary; 3]; 6] = [
 /// How a scheme's output is laid out per face.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Layout {
-    /// Degree of every patch.
+    /// Degree of every patch ([`Form::Bezier`]); for a [`Form::Sampled`] patch the degree of
+    /// its boundary curves (informative only).
     pub degree: usize,
     /// The sub-triangles of the face's domain, each as its three corners in barycentric
     /// coordinates of the face, counter-clockwise like the face. Patch `s` of face `f` is the
-    /// Bézier triangle over `subs[s]`; its corners `b_{n00}, b_{0n0}, b_{00n}` sit over
-    /// `subs[s][0], subs[s][1], subs[s][2]`.
+    /// patch over `subs[s]`; for Bézier patches, its corners `b_{n00}, b_{0n0}, b_{00n}` sit
+    /// over `subs[s][0], subs[s][1], subs[s][2]`.
     pub subs: &'static [[Bary; 3]],
+    /// What a patch's stored points are: a Bézier net, or the data of a patch evaluated by
+    /// its own rule ([`crate::patch`]).
+    pub form: Form,
+}
+
+/// What the stored points of one patch are (module docs of [`crate::patch`]).
+#[derive(Clone, Copy)]
+pub enum Form {
+    /// A Bézier triangle's control net of the layout's degree, in net order.
+    Bezier,
+    /// The data of a patch that is evaluated by its own rule (Nielson's side-vertex
+    /// interpolant …), [`crate::patch::SampledForm::points_per_patch`] points each.
+    Sampled(&'static dyn crate::patch::SampledForm),
+}
+
+impl std::fmt::Debug for Form {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Form::Bezier => f.write_str("Bezier"),
+            Form::Sampled(s) => write!(f, "Sampled({})", s.name()),
+        }
+    }
+}
+
+impl PartialEq for Form {
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (Form::Bezier, Form::Bezier) => true,
+            (Form::Sampled(a), Form::Sampled(b)) => a.name() == b.name(),
+            _ => false,
+        }
+    }
 }
 
 impl Layout {
+    /// Bézier triangles of `degree` over `subs`.
+    pub const fn bezier(degree: usize, subs: &'static [[Bary; 3]]) -> Layout {
+        Layout {
+            degree,
+            subs,
+            form: Form::Bezier,
+        }
+    }
+
+    /// True when every patch is a Bézier net.
+    pub fn is_bezier(&self) -> bool {
+        matches!(self.form, Form::Bezier)
+    }
+
     /// Patches per face.
     pub fn patches_per_face(&self) -> usize {
         self.subs.len()
     }
 
-    /// Control points per patch.
+    /// Points stored per patch.
     pub fn points_per_patch(&self) -> usize {
-        crate::beztri::num_points(self.degree)
+        match self.form {
+            Form::Bezier => crate::beztri::num_points(self.degree),
+            Form::Sampled(s) => s.points_per_patch(),
+        }
     }
 
     /// Control points per face.
@@ -259,6 +311,16 @@ pub const REGISTRY: &[SchemeEntry] = &[
         name: "powell-sabin",
         summary: "parametric Powell–Sabin 1977: six quadratics per face, boundaries from vertex tangent planes (C0)",
         build: |_| Box::new(powell_sabin::PowellSabin),
+    },
+    SchemeEntry {
+        name: "nielson",
+        summary: "Nielson 1987 transfinite side-vertex interpolant on cubic edge curves, tangent planes along edges from the vertex normals (G1; evaluated, not Bézier)",
+        build: |_| Box::new(nielson::Nielson),
+    },
+    SchemeEntry {
+        name: "discrete-side-vertex",
+        summary: "side-vertex interpolant with discrete (vertex-only) cross-boundary data on cubic edge curves (C0; evaluated, not Bézier)",
+        build: |_| Box::new(discrete_side_vertex::DiscreteSideVertex),
     },
 ];
 

@@ -47,10 +47,7 @@ impl Scheme for Phong {
     }
 
     fn layout(&self) -> Layout {
-        Layout {
-            degree: 2,
-            subs: &WHOLE,
-        }
+        Layout::bezier(2, &WHOLE)
     }
 
     fn continuity(&self) -> Continuity {

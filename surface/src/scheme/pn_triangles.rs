@@ -76,10 +76,7 @@ impl Scheme for PnTriangles {
     }
 
     fn layout(&self) -> Layout {
-        Layout {
-            degree: 3,
-            subs: &WHOLE,
-        }
+        Layout::bezier(3, &WHOLE)
     }
 
     fn continuity(&self) -> Continuity {

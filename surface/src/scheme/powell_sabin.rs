@@ -155,10 +155,7 @@ impl Scheme for PowellSabin {
     }
 
     fn layout(&self) -> Layout {
-        Layout {
-            degree: 2,
-            subs: &SIX_SPLIT,
-        }
+        Layout::bezier(2, &SIX_SPLIT)
     }
 
     /// C0 across mesh edges; G1 at the vertices and C1 inside each face (module docs).

@@ -77,10 +77,7 @@ impl Scheme for ShirmanSequin<'_> {
     }
 
     fn layout(&self) -> Layout {
-        Layout {
-            degree: 4,
-            subs: &CENTROID_SPLIT,
-        }
+        Layout::bezier(4, &CENTROID_SPLIT)
     }
 
     fn continuity(&self) -> Continuity {
