@@ -61,7 +61,7 @@ pub struct InteriorOption {
 /// `--scheme` and the options of the schemes that have any.
 #[derive(clap::Args, Debug, Clone)]
 pub struct SchemeOption {
-    /// Surface scheme (`surface::scheme::REGISTRY`; in `fit` also the subdivision schemes
+    /// Surface scheme (`surface::scheme::REGISTRY`; in `fit` and `sweep` also the subdivision schemes
     /// `loop`, `loop-warren`, `catmull-clark` of `subdiv::SCHEMES`, with `--levels`).
     #[arg(long, default_value = surface::DEFAULT_SCHEME, value_parser = scheme_names())]
     pub scheme: String,
@@ -87,7 +87,7 @@ impl SchemeOption {
 }
 
 /// The registered scheme names as the values `--scheme` accepts: the Bézier schemes, then the
-/// subdivision schemes (`fit` only).
+/// subdivision schemes (`fit` and `sweep`; `ring` refuses them).
 fn scheme_names() -> PossibleValuesParser {
     PossibleValuesParser::new(
         surface::scheme::REGISTRY

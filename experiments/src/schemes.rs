@@ -63,7 +63,7 @@ pub struct SchemesArgs {
 
 /// Subdivision steps of the approximating schemes in the study: 3 gives Loop 64 triangles per
 /// data face (the Bézier schemes get 64–75), Catmull–Clark 96 (48 quads).
-const SUBDIVISION_LEVELS: u32 = 3;
+pub(crate) const SUBDIVISION_LEVELS: u32 = 3;
 
 /// The surface of a subdivision scheme on the data mesh, as a tessellation: `levels` steps,
 /// every vertex pushed to its limit position with its limit normal (the schemes' exact limit
@@ -71,7 +71,7 @@ const SUBDIVISION_LEVELS: u32 = 3;
 /// by the default estimator (`estimate`, hybrid jet/Rusinkiewicz) — subdivision surfaces have
 /// no closed-form curvature at the vertices here. Also returns the largest distance from a data
 /// point to the limit surface (the schemes approximate).
-fn subdivision_surface(
+pub(crate) fn subdivision_surface(
     mesh: &surface::Mesh,
     scheme: &str,
     levels: u32,

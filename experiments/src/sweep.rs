@@ -48,6 +48,65 @@ impl Task {
     }
 }
 
+/// The curve name of a subdivision task (subdivision makes no boundary curves).
+const NO_CURVES: &str = "none";
+
+/// True when `scheme` is a subdivision scheme (`subdiv::SCHEMES`), not a Bézier or sampled
+/// surface scheme.
+fn is_subdivision(scheme: &str) -> bool {
+    surface::scheme_by_name(scheme, &surface::SchemeOptions::default()).is_err()
+        && subdiv::scheme_by_name(scheme).is_ok()
+}
+
+/// The task list of a run with `scheme`: [`tasks`], or for a subdivision scheme one task per
+/// data set (no curves, no solver).
+fn tasks_for(scheme: &str) -> Vec<Task> {
+    if is_subdivision(scheme) {
+        crate::datasets::all()
+            .into_iter()
+            .map(|dataset| Task {
+                dataset,
+                curves: NO_CURVES,
+                solver: None,
+            })
+            .collect()
+    } else {
+        tasks()
+    }
+}
+
+/// A subdivision task: the limit surface of [`crate::schemes::SUBDIVISION_LEVELS`] steps
+/// measured against the truth exactly as the schemes study measures it (curvature estimated
+/// on the limit mesh; no G1 column: the schemes are C2 away from extraordinary points and
+/// measured at the limit vertices), with the largest distance from a data point to the limit
+/// surface (subdivision approximates).
+fn run_subdivision_task(t: &Task, scheme: &str) -> Result<Value, ExperimentError> {
+    let start = Instant::now();
+    let data = surface::dataset_by_name(t.dataset, None).map_err(ExperimentError::from)?;
+    let (tess, to_limit) =
+        crate::schemes::subdivision_surface(&data.mesh, scheme, crate::schemes::SUBDIVISION_LEVELS)
+            .map_err(|source| ExperimentError::Subdivision {
+                subject: t.id(),
+                source,
+            })?;
+    let fit_time = start.elapsed().as_secs_f64();
+    let errors = compare_with_truth(&tess, data.surface.as_ref());
+    Ok(json!({
+        "task": t.id(),
+        "dataset": t.dataset,
+        "curves": t.curves,
+        "solver": Value::Null,
+        "faces": data.mesh.num_faces(),
+        "g1_defect_radians": Value::Null,
+        "levels": crate::schemes::SUBDIVISION_LEVELS,
+        "data_to_limit_max": to_limit,
+        "errors": serde_json::to_value(errors).unwrap_or(Value::Null),
+        "curve_measures": Value::Null,
+        "fit_time_seconds": fit_time,
+        "task_time_seconds": start.elapsed().as_secs_f64(),
+    }))
+}
+
 /// Every data set (in the studies' order, [`crate::datasets::all`]) × every registered
 /// construction (registry order) × every solver for [`SOLVED_METHOD`].
 fn tasks() -> Vec<Task> {
@@ -192,8 +251,13 @@ fn run_task(
 
 /// Runs the sweep (or one shard of it).
 pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
-    let scheme = args.scheme.build(InteriorParameters::default())?;
-    let all = tasks();
+    let subdivision = is_subdivision(&args.scheme.scheme);
+    let scheme = if subdivision {
+        None
+    } else {
+        Some(args.scheme.build(InteriorParameters::default())?)
+    };
+    let all = tasks_for(&args.scheme.scheme);
     let mine: Vec<(usize, &Task)> = all
         .iter()
         .enumerate()
@@ -205,7 +269,10 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         if tty {
             say_inline!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
         }
-        let mut v = run_task(t, args.interior.choice, scheme.as_ref())?;
+        let mut v = match &scheme {
+            Some(scheme) => run_task(t, args.interior.choice, scheme.as_ref())?,
+            None => run_subdivision_task(t, &args.scheme.scheme)?,
+        };
         v["interior"] = json!(args.interior.choice.to_string());
         v["index"] = json!(k);
         results.push(v);
@@ -274,7 +341,16 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         .filter(|p| p.file_name().and_then(|n| n.to_str()).is_some_and(is_shard))
         .collect();
     paths.sort();
-    let total = tasks().len();
+    // The task list follows the run's scheme (subdivision runs have one task per data set),
+    // read from the first shard's options; the shards' options are compared below.
+    let scheme_of_run = paths
+        .first()
+        .and_then(|p| std::fs::read_to_string(p).ok())
+        .and_then(|t| serde_json::from_str::<Value>(&t).ok())
+        .and_then(|v| v["options"]["scheme"].as_str().map(str::to_string))
+        .unwrap_or_else(|| surface::DEFAULT_SCHEME.to_string());
+    let all = tasks_for(&scheme_of_run);
+    let total = all.len();
     let mut results: Vec<Option<Value>> = vec![None; total];
     let mut options: Option<(PathBuf, Value)> = None;
     for p in &paths {
@@ -317,7 +393,7 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         .iter()
         .enumerate()
         .filter(|(_, r)| r.is_none())
-        .map(|(k, _)| tasks()[k].id())
+        .map(|(k, _)| all[k].id())
         .collect();
     if !missing.is_empty() {
         return Err(ExperimentError::ShardTasksMissing {
@@ -342,6 +418,12 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// A number formatted by `fmt`, or a dash where the measure does not apply (`null`: no G1
+/// column and no curves for subdivision).
+fn or_dash(v: &Value, fmt: impl Fn(f64) -> String) -> String {
+    v.as_f64().map_or_else(|| "—".to_string(), fmt)
+}
+
 fn write_report(out: &Path, options: &Value, results: Vec<Value>) -> Result<(), ExperimentError> {
     let report = json!({"experiment": "sweep", "sampling": SAMPLING, "beta": surface::shirman_sequin::DEFAULT_BETA,
                         "c": surface::shirman_sequin::DEFAULT_C, "options": options, "results": results});
@@ -349,7 +431,7 @@ fn write_report(out: &Path, options: &Value, results: Vec<Value>) -> Result<(), 
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let mut md = String::new();
     let _ = writeln!(md, "# Sweep: data sets × boundary curves × solvers\n");
-    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` (or shards joined by `merge`). Every data set at its default resolution, the surface scheme of the options (default: the modified Shirman–Séquin scheme with β = 1/3, c = 1), tessellated at s = {SAMPLING} per patch edge, measured against the true surface. Options: `{options}`.\n");
+    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` (or shards joined by `merge`). Every data set at its default resolution, the surface scheme of the options (default: the modified Shirman–Séquin scheme with β = 1/3, c = 1), tessellated at s = {SAMPLING} per patch edge, measured against the true surface; a subdivision scheme (`--scheme loop|loop-warren|catmull-clark`) is measured at the limit of three levels with curvature estimated on that mesh, its data-to-limit distance in `report.json`. Options: `{options}`.\n");
     let _ = writeln!(md, "| task | faces | position max | normal RMS (°) | K RMS | H RMS | G1 (rad) | κ error max | shortest α | fallbacks | fit (ms) |");
     let _ = writeln!(
         md,
@@ -358,20 +440,25 @@ fn write_report(out: &Path, options: &Value, results: Vec<Value>) -> Result<(), 
     for r in &results {
         let e = &r["errors"];
         let c = &r["curve_measures"];
+        let fallbacks = if c.is_null() {
+            "—".to_string()
+        } else {
+            c["fallbacks_to_chord"].to_string()
+        };
         let f = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
         let _ = writeln!(
             md,
-            "| {} | {} | {:.3e} | {:.3} | {:.4} | {:.4} | {:.1e} | {:.4} | {:.4} | {} | {:.2} |",
+            "| {} | {} | {:.3e} | {:.3} | {:.4} | {:.4} | {} | {} | {} | {} | {:.2} |",
             r["task"].as_str().unwrap_or("?"),
             r["faces"],
             f(&e["position_max"]),
             f(&e["normal_rms_degrees"]),
             f(&e["gaussian_rms"]),
             f(&e["mean_rms"]),
-            f(&r["g1_defect_radians"]),
-            f(&c["end_curvature_error_max"]),
-            f(&c["shortest_alpha"]),
-            c["fallbacks_to_chord"],
+            or_dash(&r["g1_defect_radians"], |x| format!("{x:.1e}")),
+            or_dash(&c["end_curvature_error_max"], |x| format!("{x:.4}")),
+            or_dash(&c["shortest_alpha"], |x| format!("{x:.4}")),
+            fallbacks,
             f(&r["fit_time_seconds"]) * 1e3
         );
     }
@@ -402,5 +489,17 @@ mod tests {
         assert_eq!("2/5".parse::<Shard>(), Ok(Shard { index: 2, count: 5 }));
         assert!("5/5".parse::<Shard>().is_err());
         assert!("x".parse::<Shard>().is_err());
+    }
+
+    #[test]
+    fn subdivision_runs_have_one_task_per_data_set() {
+        assert!(is_subdivision("loop") && is_subdivision("catmull-clark"));
+        assert!(!is_subdivision("nielson") && !is_subdivision("shirman-sequin"));
+        let t = tasks_for("loop");
+        assert_eq!(t.len(), crate::datasets::all().len());
+        assert!(t
+            .iter()
+            .all(|t| t.curves == NO_CURVES && t.solver.is_none()));
+        assert_eq!(tasks_for("nielson"), tasks());
     }
 }
