@@ -2,7 +2,6 @@
 //! by Gaussian curvature (KColor) and by distance to the true surface (Radial); every surface as
 //! PLY, the optimized one as OBJ and as patch nets (JSON Lines).
 
-use std::fmt::Write as _;
 use std::path::Path;
 
 use nalgebra::{Point3, Vector3};
@@ -213,23 +212,18 @@ pub fn write_meshes(out: &Path, views: &[SurfaceView<'_>]) -> Result<(), Experim
     Ok(())
 }
 
-/// Patch nets of the optimized surface (the others: `experiments -- fit --out`), to keep the
-/// committed results small.
+/// Patches of the optimized surface (the others: `experiments -- fit --out`), to keep the
+/// committed results small; written by `surface::patch_io` for any scheme's layout.
 pub fn write_patches(out: &Path, fits: &[FittedMethod]) -> Result<(), ExperimentError> {
     for FittedMethod { name, fit: f, .. } in fits.iter().filter(|f| f.name == "optimized") {
-        let mut text = String::new();
-        for (i, net) in f.nets().enumerate() {
-            let pts: Vec<[f64; 3]> = net.iter().map(|q| [q.x, q.y, q.z]).collect();
-            let _ = writeln!(
-                text,
-                "{}",
-                json!({"type": "BezierTriangle", "degree": 4, "points": pts, "face": i / 3, "subpatch": i % 3})
-            );
-        }
-        write_result(
-            Some(&out.join(format!("patches-{name}.jsonl"))),
-            text.as_bytes(),
-        )?;
+        let mut text = Vec::new();
+        surface::patch_io::write_jsonl(f, &|p| *p, &mut text).map_err(|source| {
+            ExperimentError::Write {
+                path: out.join(format!("patches-{name}.jsonl")),
+                source,
+            }
+        })?;
+        write_result(Some(&out.join(format!("patches-{name}.jsonl"))), &text)?;
     }
     Ok(())
 }
