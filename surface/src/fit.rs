@@ -41,6 +41,20 @@ pub enum FaceFallbackReason {
     Scheme(SchemeError),
     /// The construction gave non-finite control points (extreme data).
     NonFinite,
+    /// At corner `corner` the face's two edge tangents turn against the vertex normal: the
+    /// face is folded in that vertex's tangent plane (a needle, a pole, a normal turned against
+    /// the winding), and a patch through it would fold ([`crate::scheme::folded_corner`]).
+    Folded {
+        /// The face corner (0, 1, 2).
+        corner: usize,
+    },
+    /// Along face edge `edge` (from corner `edge` to `edge + 1`) the cross-boundary derivative
+    /// turns to the wrong side: the patch would fold over the edge
+    /// ([`crate::side_vertex::folded_edge`]).
+    FoldedEdge {
+        /// The face edge (0, 1, 2).
+        edge: usize,
+    },
 }
 
 impl std::fmt::Display for FaceFallbackReason {
@@ -53,6 +67,14 @@ impl std::fmt::Display for FaceFallbackReason {
             ),
             FaceFallbackReason::Scheme(e) => write!(f, "{e}"),
             FaceFallbackReason::NonFinite => write!(f, "non-finite control points"),
+            FaceFallbackReason::Folded { corner } => write!(
+                f,
+                "folded at corner {corner}: its edge tangents turn against the vertex normal (a needle, a pole or a normal against the winding)"
+            ),
+            FaceFallbackReason::FoldedEdge { edge } => write!(
+                f,
+                "folded over edge {edge}: the cross-boundary derivative turns to the wrong side (vertex normals far apart across the edge)"
+            ),
         }
     }
 }

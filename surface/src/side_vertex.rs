@@ -479,6 +479,41 @@ fn transversal(data: &FaceData, cross: CrossBoundary, i: usize, s: f64, e1: &V1)
     sub_scaled1(&xl, div1(dot1(&xl, &m), mm), &m)
 }
 
+/// Where the transversal is tested for a fold along each edge (the ends are the corners,
+/// tested by [`crate::scheme::folded_corner`]).
+const FOLD_SAMPLES: [f64; 3] = [0.25, 0.5, 0.75];
+
+/// The first face edge `l` (from `V_l` to `V_{l+1}`) along which the cross-boundary
+/// derivative turns to the wrong side: for a counter-clockwise face the edge tangent `E'`,
+/// the outward transversal `X` and the interpolated normal `n` satisfy `(E' × X) · n < 0`;
+/// where that fails the patch folds over the edge (its normal turns by π there, as on coarse
+/// meshes whose vertex normals differ by nearly a right angle across an edge). Tested at
+/// [`FOLD_SAMPLES`]; `points` are one face's stored data.
+pub fn folded_edge(points: &[Point3<f64>], cross: CrossBoundary) -> Option<usize> {
+    let data = FaceData::new(points)?;
+    for i in 0..3 {
+        let j = (i + 1) % 3;
+        let k = (i + 2) % 3;
+        for s in FOLD_SAMPLES {
+            let b = bernstein(s);
+            let e: [Vector3<f64>; 4] = std::array::from_fn(|r| {
+                (0..4).fold(Vector3::zeros(), |acc, m| acc + data.c[j][m] * b[r][m])
+            });
+            let e1 = V1 {
+                v: e[1],
+                d: e[2],
+                dd: e[3],
+            };
+            let x = transversal(&data, cross, i, s, &e1);
+            let n = data.n[j] * (1.0 - s) + data.n[k] * s;
+            if e[1].cross(&x.v).dot(&n).partial_cmp(&0.0) != Some(std::cmp::Ordering::Less) {
+                return Some(j);
+            }
+        }
+    }
+    None
+}
+
 /// Operator `i`'s position and partials in `(u, s)`:
 /// `[S, S_u, S_s, S_uu, S_us, S_ss]`.
 fn operator(data: &FaceData, cross: CrossBoundary, i: usize, p: &[f64]) -> [Vector3<f64>; 6] {

@@ -200,3 +200,56 @@ fn patch_output_follows_a_change_of_frame() {
         }
     }
 }
+
+/// A corner whose vertex normal is turned against the face's winding is refused (the patch
+/// would fold there) and the face gets the C0 fallback, named; the other faces stay G1.
+#[test]
+fn folded_faces_are_refused_and_named() {
+    let data = dataset_by_name("capsule", None).unwrap();
+    let face = data.mesh.faces()[10];
+    let mut verts = data.mesh.vertices().to_vec();
+    // Turn vertex face[0]'s normal inside out.
+    verts[face[0]].data.n = -verts[face[0]].data.n;
+    let mesh = Mesh::new(verts, data.mesh.faces().to_vec()).unwrap();
+    for scheme in [
+        "nielson",
+        "discrete-side-vertex",
+        "pn-triangles",
+        "clough-tocher",
+    ] {
+        let f = fit_of(&mesh, scheme, "chord");
+        let folded: Vec<_> = f.face_fallbacks.iter().map(|fb| fb.face).collect();
+        assert!(folded.contains(&10), "{scheme}: {folded:?}");
+        assert!(
+            f.face_fallbacks.iter().all(|fb| matches!(
+                fb.reason,
+                surface::FaceFallbackReason::Folded { .. }
+                    | surface::FaceFallbackReason::FoldedEdge { .. }
+            )),
+            "{scheme}"
+        );
+        let g1 = measure_g1(&mesh, &f, 9);
+        if f.continuity == Continuity::G1 {
+            assert!(g1.max_angle() < ANGLE, "{scheme}: {g1:?}");
+        }
+    }
+}
+
+/// The fold test along edges: none on good data; inverted normals turn every edge's
+/// transversal to the wrong side.
+#[test]
+fn folded_edge_detects_a_transversal_on_the_wrong_side() {
+    use surface::side_vertex::{folded_edge, CrossBoundary};
+    let data = dataset_by_name("sphere", None).unwrap();
+    let f = fit_of(&data.mesh, "nielson", "chord");
+    let np = f.layout.points_per_patch();
+    for face in 0..data.mesh.num_faces() {
+        let pts = &f.points[face * np..(face + 1) * np];
+        assert_eq!(folded_edge(pts, CrossBoundary::Transfinite), None);
+        let mut flipped = pts.to_vec();
+        for p in &mut flipped[12..15] {
+            *p = Point3::from(-p.coords);
+        }
+        assert!(folded_edge(&flipped, CrossBoundary::Discrete).is_some());
+    }
+}

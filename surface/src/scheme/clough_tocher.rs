@@ -233,6 +233,9 @@ impl Scheme for CloughTocher {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
+        if let Some(corner) = super::folded_corner(input) {
+            return Err(FaceFallbackReason::Folded { corner });
+        }
         let nets = macro_patch(&input.edges.map(|c| c.points));
         if !nets
             .iter()

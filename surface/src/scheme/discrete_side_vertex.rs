@@ -49,8 +49,14 @@ impl Scheme for DiscreteSideVertex {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
+        if let Some(corner) = super::folded_corner(input) {
+            return Err(FaceFallbackReason::Folded { corner });
+        }
         write_face(input.edges, input.vertices.map(|v| v.n), out);
-        Ok(())
+        match crate::side_vertex::folded_edge(out, DISCRETE.cross) {
+            Some(edge) => Err(FaceFallbackReason::FoldedEdge { edge }),
+            None => Ok(()),
+        }
     }
 
     /// The same data: the discrete form never needs the normals.

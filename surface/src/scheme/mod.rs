@@ -225,6 +225,36 @@ pub trait Scheme: Send + Sync {
     }
 }
 
+/// The first corner of a face where its two edge tangents turn against the vertex normal:
+/// `(D_{i,i+1} × D_{i,i+2}) · N_i ≤ 0`, with `D_{i,i+1} = 3(c_1 − c_0)` of the edge curve
+/// leaving `V_i` and `D_{i,i+2} = −3(c_3 − c_2)` of the curve arriving there. Any patch that
+/// interpolates those tangents and the vertex normal is folded at that corner: its normal
+/// `r_u × r_v` is the other way round. The schemes on curves that have no test of their own
+/// refuse such faces, which then get their C0 fallback ([`FaceFallbackReason::Folded`]).
+pub fn folded_corner(input: &FaceInput<'_>) -> Option<usize> {
+    (0..3).find(|&i| {
+        let leaving = input.edges[i].points[1] - input.edges[i].points[0];
+        let k = (i + 2) % 3;
+        let arriving = input.edges[k].points[2] - input.edges[k].points[3];
+        leaving
+            .cross(&arriving)
+            .dot(&input.vertices[i].n)
+            .partial_cmp(&0.0)
+            != Some(std::cmp::Ordering::Greater)
+    })
+}
+
+/// [`folded_corner`] for schemes that make their own boundaries: the first corner where the
+/// face's winding is against the vertex normal, `((V_{i+1} − V_i) × (V_{i+2} − V_i)) · N_i ≤ 0`
+/// (a patch through the corner with that normal folds there).
+pub fn folded_winding(input: &FaceInput<'_>) -> Option<usize> {
+    let p = input.vertices.map(|v| v.p);
+    (0..3).find(|&i| {
+        let (a, b) = (p[(i + 1) % 3] - p[i], p[(i + 2) % 3] - p[i]);
+        a.cross(&b).dot(&input.vertices[i].n).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+    })
+}
+
 /// The affine map of a face's corners, over every sub-triangle of `layout` and raised to its
 /// degree: `out` gets `points_per_face` points.
 pub fn flat_over_layout(layout: Layout, corners: [Point3<f64>; 3], out: &mut [Point3<f64>]) {

@@ -46,8 +46,14 @@ impl Scheme for Nielson {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
+        if let Some(corner) = super::folded_corner(input) {
+            return Err(FaceFallbackReason::Folded { corner });
+        }
         write_face(input.edges, input.vertices.map(|v| v.n), out);
-        Ok(())
+        match crate::side_vertex::folded_edge(out, NIELSON.cross) {
+            Some(edge) => Err(FaceFallbackReason::FoldedEdge { edge }),
+            None => Ok(()),
+        }
     }
 
     /// The same boundary curves with the discrete cross-boundary data (zero normals): C0 with

@@ -172,6 +172,9 @@ impl Scheme for PowellSabin {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
+        if let Some(corner) = super::folded_winding(input) {
+            return Err(FaceFallbackReason::Folded { corner });
+        }
         let p = input.vertices.map(|v| v.p);
         let n = input.vertices.map(|v| v.n.normalize());
         let nets = macro_patch(&p, &n);
