@@ -104,11 +104,16 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-    /// Diverging colours of the curvature (default range ±the 95% quantile of |kg|).
+    /// Diverging colours of the curvature (default range ±the 95% quantile of |kg| over the
+    /// first --block triangles).
     Kcolor {
         /// Colour range `A:B` (mapped onto blue–grey–red).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
+        /// Without --range: triangles held to fix the range before streaming (0: the whole
+        /// stream).
+        #[arg(long, default_value_t = filters::DEFAULT_BLOCK)]
+        block: usize,
         /// Which curvature: kg (Gaussian) or km (mean).
         #[arg(long, default_value = "kg")]
         field: String,
@@ -120,9 +125,14 @@ enum Command {
         /// The true surface: ring, sphere, capsule (octa lies on the unit sphere).
         #[arg(long)]
         surface: String,
-        /// Colour range `A:B` of |distance| (default 0 to its 95% quantile).
+        /// Colour range `A:B` of |distance| (default 0 to its 95% quantile over the first
+        /// --block triangles).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
+        /// Without --range: triangles held to fix the range before streaming (0: the whole
+        /// stream).
+        #[arg(long, default_value_t = filters::DEFAULT_BLOCK)]
+        block: usize,
         #[command(flatten)]
         common: Common,
     },
@@ -330,10 +340,11 @@ fn run(cli: Cli) -> Result<(), FilterError> {
             common,
         } => filter("g1", &common, &mut |p| testbed::g1::g1(p, strict, samples)),
         Command::Mat0 { common } => filter("mat0", &common, &mut |p| {
-            filters::colour(p, &filters::Mat0, "", None)
+            filters::colour(p, &filters::Mat0, "", None, 0)
         }),
         Command::Kcolor {
             range: r,
+            block,
             field,
             common,
         } => {
@@ -344,12 +355,13 @@ fn run(cli: Cli) -> Result<(), FilterError> {
             }
             let r = range(&r)?;
             filter("kcolor", &common, &mut |p| {
-                filters::colour(p, &filters::KColor, &field, r)
+                filters::colour(p, &filters::KColor, &field, r, block)
             })
         }
         Command::Radial {
             surface,
             range: r,
+            block,
             common,
         } => {
             let name = if surface == "octa" {
@@ -370,7 +382,7 @@ fn run(cli: Cli) -> Result<(), FilterError> {
             };
             let r = range(&r)?;
             filter("radial", &common, &mut |p| {
-                filters::colour(p, &colouring, "", r)
+                filters::colour(p, &colouring, "", r, block)
             })
         }
         Command::Render {
