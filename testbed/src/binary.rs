@@ -74,14 +74,13 @@ fn shape(v: &Tape) -> Schema {
     let mut slots = Vec::new();
     for (i, t) in v.toks.iter().enumerate() {
         let out = match *t {
-            Tok::Key(s) => Tok::Key(template.push_text(v.bytes(s))),
-            Tok::Str(s) if keep.contains(&i) => Tok::Str(template.push_text(v.bytes(s))),
-            t if keep.contains(&i) => t,
+            Tok::Key(_) => template.remap(t, v),
+            _ if keep.contains(&i) => template.remap(t, v),
             Tok::Str(_) => {
                 slots.push(b's');
                 Tok::Str(template.push_text(b""))
             }
-            Tok::Float(_) => {
+            Tok::Float(_) | Tok::Text(..) => {
                 slots.push(b'f');
                 Tok::Int(0)
             }
@@ -128,7 +127,7 @@ fn encode(v: &Tape, schema: &Schema, out: &mut Vec<u8>) -> bool {
                     _ => false,
                 }
             }
-            (Tok::Float(x), Tok::Int(_)) => {
+            (Tok::Float(x) | Tok::Text(x, _), Tok::Int(_)) => {
                 let ok = schema.slots.get(k) == Some(&b'f');
                 k += 1;
                 out.extend_from_slice(&x.to_le_bytes());
@@ -215,6 +214,21 @@ impl Encoder {
 #[derive(Debug, Default)]
 pub struct Decoder {
     schemas: Vec<Schema>,
+    /// Per schema, per slot: how many numeric slots run from it (0 at a string slot), so a
+    /// run is read in one call.
+    runs: Vec<Vec<usize>>,
+    scratch: Vec<u8>,
+}
+
+/// The numeric runs of `slots` (see [`Decoder`]).
+fn numeric_runs(slots: &[u8]) -> Vec<usize> {
+    let mut runs = vec![0; slots.len()];
+    let mut n = 0;
+    for (k, s) in slots.iter().enumerate().rev() {
+        n = if *s == b's' { 0 } else { n + 1 };
+        runs[k] = n;
+    }
+    runs
 }
 
 fn read_exact<R: Read>(r: &mut R, buf: &mut [u8]) -> Result<(), String> {
@@ -243,7 +257,7 @@ fn check_template(t: &Tape, slots: &[u8]) -> bool {
             continue;
         }
         let ok = match tok {
-            Tok::Float(_) | Tok::Int(_) | Tok::UInt(_) => {
+            Tok::Float(_) | Tok::Text(..) | Tok::Int(_) | Tok::UInt(_) => {
                 matches!(slots.get(k), Some(b'f' | b'i' | b'u'))
             }
             Tok::Str(_) => slots.get(k) == Some(&b's'),
@@ -258,16 +272,24 @@ fn check_template(t: &Tape, slots: &[u8]) -> bool {
 }
 
 impl Decoder {
-    fn fill<R: Read>(schema: &Schema, r: &mut R, out: &mut Tape) -> Result<(), String> {
+    fn fill<R: Read>(
+        schema: &Schema,
+        runs: &[usize],
+        scratch: &mut Vec<u8>,
+        r: &mut R,
+        out: &mut Tape,
+    ) -> Result<(), String> {
         let t = &schema.template;
         let keep = type_range(t);
         let mut k = 0;
+        // Bytes of the current numeric run read ahead, and how many of them are used.
+        let mut used = 0;
+        scratch.clear();
         for (i, tok) in t.toks.iter().enumerate() {
             let v = match *tok {
-                Tok::Key(s) => Tok::Key(out.push_text(t.bytes(s))),
-                Tok::Str(s) if keep.contains(&i) => Tok::Str(out.push_text(t.bytes(s))),
-                x if keep.contains(&i) => x,
-                Tok::Str(_) | Tok::Float(_) | Tok::Int(_) | Tok::UInt(_) => {
+                Tok::Key(_) => out.remap(tok, t),
+                _ if keep.contains(&i) => out.remap(tok, t),
+                Tok::Str(_) | Tok::Float(_) | Tok::Text(..) | Tok::Int(_) | Tok::UInt(_) => {
                     let kind = schema.slots.get(k).copied();
                     k += 1;
                     if kind == Some(b's') {
@@ -288,8 +310,15 @@ impl Decoder {
                             len,
                         })
                     } else {
+                        if used == scratch.len() {
+                            let n = runs.get(k - 1).copied().unwrap_or(1).max(1);
+                            scratch.resize(8 * n, 0);
+                            read_exact(r, scratch)?;
+                            used = 0;
+                        }
                         let mut b = [0u8; 8];
-                        read_exact(r, &mut b)?;
+                        b.copy_from_slice(&scratch[used..used + 8]);
+                        used += 8;
                         match kind {
                             Some(b'f') => {
                                 let f = f64::from_le_bytes(b);
@@ -358,6 +387,7 @@ impl Decoder {
                             self.schemas.len()
                         ));
                     }
+                    self.runs.push(numeric_runs(&slots));
                     self.schemas.push(Schema { template, slots });
                 }
                 b'R' => {
@@ -367,7 +397,8 @@ impl Decoder {
                         .get(id)
                         .ok_or_else(|| format!("record of undeclared schema {id}"))?;
                     out.clear();
-                    Self::fill(schema, r, out)?;
+                    let runs = self.runs.get(id).map_or(&[][..], Vec::as_slice);
+                    Self::fill(schema, runs, &mut self.scratch, r, out)?;
                     return Ok(true);
                 }
                 other => return Err(format!("unknown block tag byte {other:#04x}")),

@@ -45,6 +45,10 @@ pub struct SyntaxError {
 }
 
 struct Parser<'a, 't> {
+    /// The record when it is UTF-8 throughout (checked once; any ASCII position is then a
+    /// character boundary); `None` when some byte is not (in a comment, say): then strings
+    /// are checked one by one.
+    src: Option<&'a str>,
     s: &'a [u8],
     i: usize,
     depth: usize,
@@ -138,7 +142,10 @@ impl Parser<'_, '_> {
         let inner = text
             .get(1..text.len().saturating_sub(1))
             .unwrap_or_default();
-        if !escaped && inner.iter().all(|&c| c >= 0x20) && std::str::from_utf8(inner).is_ok() {
+        if !escaped
+            && inner.iter().all(|&c| c >= 0x20)
+            && (self.src.is_some() || std::str::from_utf8(inner).is_ok())
+        {
             return Ok(self.tape.push_text(inner));
         }
         match serde_json::from_slice::<String>(text) {
@@ -180,8 +187,12 @@ impl Parser<'_, '_> {
             }
             self.i += 1;
         }
-        let text =
-            std::str::from_utf8(self.s.get(start..self.i).unwrap_or_default()).unwrap_or_default();
+        let bytes = self.s.get(start..self.i).unwrap_or_default();
+        // Digits, signs, `.`, `e`: ASCII.
+        let text = match self.src {
+            Some(src) => src.get(start..self.i).unwrap_or_default(),
+            None => std::str::from_utf8(bytes).unwrap_or_default(),
+        };
         let text = text.strip_prefix('+').unwrap_or(text);
         if !float {
             if let Ok(v) = text.parse::<i64>() {
@@ -195,7 +206,13 @@ impl Parser<'_, '_> {
         }
         match text.parse::<f64>() {
             Ok(v) if v.is_finite() => {
-                self.tape.toks.push(Tok::Float(v));
+                // Text in JSON's grammar is kept to be written back as it came.
+                if json::is_json_number(text.as_bytes()) {
+                    let span = self.tape.push_text(text.as_bytes());
+                    self.tape.toks.push(Tok::Text(v, span));
+                } else {
+                    self.tape.toks.push(Tok::Float(v));
+                }
                 Ok(())
             }
             Ok(_) => {
@@ -342,7 +359,9 @@ impl Parser<'_, '_> {
 /// `tape` (cleared first): an object whose first field is `type`.
 pub fn parse_record(text: &[u8], tape: &mut Tape) -> Result<(), SyntaxError> {
     tape.clear();
+    let src = std::str::from_utf8(text).ok();
     let mut p = Parser {
+        src,
         s: text,
         i: 0,
         depth: 0,
@@ -463,7 +482,7 @@ fn write_value(out: &mut Vec<u8>, tape: &Tape, at: usize, ryu: &mut ryu::Buffer)
             i
         }
         other => {
-            json::write_scalar(out, &other, ryu);
+            json::write_scalar(out, &other, tape, ryu);
             at + 1
         }
     }
@@ -485,12 +504,12 @@ pub fn write_record(out: &mut Vec<u8>, record: &Tape) -> Result<(), String> {
     out.extend_from_slice(b" .");
     let mut any = false;
     for (k, v) in record.fields(0) {
-        if k == "type" {
+        if k == b"type" {
             continue;
         }
         any = true;
         out.extend_from_slice(b" (");
-        write_name(out, k.as_bytes());
+        write_name(out, k);
         out.extend_from_slice(b" . ");
         write_value(out, record, v, &mut ryu);
         out.push(b')');

@@ -357,7 +357,7 @@ impl TriangleTapes {
         }
         self.carried.clear();
         for (key, v) in patch.fields(0) {
-            if !TESS_CONSUMES.contains(&key) {
+            if !TESS_CONSUMES.iter().any(|c| c.as_bytes() == key) {
                 let w = patch.toks.get(v).map_or(1, Tok::width);
                 self.carried.push(v - 1..v + w);
             }
@@ -686,5 +686,43 @@ impl Binder {
                     out.push(Tok::Float(values[vi]));
                 }
             });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shared-weights path gives exactly (bit for bit) what `surface::tessellate` gives
+    /// for the patch alone, on regular patches and on a degenerate one (a collapsed edge: its
+    /// samples are welded and some triangles dropped there, so it takes the general path).
+    #[test]
+    fn patch_tessellator_equals_surface_tessellate() {
+        let quad = BezierTriangle::from_fn(4, |i, j, k| {
+            let (u, v) = (i as f64 / 4.0, j as f64 / 4.0);
+            Point3::new(
+                u,
+                v,
+                0.3 * u * u - 0.2 * u * v + 0.1 * v * v + 0.05 * k as f64,
+            )
+        });
+        let collapsed = BezierTriangle::from_fn(2, |i, j, _| {
+            // Corners (2,0,0) and (0,2,0) coincide: edge w = 0 is a point.
+            Point3::new(
+                (i * j) as f64 * 0.5,
+                (i + j) as f64 * 0.25,
+                (i as f64 - 1.0).abs(),
+            )
+        });
+        for s in [1, 3, 8] {
+            let mut t = PatchTessellator::new(s).expect("s ≥ 1");
+            let mut out = Vec::new();
+            for patch in [&quad, &collapsed, &quad] {
+                t.tessellate(patch, &mut out).expect("tessellates");
+                let expected = tessellate_patch(patch, s).expect("tessellates");
+                assert_eq!(out, expected, "s = {s}");
+            }
+        }
+        assert!(PatchTessellator::new(0).is_err());
     }
 }

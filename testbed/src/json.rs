@@ -28,6 +28,8 @@ pub struct JsonError {
 }
 
 struct Parser<'a, 't> {
+    /// The line, checked to be UTF-8 once (so any ASCII position is a character boundary).
+    src: &'a str,
     s: &'a [u8],
     i: usize,
     depth: usize,
@@ -217,10 +219,6 @@ impl Parser<'_, '_> {
         let raw = self.s.get(start..self.i).unwrap_or_default();
         if !escaped {
             let inner = raw.get(1..raw.len() - 1).unwrap_or_default();
-            if std::str::from_utf8(inner).is_err() {
-                self.i = start;
-                return self.err("string is not UTF-8");
-            }
             return Ok(self.tape.push_text(inner));
         }
         match serde_json::from_slice::<String>(raw) {
@@ -272,8 +270,7 @@ impl Parser<'_, '_> {
             }
         }
         // ASCII by construction.
-        let text =
-            std::str::from_utf8(self.s.get(start..self.i).unwrap_or_default()).unwrap_or_default();
+        let text = self.src.get(start..self.i).unwrap_or_default();
         if !float {
             if let Ok(v) = text.parse::<i64>() {
                 self.tape.toks.push(Tok::Int(v));
@@ -286,7 +283,8 @@ impl Parser<'_, '_> {
         }
         match text.parse::<f64>() {
             Ok(v) if v.is_finite() => {
-                self.tape.toks.push(Tok::Float(v));
+                let span = self.tape.push_text(text.as_bytes());
+                self.tape.toks.push(Tok::Text(v, span));
                 Ok(())
             }
             _ => {
@@ -301,7 +299,12 @@ impl Parser<'_, '_> {
 /// first).
 pub fn parse_record(line: &[u8], tape: &mut Tape) -> Result<(), JsonError> {
     tape.clear();
+    let src = std::str::from_utf8(line).map_err(|e| JsonError {
+        offset: e.valid_up_to(),
+        message: "the line is not UTF-8".into(),
+    })?;
     let mut p = Parser {
+        src,
         s: line,
         i: 0,
         depth: 0,
@@ -332,10 +335,53 @@ pub fn write_string(out: &mut Vec<u8>, s: &[u8]) {
     }
 }
 
+/// True when `b` is a number in JSON's grammar
+/// (`-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][+-]?[0-9]+)?`).
+pub fn is_json_number(b: &[u8]) -> bool {
+    let mut i = usize::from(b.first() == Some(&b'-'));
+    let digits = |i: &mut usize| {
+        let a = *i;
+        while b.get(*i).is_some_and(u8::is_ascii_digit) {
+            *i += 1;
+        }
+        *i - a
+    };
+    let int_start = i;
+    let n = digits(&mut i);
+    if n == 0 || (n > 1 && b.get(int_start) == Some(&b'0')) {
+        return false;
+    }
+    if b.get(i) == Some(&b'.') {
+        i += 1;
+        if digits(&mut i) == 0 {
+            return false;
+        }
+    }
+    if matches!(b.get(i), Some(b'e' | b'E')) {
+        i += 1;
+        if matches!(b.get(i), Some(b'+' | b'-')) {
+            i += 1;
+        }
+        if digits(&mut i) == 0 {
+            return false;
+        }
+    }
+    i == b.len()
+}
+
 /// Appends a scalar token the way every text writer of this crate does: integers as
-/// integers, floats by Ryū.
-pub fn write_scalar(out: &mut Vec<u8>, t: &Tok, ryu: &mut ryu::Buffer) {
+/// integers, floats read from text as they came, other floats by Ryū. (`tape` holds the
+/// text of [`Tok::Text`].)
+pub fn write_scalar(out: &mut Vec<u8>, t: &Tok, tape: &Tape, ryu: &mut ryu::Buffer) {
     match t {
+        Tok::Text(x, s) => {
+            let text = tape.bytes(*s);
+            if text.is_empty() {
+                out.extend_from_slice(ryu.format_finite(*x).as_bytes());
+            } else {
+                out.extend_from_slice(text);
+            }
+        }
         Tok::Float(x) => out.extend_from_slice(ryu.format_finite(*x).as_bytes()),
         Tok::Int(x) => {
             let _ = write!(out, "{x}");
@@ -387,7 +433,7 @@ fn write_value(out: &mut Vec<u8>, tape: &Tape, at: usize, ryu: &mut ryu::Buffer)
             at + 1
         }
         other => {
-            write_scalar(out, &other, ryu);
+            write_scalar(out, &other, tape, ryu);
             at + 1
         }
     }
@@ -440,6 +486,11 @@ mod tests {
                 String::from_utf8_lossy(bad)
             );
         }
+        // Floats read from text are written back as they came.
+        parse_record(br#"{"a":[1.50,2e0,-0.0]}"#, &mut t).expect("parses");
+        let mut out = Vec::new();
+        write_record(&mut out, &t);
+        assert_eq!(out, b"{\"a\":[1.50,2e0,-0.0]}\n");
         let deep = "{\"a\":".to_string() + &"[".repeat(10_000);
         assert!(parse_record(deep.as_bytes(), &mut t).is_err());
     }

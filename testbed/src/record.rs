@@ -151,14 +151,14 @@ pub fn vertex(t: &Tape, name: &str) -> Result<Vertex, FieldError> {
     let mut pos = false;
     for (key, i) in t.fields(at) {
         match key {
-            "pos" => {
+            b"pos" => {
                 v.pos = Point3::from(vec3(t, i, &|| format!("{name}.pos"))?);
                 pos = true;
             }
-            "norm" => v.norm = Some(Vector3::from(vec3(t, i, &|| format!("{name}.norm"))?)),
-            "kg" => v.kg = Some(number(t, i, &|| format!("{name}.kg"))?),
-            "km" => v.km = Some(number(t, i, &|| format!("{name}.km"))?),
-            "color" => v.color = Some(vec3(t, i, &|| format!("{name}.color"))?.map(|c| c as f32)),
+            b"norm" => v.norm = Some(Vector3::from(vec3(t, i, &|| format!("{name}.norm"))?)),
+            b"kg" => v.kg = Some(number(t, i, &|| format!("{name}.kg"))?),
+            b"km" => v.km = Some(number(t, i, &|| format!("{name}.km"))?),
+            b"color" => v.color = Some(vec3(t, i, &|| format!("{name}.color"))?.map(|c| c as f32)),
             _ => {}
         }
     }

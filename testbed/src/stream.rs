@@ -212,12 +212,7 @@ impl<R: BufRead> RecordReader<R> {
             line: at_line,
         };
         record.at = at;
-        if std::str::from_utf8(&self.buf).is_err() {
-            return Err(StreamError::Syntax {
-                at,
-                message: "bad JSON: the line is not UTF-8".into(),
-            });
-        }
+        // Strings are checked for UTF-8 as they are read; the rest of a line is ASCII syntax.
         json::parse_record(&self.buf, &mut record.tape)
             .map(|()| true)
             .map_err(|e| StreamError::Syntax {

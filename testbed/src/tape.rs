@@ -46,6 +46,10 @@ pub enum Tok {
     Str(Span),
     /// A floating-point number (finite).
     Float(f64),
+    /// A floating-point number (finite) read from text, with that text (JSON number syntax):
+    /// the text writers write it back as it came, so numbers passing through a filter are
+    /// neither reformatted nor changed.
+    Text(f64, Span),
     /// An integer that fits `i64`.
     Int(i64),
     /// A non-negative integer above `i64::MAX`.
@@ -172,6 +176,7 @@ impl Tape {
 
     /// The value token of field `name` of the object at `at`.
     pub fn get(&self, at: usize, name: &str) -> Option<usize> {
+        let name = name.as_bytes();
         self.fields(at).find(|(k, _)| *k == name).map(|(_, v)| v)
     }
 
@@ -198,7 +203,7 @@ impl Tape {
     /// The number at token `at`, as `f64`.
     pub fn number(&self, at: usize) -> Option<f64> {
         match self.toks.get(at)? {
-            Tok::Float(x) => Some(*x),
+            Tok::Float(x) | Tok::Text(x, _) => Some(*x),
             Tok::Int(x) => Some(*x as f64),
             Tok::UInt(x) => Some(*x as f64),
             _ => None,
@@ -209,12 +214,18 @@ impl Tape {
     pub fn copy_value(&mut self, src: &Tape, at: usize) {
         let w = src.toks.get(at).map_or(0, Tok::width);
         for t in src.toks.get(at..at + w).unwrap_or_default() {
-            let t = match *t {
-                Tok::Key(s) => Tok::Key(self.push_text(src.bytes(s))),
-                Tok::Str(s) => Tok::Str(self.push_text(src.bytes(s))),
-                other => other,
-            };
+            let t = self.remap(t, src);
             self.toks.push(t);
+        }
+    }
+
+    /// Token `t` of `src` with its text (if any) copied into this tape.
+    pub fn remap(&mut self, t: &Tok, src: &Tape) -> Tok {
+        match *t {
+            Tok::Key(s) => Tok::Key(self.push_text(src.bytes(s))),
+            Tok::Str(s) => Tok::Str(self.push_text(src.bytes(s))),
+            Tok::Text(x, s) => Tok::Text(x, self.push_text(src.bytes(s))),
+            other => other,
         }
     }
 
@@ -263,7 +274,7 @@ impl Tape {
                 };
                 count += 1;
                 scratch.push(Tok::Key(*span));
-                match names.iter().position(|n| *n == key) {
+                match names.iter().position(|n| n.as_bytes() == key) {
                     Some(ni) if !set[ni] => {
                         set[ni] = true;
                         value(vi, ni, scratch);
@@ -285,8 +296,12 @@ impl Tape {
             scratch[obj] = Tok::Obj { fields: count, len };
             i += self.toks[i].width();
         }
-        // The enclosing containers' lengths changed: recompute them.
-        recompute_lengths(scratch);
+        // Only the record's own length changed: the vertex objects were rebuilt with theirs,
+        // everything else copied whole.
+        let total = scratch.len().saturating_sub(1) as u32;
+        if let Some(Tok::Obj { len, .. }) = scratch.first_mut() {
+            *len = total;
+        }
         std::mem::swap(&mut self.toks, scratch);
         true
     }
@@ -331,7 +346,7 @@ impl Tape {
                 (Value::Array(a), i)
             }
             Tok::Key(s) | Tok::Str(s) => (Value::String(self.str(s).to_string()), at + 1),
-            Tok::Float(x) => (
+            Tok::Float(x) | Tok::Text(x, _) => (
                 Number::from_f64(x).map_or(Value::Null, Value::Number),
                 at + 1,
             ),
@@ -387,36 +402,7 @@ pub fn number_tok(n: &Number) -> Tok {
     }
 }
 
-/// Recomputes every container's `len` from its counts (after a rewrite).
-fn recompute_lengths(toks: &mut [Tok]) {
-    fn walk(toks: &mut [Tok], at: usize) -> usize {
-        let (count, object) = match toks.get(at) {
-            Some(Tok::Obj { fields, .. }) => (*fields as usize, true),
-            Some(Tok::Arr { items, .. }) => (*items as usize, false),
-            Some(_) => return at + 1,
-            None => return at + 1,
-        };
-        let mut i = at + 1;
-        for _ in 0..count {
-            if object {
-                i += 1; // the key
-            }
-            i = walk(toks, i);
-        }
-        let len = (i - at - 1) as u32;
-        match &mut toks[at] {
-            Tok::Obj { len: l, .. } | Tok::Arr { len: l, .. } => *l = len,
-            _ => {}
-        }
-        i
-    }
-    let mut i = 0;
-    while i < toks.len() {
-        i = walk(toks, i);
-    }
-}
-
-/// Iterator over an object's fields: `(key, value token index)`.
+/// Iterator over an object's fields: `(key bytes, value token index)`.
 pub struct Fields<'a> {
     tape: &'a Tape,
     left: usize,
@@ -424,15 +410,15 @@ pub struct Fields<'a> {
 }
 
 impl<'a> Iterator for Fields<'a> {
-    type Item = (&'a str, usize);
+    type Item = (&'a [u8], usize);
     fn next(&mut self) -> Option<Self::Item> {
         if self.left == 0 {
             return None;
         }
         self.left -= 1;
         let key = match self.tape.toks.get(self.i)? {
-            Tok::Key(s) => self.tape.str(*s),
-            _ => "",
+            Tok::Key(s) => self.tape.bytes(*s),
+            _ => b"",
         };
         let v = self.i + 1;
         self.i = v + self.tape.toks.get(v)?.width();
