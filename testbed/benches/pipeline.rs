@@ -90,7 +90,15 @@ fn in_process(obj_bytes: &[u8]) -> f64 {
     let scheme = surface::scheme_by_name("shirman-sequin", &Default::default()).expect("scheme");
     let method = curves::method_by_name("chord", &Default::default()).expect("method");
     let fitted = surface::fit_scheme(&input.mesh, scheme.as_ref(), method.as_ref()).expect("fit");
-    let mut tris: Vec<[Vertex; 3]> = Vec::new();
+    // Straight into the render mesh, the Gaussian curvature beside it (the leanest one-process
+    // form of the same work).
+    let mut mesh = render::RenderMesh {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        colors: Vec::new(),
+        faces: Vec::new(),
+    };
+    let mut kg: Vec<f64> = Vec::new();
     let mut tessellator = PatchTessellator::new(8).expect("tessellator");
     let mut samples = Vec::new();
     for net in fitted.nets() {
@@ -98,30 +106,29 @@ fn in_process(obj_bytes: &[u8]) -> f64 {
         let patch = surface::BezierTriangle::new(fitted.layout.degree, pts).expect("patch");
         tessellator.tessellate(&patch, &mut samples).expect("tess");
         for t in &samples {
-            tris.push(t.map(|s| Vertex {
+            let tri = t.map(|s| Vertex {
                 pos: s.pos,
                 norm: Some(s.norm),
                 kg: Some(s.kg),
                 km: None,
                 color: None,
-            }));
+            });
+            draw::push_triangle(&mut mesh, &tri, render::colors::MATERIAL);
+            kg.extend(t.iter().map(|s| s.kg));
         }
     }
     // The range as kcolor's default takes it: from the first block of triangles.
-    let mut all: Vec<f64> = tris
+    let mut first: Vec<f64> = kg
         .iter()
-        .take(testbed::filters::DEFAULT_BLOCK)
-        .flatten()
-        .filter_map(|v| v.kg)
+        .take(3 * testbed::filters::DEFAULT_BLOCK)
+        .copied()
         .collect();
-    let range = KColor.default_range(&mut all);
-    for t in &mut tris {
-        for v in t.iter_mut() {
-            v.color = Some(KColor.color(v.kg.unwrap_or(0.0), range));
-        }
+    let range = KColor.default_range(&mut first);
+    for (c, k) in mesh.colors.iter_mut().zip(&kg) {
+        *c = KColor.color(*k, range);
     }
-    let img = draw::draw(
-        &tris,
+    let img = draw::draw_mesh(
+        &mesh,
         &View {
             view: draw::DEFAULT_VIEW,
             size: draw::DEFAULT_SIZE,

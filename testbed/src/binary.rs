@@ -70,12 +70,17 @@ fn type_range(t: &Tape) -> std::ops::Range<usize> {
 /// Builds the template and slot kinds of `v`.
 fn shape(v: &Tape) -> Schema {
     let keep = type_range(v);
-    let mut template = Tape::default();
+    // The template's text is the record's: its keys keep their spans, so later records laid
+    // out alike compare by span ([`encode`]).
+    let mut template = Tape {
+        toks: Vec::with_capacity(v.toks.len()),
+        text: v.text.clone(),
+    };
     let mut slots = Vec::new();
     for (i, t) in v.toks.iter().enumerate() {
         let out = match *t {
-            Tok::Key(_) => template.remap(t, v),
-            _ if keep.contains(&i) => template.remap(t, v),
+            Tok::Key(_) => *t,
+            _ if keep.contains(&i) => *t,
             Tok::Str(_) => {
                 slots.push(b's');
                 Tok::Str(template.push_text(b""))
@@ -106,10 +111,13 @@ fn encode(v: &Tape, schema: &Schema, out: &mut Vec<u8>) -> bool {
         return false;
     }
     let keep = type_range(t);
+    // A record whose text begins with the template's has its keys where the template has
+    // them: equal spans are equal names (one comparison instead of one per key).
+    let same_text = v.text.get(..t.text.len()) == Some(&t.text[..]);
     let mut k = 0;
     for (i, (a, b)) in v.toks.iter().zip(&t.toks).enumerate() {
         let ok = match (a, b) {
-            (Tok::Key(x), Tok::Key(y)) => v.bytes(*x) == t.bytes(*y),
+            (Tok::Key(x), Tok::Key(y)) => (same_text && x == y) || v.bytes(*x) == t.bytes(*y),
             _ if keep.contains(&i) => match (a, b) {
                 (Tok::Str(x), Tok::Str(y)) => v.bytes(*x) == t.bytes(*y),
                 _ => a == b,
@@ -281,14 +289,17 @@ impl Decoder {
     ) -> Result<(), String> {
         let t = &schema.template;
         let keep = type_range(t);
+        // The record's text begins with the template's, so keys and the `type` value keep
+        // their spans; strings read from slots follow.
+        out.text.extend_from_slice(&t.text);
         let mut k = 0;
         // Bytes of the current numeric run read ahead, and how many of them are used.
         let mut used = 0;
         scratch.clear();
         for (i, tok) in t.toks.iter().enumerate() {
             let v = match *tok {
-                Tok::Key(_) => out.remap(tok, t),
-                _ if keep.contains(&i) => out.remap(tok, t),
+                Tok::Key(_) => *tok,
+                _ if keep.contains(&i) => *tok,
                 Tok::Str(_) | Tok::Float(_) | Tok::Text(..) | Tok::Int(_) | Tok::UInt(_) => {
                     let kind = schema.slots.get(k).copied();
                     k += 1;

@@ -50,6 +50,48 @@ pub fn collect_triangles(pipe: &mut Pipe) -> Result<Vec<[Vertex; 3]>, FilterErro
     Ok(tris)
 }
 
+/// Reads every Triangle straight into a render mesh (unwelded, the uniform material where a
+/// vertex has no colour); other records are ignored. The pictures' reader: no triangle list
+/// is held beside the mesh.
+pub fn collect_mesh(pipe: &mut Pipe) -> Result<RenderMesh, FilterError> {
+    let mut m = RenderMesh {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        colors: Vec::new(),
+        faces: Vec::new(),
+    };
+    let mut rec = Record::default();
+    while pipe.next_good(&mut rec)? {
+        if rec.kind() != "Triangle" {
+            continue;
+        }
+        match record::triangle(&rec.tape) {
+            Ok(t) => push_triangle(&mut m, &t, render::colors::MATERIAL),
+            Err(e) => pipe.bad_field(&rec, e)?,
+        }
+    }
+    if pipe.skipped > 0 {
+        eprintln!(
+            "{}: {} bad record(s) skipped (--keep-going)",
+            pipe.name, pipe.skipped
+        );
+    }
+    Ok(m)
+}
+
+/// Appends one triangle to a render mesh: its normals (the geometric normal where a vertex
+/// has none) and colours (`default_color` where a vertex has none).
+pub fn push_triangle(m: &mut RenderMesh, t: &[Vertex; 3], default_color: [f32; 3]) {
+    let geometric = (t[1].pos - t[0].pos).cross(&(t[2].pos - t[0].pos));
+    let base = m.positions.len();
+    for v in t {
+        m.positions.push(v.pos);
+        m.normals.push(v.norm.unwrap_or(geometric));
+        m.colors.push(v.color.unwrap_or(default_color));
+    }
+    m.faces.push([base, base + 1, base + 2]);
+}
+
 /// Triangles to a render mesh.
 pub fn render_mesh(tris: &[[Vertex; 3]], default_color: [f32; 3]) -> RenderMesh {
     let mut m = RenderMesh {
@@ -59,14 +101,7 @@ pub fn render_mesh(tris: &[[Vertex; 3]], default_color: [f32; 3]) -> RenderMesh 
         faces: Vec::with_capacity(tris.len()),
     };
     for t in tris {
-        let geometric = (t[1].pos - t[0].pos).cross(&(t[2].pos - t[0].pos));
-        let base = m.positions.len();
-        for v in t {
-            m.positions.push(v.pos);
-            m.normals.push(v.norm.unwrap_or(geometric));
-            m.colors.push(v.color.unwrap_or(default_color));
-        }
-        m.faces.push([base, base + 1, base + 2]);
+        push_triangle(&mut m, t, default_color);
     }
     m
 }
@@ -103,6 +138,11 @@ pub struct View {
 
 /// Draws triangles.
 pub fn draw(tris: &[[Vertex; 3]], view: &View) -> Result<Image, FilterError> {
+    draw_mesh(&render_mesh(tris, render::colors::MATERIAL), view)
+}
+
+/// Draws a render mesh (unwelded triangles).
+pub fn draw_mesh(mesh: &RenderMesh, view: &View) -> Result<Image, FilterError> {
     let (w, h) = view.size;
     if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
         return Err(FilterError::Usage(format!(
@@ -114,13 +154,12 @@ pub fn draw(tris: &[[Vertex; 3]], view: &View) -> Result<Image, FilterError> {
         height: h,
         ..RenderOptions::default()
     };
-    let mesh = render_mesh(tris, render::colors::MATERIAL);
-    let (lo, hi) = bounds(&mesh);
+    let (lo, hi) = bounds(mesh);
     let camera = Camera::framing(lo, hi, view.view.0, view.view.1);
     if view.wire {
-        return Ok(render::wire_frame(&mesh, &camera, w, h));
+        return Ok(render::wire_frame(mesh, &camera, w, h));
     }
-    Ok(render::render(&mesh, &camera, &options)?)
+    Ok(render::render(mesh, &camera, &options)?)
 }
 
 /// Encodes an image as PNG (`render::write_png`).

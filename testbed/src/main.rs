@@ -285,6 +285,22 @@ fn sink(name: &'static str, c: &Common, f: &mut SinkFn) -> Result<(), FilterErro
     })
 }
 
+/// Runs a picture filter: the triangles read straight into a render mesh, drawn, PNG out.
+fn picture_sink(name: &'static str, c: &Common, view: &View) -> Result<(), FilterError> {
+    let mut input = open_input(&c.input)?;
+    let mut nothing = std::io::sink();
+    let mesh = {
+        let mut pipe = Pipe::new(name, &mut *input, &mut nothing, None, c.keep_going);
+        draw::collect_mesh(&mut pipe)?
+    };
+    if mesh.faces.is_empty() {
+        eprintln!("{name}: no triangles in the input");
+    }
+    let image = draw::draw_mesh(&mesh, view)?;
+    drop(mesh);
+    with_output(&c.output, &mut |out| draw::write_png(&image, out))
+}
+
 fn run(cli: Cli) -> Result<(), FilterError> {
     match cli.command {
         Command::Fit {
@@ -390,18 +406,14 @@ fn run(cli: Cli) -> Result<(), FilterError> {
             common,
         } => {
             let view = picture(&pic, false)?;
-            sink("render", &common, &mut |tris, out| {
-                draw::write_png(&draw::draw(&tris, &view)?, out)
-            })
+            picture_sink("render", &common, &view)
         }
         Command::Wire {
             picture: pic,
             common,
         } => {
             let view = picture(&pic, true)?;
-            sink("wire", &common, &mut |tris, out| {
-                draw::write_png(&draw::draw(&tris, &view)?, out)
-            })
+            picture_sink("wire", &common, &view)
         }
         Command::ToMesh { out, common } => sink("to-mesh", &common, &mut |tris, _| {
             draw::write_mesh(&tris, &out)
