@@ -256,31 +256,43 @@ impl<R: BufRead> RecordReader<R> {
             if chunk.is_empty() {
                 break;
             }
+            // Jump from one byte that matters to the next (in a string: `"`, `\\`; in a
+            // comment: the line's end; elsewhere: `"`, `%`, `;`), counting lines as we go.
             let mut used = 0;
-            for &c in chunk {
-                used += 1;
-                if c == b'\n' {
-                    self.line += 1;
-                    comment = false;
-                }
-                if comment {
+            while used < chunk.len() {
+                let rest = &chunk[used..];
+                if escape {
+                    escape = false;
+                    self.line += usize::from(rest[0] == b'\n');
+                    used += 1;
                     continue;
                 }
-                if in_string {
-                    if escape {
-                        escape = false;
-                    } else if c == b'\\' {
-                        escape = true;
-                    } else if c == b'"' {
-                        in_string = false;
-                    }
-                } else if c == b'"' {
-                    in_string = true;
-                } else if c == b'%' {
-                    comment = true;
-                } else if c == b';' {
-                    ended = true;
+                let hit = if comment {
+                    rest.iter().position(|&c| c == b'\n')
+                } else if in_string {
+                    rest.iter()
+                        .position(|&c| c == b'"' || c == b'\\' || c == b'\n')
+                } else {
+                    rest.iter()
+                        .position(|&c| matches!(c, b'"' | b'%' | b';' | b'\n'))
+                };
+                let Some(p) = hit else {
+                    used = chunk.len();
                     break;
+                };
+                used += p + 1;
+                match rest[p] {
+                    b'\n' => {
+                        self.line += 1;
+                        comment = false;
+                    }
+                    b'\\' => escape = true,
+                    b'"' => in_string = !in_string,
+                    b'%' => comment = true,
+                    _ => {
+                        ended = true;
+                        break;
+                    }
                 }
             }
             self.buf.extend_from_slice(&chunk[..used]);
