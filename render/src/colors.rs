@@ -8,6 +8,26 @@
 //!
 //! Control points are sRGB; interpolation is done in sRGB and the result converted to linear.
 
+/// Quantile of `|value|` taken as the data's robust maximum for colour ranges: curvature
+/// spikes at a few singular samples (collapsed edges, seams of fallback faces) would
+/// otherwise wash the picture out; 95% keeps the bulk of the surface in the scale.
+pub const ROBUST_QUANTILE: f64 = 0.95;
+
+/// The [`ROBUST_QUANTILE`] of `|values|` by nearest rank (1 when it is zero or not finite, or
+/// there are no values); `values` is reordered in place (absolute values, sorted).
+pub fn robust_max(values: &mut [f64]) -> f64 {
+    for v in values.iter_mut() {
+        *v = v.abs();
+    }
+    values.sort_by(f64::total_cmp);
+    let k = ((values.len().saturating_sub(1)) as f64 * ROBUST_QUANTILE).round() as usize;
+    values
+        .get(k)
+        .copied()
+        .filter(|m| *m > 0.0 && m.is_finite())
+        .unwrap_or(1.0)
+}
+
 /// The uniform material colour of shaded pictures (linear RGB of sRGB (0.72, 0.75, 0.80)).
 pub const MATERIAL: [f32; 3] = [0.4793, 0.5225, 0.6038];
 
@@ -61,6 +81,17 @@ pub fn sequential(value: f64, lo: f64, hi: f64) -> [f32; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn robust_max_ignores_the_top_five_percent() {
+        // 100 values 1..=100 with a spike: the 95% nearest-rank quantile of |v| is 95.
+        let mut v: Vec<f64> = (1..=100).map(|i| -(i as f64)).collect();
+        v[99] = -1e9;
+        assert_eq!(robust_max(&mut v), 95.0);
+        assert_eq!(robust_max(&mut []), 1.0);
+        assert_eq!(robust_max(&mut [0.0, 0.0]), 1.0);
+        assert_eq!(robust_max(&mut [f64::NAN]), 1.0);
+    }
 
     fn luminance(c: [f32; 3]) -> f32 {
         0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]

@@ -963,14 +963,9 @@ pub fn write_curve_figure(fig: &CurveFigure, png: &Path, svg: &Path) -> Result<(
     write_atomic(svg, svg_text.as_bytes())
 }
 
-pub(crate) fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, png::EncodingError> {
+pub(crate) fn encode_png(rgb: &[u8], w: u32, h: u32) -> std::io::Result<Vec<u8>> {
     let mut out = Vec::new();
-    let mut encoder = png::Encoder::new(&mut out, w, h);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header()?;
-    writer.write_image_data(rgb)?;
-    writer.finish()?;
+    crate::shade::write_rgb_png(rgb, w, h, &mut out)?;
     Ok(out)
 }
 

@@ -42,4 +42,6 @@ pub use error::RenderError;
 pub use io::{remove_in_flight, writable_target, write_atomic, write_atomic_with};
 pub use mosaic::{write_composite, Legend, LegendKind, Tile};
 pub use plyfile::{ply_bytes, write_ply_binary};
-pub use shade::{render, render_many, Camera, Image, RenderMesh, RenderOptions};
+pub use shade::{
+    render, render_many, wire_frame, write_png, Camera, Image, RenderMesh, RenderOptions,
+};

@@ -706,9 +706,122 @@ fn draw_edge(a: &Vector3<f64>, b: &Vector3<f64>, view: &View, depth: &[f64], mas
     }
 }
 
+/// The colour of [`wire_frame`]'s lines (dark blue, sRGB bytes).
+pub const WIRE_COLOUR: [u8; 3] = [20, 20, 60];
+
+/// Every triangle edge of `mesh` as a one-pixel [`WIRE_COLOUR`] line on white, seen by
+/// `camera` as [`render`] projects (the testbed's XRender: no hidden lines removed). Points
+/// behind the eye are skipped with their edges; an edge is drawn with at most 10⁵ steps.
+pub fn wire_frame(mesh: &RenderMesh, camera: &Camera, w: u32, h: u32) -> Image {
+    /// Most steps one edge is drawn with: a far longer edge is clipped by the picture anyway.
+    const MAX_STEPS: f64 = 1e5;
+    let mut img = Image {
+        width: w,
+        height: h,
+        rgb: vec![255u8; 3 * w as usize * h as usize],
+    };
+    let f = (camera.target - camera.eye).normalize();
+    let r = f.cross(&camera.up).normalize();
+    let u = r.cross(&f);
+    let fpx = (f64::from(h) * 0.5) / (camera.fov_y_degrees.to_radians() * 0.5).tan();
+    let project = |p: &Point3<f64>| -> Option<(f64, f64)> {
+        let d = p - camera.eye;
+        let z = d.dot(&f);
+        (z > 0.0 && z.is_finite()).then(|| {
+            (
+                f64::from(w) * 0.5 + fpx * d.dot(&r) / z,
+                f64::from(h) * 0.5 - fpx * d.dot(&u) / z,
+            )
+        })
+    };
+    for face in &mesh.faces {
+        for k in 0..3 {
+            let (Some(a), Some(b)) = (
+                mesh.positions.get(face[k]).and_then(project),
+                mesh.positions.get(face[(k + 1) % 3]).and_then(project),
+            ) else {
+                continue;
+            };
+            let steps = (b.0 - a.0)
+                .abs()
+                .max((b.1 - a.1).abs())
+                .ceil()
+                .min(MAX_STEPS) as usize
+                + 1;
+            for i in 0..=steps {
+                let t = i as f64 / steps as f64;
+                let (x, y) = (a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t);
+                if x >= 0.0 && y >= 0.0 && x < f64::from(w) && y < f64::from(h) {
+                    let at = 3 * (y as usize * w as usize + x as usize);
+                    if let Some(px) = img.rgb.get_mut(at..at + 3) {
+                        px.copy_from_slice(&WIRE_COLOUR);
+                    }
+                }
+            }
+        }
+    }
+    img
+}
+
+/// Encodes `rgb` (`3 · w · h` bytes) as an 8-bit RGB PNG into `out`.
+pub fn write_rgb_png(
+    rgb: &[u8],
+    w: u32,
+    h: u32,
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    let mut enc = png::Encoder::new(out, w, h);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+    writer
+        .write_image_data(rgb)
+        .map_err(std::io::Error::other)?;
+    writer.finish().map_err(std::io::Error::other)
+}
+
+/// Encodes an image as PNG into `out` (a pipe, a buffer; files go through
+/// [`crate::write_atomic_with`]).
+pub fn write_png(image: &Image, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    write_rgb_png(&image.rgb, image.width, image.height, out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn wire_frame_draws_every_edge_and_the_png_reads_back() {
+        let mesh = RenderMesh {
+            positions: vec![
+                Point3::new(0.0, 0.0, 0.0),
+                Point3::new(1.0, 0.0, 0.0),
+                Point3::new(0.0, 1.0, 0.0),
+            ],
+            normals: vec![Vector3::z(); 3],
+            colors: vec![[0.5; 3]; 3],
+            faces: vec![[0, 1, 2]],
+        };
+        let camera = Camera::framing(
+            Point3::new(0.0, 0.0, 0.0),
+            Point3::new(1.0, 1.0, 0.0),
+            0.0,
+            90.0,
+        );
+        let img = wire_frame(&mesh, &camera, 64, 48);
+        let lines = img.rgb.chunks(3).filter(|p| *p == WIRE_COLOUR).count();
+        // Three edges across a 64×48 picture: well over a hundred pixels, far from all.
+        assert!(lines > 100 && lines < 64 * 48 / 2, "{lines}");
+        let mut bytes = Vec::new();
+        write_png(&img, &mut bytes).expect("encodes");
+        let mut reader = png::Decoder::new(std::io::Cursor::new(bytes))
+            .read_info()
+            .expect("a PNG");
+        let mut buf = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut buf).expect("a frame");
+        assert_eq!((info.width, info.height), (64, 48));
+        assert_eq!(&buf[..info.buffer_size()], &img.rgb[..]);
+    }
 
     fn quad(z: f64, col: [f32; 3]) -> RenderMesh {
         RenderMesh {

@@ -4,8 +4,9 @@
 //! The mesh: `surface::datasets::ring(nu, nv)` written as OBJ (so `fit` reads, repairs and
 //! estimates as for any file). `TESTBED_BENCH_RING=NU,NV` (default `16,16`: 512 faces, 1 536
 //! Shirman–Séquin patches, 98 304 triangles in the stream) chooses the size. Each
-//! configuration runs `RUNS` times; the median wall time is reported with the bytes per
-//! record of the tess → kcolor stream.
+//! configuration runs `RUNS` times (`TESTBED_BENCH_RUNS`); the median wall time is reported
+//! with the bytes per record of the tess → kcolor stream, and each stage's median time run
+//! alone from a file to a file (what the pipes overlap).
 
 // A measurement, not an input path: a failed step should stop it loudly.
 #![allow(clippy::expect_used)]
@@ -15,11 +16,11 @@ use std::process::{Command, Stdio};
 use std::time::Instant;
 
 use testbed::draw::{self, View};
-use testbed::filters::{tessellate_patch, Colouring, KColor};
+use testbed::filters::{Colouring, KColor, PatchTessellator};
 use testbed::record::Vertex;
 
 /// Runs per configuration (median reported): enough to steady a 2-core shared machine's noise.
-const RUNS: usize = 3;
+const RUNS: usize = 5;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -67,6 +68,20 @@ fn piped(bin: &str, obj: &std::path::Path, format: &str) -> f64 {
     t.elapsed().as_secs_f64()
 }
 
+/// One stage alone: `args` reading `input`, writing `output`; wall time.
+fn stage(bin: &str, args: &[&str], input: &std::path::Path, output: &std::path::Path) -> f64 {
+    let t = Instant::now();
+    let status = Command::new(bin)
+        .args(args)
+        .stdin(std::fs::File::open(input).expect("input"))
+        .stdout(std::fs::File::create(output).expect("output"))
+        .stderr(Stdio::null())
+        .status()
+        .expect("runs");
+    assert!(status.success(), "{args:?}");
+    t.elapsed().as_secs_f64()
+}
+
 fn in_process(obj_bytes: &[u8]) -> f64 {
     let t = Instant::now();
     let input =
@@ -75,29 +90,45 @@ fn in_process(obj_bytes: &[u8]) -> f64 {
     let scheme = surface::scheme_by_name("shirman-sequin", &Default::default()).expect("scheme");
     let method = curves::method_by_name("chord", &Default::default()).expect("method");
     let fitted = surface::fit_scheme(&input.mesh, scheme.as_ref(), method.as_ref()).expect("fit");
-    let mut tris: Vec<[Vertex; 3]> = Vec::new();
+    // Straight into the render mesh, the Gaussian curvature beside it (the leanest one-process
+    // form of the same work).
+    let mut mesh = render::RenderMesh {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        colors: Vec::new(),
+        faces: Vec::new(),
+    };
+    let mut kg: Vec<f64> = Vec::new();
+    let mut tessellator = PatchTessellator::new(8).expect("tessellator");
+    let mut samples = Vec::new();
     for net in fitted.nets() {
         let pts = net.iter().map(|p| input.frame.to_world(p)).collect();
         let patch = surface::BezierTriangle::new(fitted.layout.degree, pts).expect("patch");
-        for t in tessellate_patch(&patch, 8).expect("tess") {
-            tris.push(t.map(|s| Vertex {
+        tessellator.tessellate(&patch, &mut samples).expect("tess");
+        for t in &samples {
+            let tri = t.map(|s| Vertex {
                 pos: s.pos,
                 norm: Some(s.norm),
                 kg: Some(s.kg),
                 km: None,
                 color: None,
-            }));
+            });
+            draw::push_triangle(&mut mesh, &tri, render::colors::MATERIAL);
+            kg.extend(t.iter().map(|s| s.kg));
         }
     }
-    let mut all: Vec<f64> = tris.iter().flatten().filter_map(|v| v.kg).collect();
-    let range = KColor.default_range(&mut all);
-    for t in &mut tris {
-        for v in t.iter_mut() {
-            v.color = Some(KColor.color(v.kg.unwrap_or(0.0), range));
-        }
+    // The range as kcolor's default takes it: from the first block of triangles.
+    let mut first: Vec<f64> = kg
+        .iter()
+        .take(3 * testbed::filters::DEFAULT_BLOCK)
+        .copied()
+        .collect();
+    let range = KColor.default_range(&mut first);
+    for (c, k) in mesh.colors.iter_mut().zip(&kg) {
+        *c = KColor.color(*k, range);
     }
-    let img = draw::draw(
-        &tris,
+    let img = draw::draw_mesh(
+        &mesh,
         &View {
             view: draw::DEFAULT_VIEW,
             size: draw::DEFAULT_SIZE,
@@ -141,10 +172,14 @@ fn main() {
         "ring({nu}, {nv}): {faces} faces, {} triangles in the stream",
         faces * 3 * 64
     );
-    let base = median((0..RUNS).map(|_| in_process(&obj_bytes)).collect());
+    let runs = std::env::var("TESTBED_BENCH_RUNS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(RUNS);
+    let base = median((0..runs).map(|_| in_process(&obj_bytes)).collect());
     println!("in one process: {base:.3} s");
     for format in ["json", "dstruct", "binary"] {
-        let t = median((0..RUNS).map(|_| piped(bin, &obj, format)).collect());
+        let t = median((0..runs).map(|_| piped(bin, &obj, format)).collect());
         // Bytes per record of the tess → kcolor stream.
         let fit = Command::new(bin)
             .args([
@@ -178,5 +213,29 @@ fn main() {
             tris.len() as f64 / n as f64,
             tris.len() as f64 / 1e6
         );
+        // Each stage alone, file to file.
+        let f = |name: &str| dir.path().join(format!("{name}.{format}"));
+        let steps: [(&str, Vec<&str>, std::path::PathBuf, std::path::PathBuf); 4] = [
+            (
+                "fit",
+                vec!["fit", "--scheme", "shirman-sequin", "--format", format],
+                obj.clone(),
+                f("patches"),
+            ),
+            (
+                "tess",
+                vec!["tess", "-s", "8", "--kg"],
+                f("patches"),
+                f("tris"),
+            ),
+            ("kcolor", vec!["kcolor"], f("tris"), f("coloured")),
+            ("render", vec!["render"], f("coloured"), f("png")),
+        ];
+        let mut line = format!("  stages alone, {format:7}:");
+        for (name, args, input, output) in &steps {
+            let t = median((0..runs).map(|_| stage(bin, args, input, output)).collect());
+            line += &format!(" {name} {t:.3} s");
+        }
+        println!("{line}");
     }
 }

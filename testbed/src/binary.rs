@@ -26,7 +26,8 @@
 
 use std::io::{BufRead, Read};
 
-use serde_json::{Map, Number, Value};
+use crate::json;
+use crate::tape::{Tape, Tok};
 
 /// The first bytes of a binary stream.
 pub const MAGIC: &[u8] = b"TBIN1\n";
@@ -42,10 +43,10 @@ pub const MAX_STRING_BYTES: u32 = 1 << 24;
 /// need more (every record shaped differently) is better served by JSON.
 pub const MAX_SCHEMAS: usize = 1 << 16;
 
-/// One schema: the template and slot kinds.
+/// One schema: the template (a record tape) and slot kinds.
 #[derive(Clone, Debug, PartialEq)]
 struct Schema {
-    template: Value,
+    template: Tape,
     slots: Vec<u8>,
 }
 
@@ -58,104 +59,115 @@ pub struct Encoder {
     scratch: Vec<u8>,
 }
 
-/// Builds the template and slot kinds of `v`.
-fn shape(v: &Value, top: bool, slots: &mut Vec<u8>) -> Value {
-    match v {
-        Value::Number(n) => {
-            slots.push(if n.is_f64() {
-                b'f'
-            } else if n.as_i64().is_some() {
-                b'i'
-            } else {
-                b'u'
-            });
-            Value::from(0)
-        }
-        Value::String(_) => {
-            slots.push(b's');
-            Value::String(String::new())
-        }
-        Value::Array(items) => Value::Array(items.iter().map(|i| shape(i, false, slots)).collect()),
-        Value::Object(map) => Value::Object(
-            map.iter()
-                .map(|(k, v)| {
-                    let t = if top && k == "type" {
-                        v.clone()
-                    } else {
-                        shape(v, false, slots)
-                    };
-                    (k.clone(), t)
-                })
-                .collect(),
-        ),
-        other => other.clone(),
+/// The token range of the top-level `type` value (kept in the template, not a slot).
+fn type_range(t: &Tape) -> std::ops::Range<usize> {
+    match t.get(0, "type") {
+        Some(i) => i..i + t.toks.get(i).map_or(1, Tok::width),
+        None => 0..0,
     }
 }
 
-/// Writes the slots of `v` against `template`; false when `v` does not have its shape.
-fn encode(
-    v: &Value,
-    template: &Value,
-    top: bool,
-    slots: &[u8],
-    k: &mut usize,
-    out: &mut Vec<u8>,
-) -> bool {
-    match (v, template) {
-        (Value::Number(n), Value::Number(_)) => {
-            let kind = slots.get(*k).copied();
-            *k += 1;
-            match kind {
-                Some(b'f') if n.is_f64() => {
-                    out.extend_from_slice(&n.as_f64().unwrap_or_default().to_le_bytes())
-                }
-                Some(b'i') if !n.is_f64() && n.as_i64().is_some() => {
-                    out.extend_from_slice(&n.as_i64().unwrap_or_default().to_le_bytes())
-                }
-                Some(b'u') if !n.is_f64() && n.as_i64().is_none() => {
-                    out.extend_from_slice(&n.as_u64().unwrap_or_default().to_le_bytes())
-                }
-                _ => return false,
+/// Builds the template and slot kinds of `v`.
+fn shape(v: &Tape) -> Schema {
+    let keep = type_range(v);
+    // The template's text is the record's: its keys keep their spans, so later records laid
+    // out alike compare by span ([`encode`]).
+    let mut template = Tape {
+        toks: Vec::with_capacity(v.toks.len()),
+        text: v.text.clone(),
+    };
+    let mut slots = Vec::new();
+    for (i, t) in v.toks.iter().enumerate() {
+        let out = match *t {
+            Tok::Key(_) => *t,
+            _ if keep.contains(&i) => *t,
+            Tok::Str(_) => {
+                slots.push(b's');
+                Tok::Str(template.push_text(b""))
             }
-            true
-        }
-        (Value::String(s), Value::String(_)) => {
-            if slots.get(*k) != Some(&b's') {
-                return false;
+            Tok::Float(_) | Tok::Text(..) => {
+                slots.push(b'f');
+                Tok::Int(0)
             }
-            *k += 1;
-            let Ok(len) = u32::try_from(s.len()) else {
-                return false;
-            };
-            out.extend_from_slice(&len.to_le_bytes());
-            out.extend_from_slice(s.as_bytes());
-            true
-        }
-        (Value::Array(a), Value::Array(t)) => {
-            a.len() == t.len()
-                && a.iter()
-                    .zip(t)
-                    .all(|(x, y)| encode(x, y, false, slots, k, out))
-        }
-        (Value::Object(a), Value::Object(t)) => {
-            a.len() == t.len()
-                && a.iter().zip(t).all(|((ka, va), (kt, vt))| {
-                    ka == kt
-                        && if top && ka == "type" {
-                            va == vt
-                        } else {
-                            encode(va, vt, false, slots, k, out)
-                        }
-                })
-        }
-        (a, t) => matches!(a, Value::Null | Value::Bool(_)) && a == t,
+            Tok::Int(_) => {
+                slots.push(b'i');
+                Tok::Int(0)
+            }
+            Tok::UInt(_) => {
+                slots.push(b'u');
+                Tok::Int(0)
+            }
+            other => other,
+        };
+        template.toks.push(out);
     }
+    Schema { template, slots }
+}
+
+/// Writes the slots of `v` against `schema`; false when `v` does not have its shape.
+fn encode(v: &Tape, schema: &Schema, out: &mut Vec<u8>) -> bool {
+    let t = &schema.template;
+    if v.toks.len() != t.toks.len() {
+        return false;
+    }
+    let keep = type_range(t);
+    // A record whose text begins with the template's has its keys where the template has
+    // them: equal spans are equal names (one comparison instead of one per key).
+    let same_text = v.text.get(..t.text.len()) == Some(&t.text[..]);
+    let mut k = 0;
+    for (i, (a, b)) in v.toks.iter().zip(&t.toks).enumerate() {
+        let ok = match (a, b) {
+            (Tok::Key(x), Tok::Key(y)) => (same_text && x == y) || v.bytes(*x) == t.bytes(*y),
+            _ if keep.contains(&i) => match (a, b) {
+                (Tok::Str(x), Tok::Str(y)) => v.bytes(*x) == t.bytes(*y),
+                _ => a == b,
+            },
+            (Tok::Str(x), Tok::Str(_)) => {
+                let kind = schema.slots.get(k);
+                k += 1;
+                let bytes = v.bytes(*x);
+                match u32::try_from(bytes.len()) {
+                    Ok(len) if kind == Some(&b's') => {
+                        out.extend_from_slice(&len.to_le_bytes());
+                        out.extend_from_slice(bytes);
+                        true
+                    }
+                    _ => false,
+                }
+            }
+            (Tok::Float(x) | Tok::Text(x, _), Tok::Int(_)) => {
+                let ok = schema.slots.get(k) == Some(&b'f');
+                k += 1;
+                out.extend_from_slice(&x.to_le_bytes());
+                ok
+            }
+            (Tok::Int(x), Tok::Int(_)) => {
+                let ok = schema.slots.get(k) == Some(&b'i');
+                k += 1;
+                out.extend_from_slice(&x.to_le_bytes());
+                ok
+            }
+            (Tok::UInt(x), Tok::Int(_)) => {
+                let ok = schema.slots.get(k) == Some(&b'u');
+                k += 1;
+                out.extend_from_slice(&x.to_le_bytes());
+                ok
+            }
+            (Tok::Obj { .. }, Tok::Obj { .. }) | (Tok::Arr { .. }, Tok::Arr { .. }) => a == b,
+            (Tok::Bool(_) | Tok::Null, _) => a == b,
+            _ => false,
+        };
+        if !ok {
+            return false;
+        }
+    }
+    k == schema.slots.len()
 }
 
 impl Encoder {
     /// Appends `record` (and, before it, its schema if new) to `out`. Records with
-    /// non-finite numbers cannot occur (JSON values hold none).
-    pub fn write(&mut self, record: &Value, out: &mut Vec<u8>) -> Result<(), String> {
+    /// non-finite numbers cannot occur (the readers refuse them).
+    pub fn write(&mut self, record: &Tape, out: &mut Vec<u8>) -> Result<(), String> {
         if !self.started {
             out.extend_from_slice(MAGIC);
             self.started = true;
@@ -166,16 +178,7 @@ impl Encoder {
                 continue;
             };
             self.scratch.clear();
-            let mut k = 0;
-            if encode(
-                record,
-                &schema.template,
-                true,
-                &schema.slots,
-                &mut k,
-                &mut self.scratch,
-            ) && k == schema.slots.len()
-            {
+            if encode(record, schema, &mut self.scratch) {
                 self.last = id;
                 out.push(b'R');
                 out.extend_from_slice(&(id as u32).to_le_bytes());
@@ -188,19 +191,30 @@ impl Encoder {
                 "more than {MAX_SCHEMAS} record shapes: use JSON for such a stream"
             ));
         }
-        let mut slots = Vec::new();
-        let template = shape(record, true, &mut slots);
-        let text = serde_json::to_vec(&serde_json::json!({
-            "template": template,
-            "slots": String::from_utf8_lossy(&slots),
-        }))
-        .map_err(|e| e.to_string())?;
+        let schema = shape(record);
+        let mut doc = Tape::default();
+        let at = doc.open(true);
+        doc.key("template");
+        doc.copy_value(&schema.template, 0);
+        doc.key("slots");
+        doc.string(&String::from_utf8_lossy(&schema.slots));
+        doc.close(at, 2);
+        let mut text = Vec::new();
+        json::write_json(&mut text, &doc, 0);
+        let len = u32::try_from(text.len()).map_err(|_| "schema too long".to_string())?;
         out.push(b'S');
-        out.extend_from_slice(&(text.len() as u32).to_le_bytes());
+        out.extend_from_slice(&len.to_le_bytes());
         out.extend_from_slice(&text);
-        self.schemas.push(Schema { template, slots });
+        self.schemas.push(schema);
         self.last = self.schemas.len() - 1;
-        self.write(record, out)
+        self.scratch.clear();
+        if !encode(record, &self.schemas[self.last], &mut self.scratch) {
+            return Err("a record does not match its own schema".into());
+        }
+        out.push(b'R');
+        out.extend_from_slice(&(self.last as u32).to_le_bytes());
+        out.extend_from_slice(&self.scratch);
+        Ok(())
     }
 }
 
@@ -208,6 +222,21 @@ impl Encoder {
 #[derive(Debug, Default)]
 pub struct Decoder {
     schemas: Vec<Schema>,
+    /// Per schema, per slot: how many numeric slots run from it (0 at a string slot), so a
+    /// run is read in one call.
+    runs: Vec<Vec<usize>>,
+    scratch: Vec<u8>,
+}
+
+/// The numeric runs of `slots` (see [`Decoder`]).
+fn numeric_runs(slots: &[u8]) -> Vec<usize> {
+    let mut runs = vec![0; slots.len()];
+    let mut n = 0;
+    for (k, s) in slots.iter().enumerate().rev() {
+        n = if *s == b's' { 0 } else { n + 1 };
+        runs[k] = n;
+    }
+    runs
 }
 
 fn read_exact<R: Read>(r: &mut R, buf: &mut [u8]) -> Result<(), String> {
@@ -226,94 +255,112 @@ fn read_u32<R: Read>(r: &mut R) -> Result<u32, String> {
     Ok(u32::from_le_bytes(b))
 }
 
-/// Counts the slots a template needs, checking kinds (`None`: inconsistent).
-fn check_template(t: &Value, top: bool, slots: &[u8], k: &mut usize) -> bool {
-    match t {
-        Value::Number(_) => {
-            let ok = matches!(slots.get(*k), Some(b'f' | b'i' | b'u'));
-            *k += 1;
-            ok
+/// Checks the slot kinds against the template: one per number or string outside the `type`
+/// value, of a matching kind.
+fn check_template(t: &Tape, slots: &[u8]) -> bool {
+    let keep = type_range(t);
+    let mut k = 0;
+    for (i, tok) in t.toks.iter().enumerate() {
+        if keep.contains(&i) {
+            continue;
         }
-        Value::String(_) => {
-            let ok = slots.get(*k) == Some(&b's');
-            *k += 1;
-            ok
+        let ok = match tok {
+            Tok::Float(_) | Tok::Text(..) | Tok::Int(_) | Tok::UInt(_) => {
+                matches!(slots.get(k), Some(b'f' | b'i' | b'u'))
+            }
+            Tok::Str(_) => slots.get(k) == Some(&b's'),
+            _ => continue,
+        };
+        k += 1;
+        if !ok {
+            return false;
         }
-        Value::Array(a) => a.iter().all(|x| check_template(x, false, slots, k)),
-        Value::Object(m) => m
-            .iter()
-            .all(|(key, v)| (top && key == "type") || check_template(v, false, slots, k)),
-        _ => true,
     }
+    k == slots.len()
 }
 
 impl Decoder {
     fn fill<R: Read>(
-        &self,
-        t: &Value,
-        top: bool,
-        slots: &[u8],
-        k: &mut usize,
+        schema: &Schema,
+        runs: &[usize],
+        scratch: &mut Vec<u8>,
         r: &mut R,
-    ) -> Result<Value, String> {
-        Ok(match t {
-            Value::Number(_) | Value::String(_) => {
-                let kind = slots.get(*k).copied();
-                *k += 1;
-                if kind == Some(b's') {
-                    let len = read_u32(r)?;
-                    if len > MAX_STRING_BYTES {
-                        return Err(format!(
-                            "string of {len} bytes (at most {MAX_STRING_BYTES})"
-                        ));
-                    }
-                    let mut b = vec![0u8; len as usize];
-                    read_exact(r, &mut b)?;
-                    Value::String(String::from_utf8(b).map_err(|_| "string is not UTF-8")?)
-                } else {
-                    let mut b = [0u8; 8];
-                    read_exact(r, &mut b)?;
-                    match kind {
-                        Some(b'f') => {
-                            let f = f64::from_le_bytes(b);
-                            Value::Number(
-                                Number::from_f64(f)
-                                    .ok_or_else(|| format!("non-finite number {f}"))?,
-                            )
+        out: &mut Tape,
+    ) -> Result<(), String> {
+        let t = &schema.template;
+        let keep = type_range(t);
+        // The record's text begins with the template's, so keys and the `type` value keep
+        // their spans; strings read from slots follow.
+        out.text.extend_from_slice(&t.text);
+        let mut k = 0;
+        // Bytes of the current numeric run read ahead, and how many of them are used.
+        let mut used = 0;
+        scratch.clear();
+        for (i, tok) in t.toks.iter().enumerate() {
+            let v = match *tok {
+                Tok::Key(_) => *tok,
+                _ if keep.contains(&i) => *tok,
+                Tok::Str(_) | Tok::Float(_) | Tok::Text(..) | Tok::Int(_) | Tok::UInt(_) => {
+                    let kind = schema.slots.get(k).copied();
+                    k += 1;
+                    if kind == Some(b's') {
+                        let len = read_u32(r)?;
+                        if len > MAX_STRING_BYTES {
+                            return Err(format!(
+                                "string of {len} bytes (at most {MAX_STRING_BYTES})"
+                            ));
                         }
-                        Some(b'i') => Value::from(i64::from_le_bytes(b)),
-                        _ => Value::from(u64::from_le_bytes(b)),
+                        let start = out.text.len();
+                        out.text.resize(start + len as usize, 0);
+                        read_exact(r, &mut out.text[start..])?;
+                        if std::str::from_utf8(&out.text[start..]).is_err() {
+                            return Err("string is not UTF-8".into());
+                        }
+                        Tok::Str(crate::tape::Span {
+                            start: start as u32,
+                            len,
+                        })
+                    } else {
+                        if used == scratch.len() {
+                            let n = runs.get(k - 1).copied().unwrap_or(1).max(1);
+                            scratch.resize(8 * n, 0);
+                            read_exact(r, scratch)?;
+                            used = 0;
+                        }
+                        let mut b = [0u8; 8];
+                        b.copy_from_slice(&scratch[used..used + 8]);
+                        used += 8;
+                        match kind {
+                            Some(b'f') => {
+                                let f = f64::from_le_bytes(b);
+                                if !f.is_finite() {
+                                    return Err(format!("non-finite number {f}"));
+                                }
+                                Tok::Float(f)
+                            }
+                            Some(b'i') => Tok::Int(i64::from_le_bytes(b)),
+                            _ => {
+                                let u = u64::from_le_bytes(b);
+                                // A `u` slot holds what `i64` cannot; keep the tape canonical.
+                                i64::try_from(u).map_or(Tok::UInt(u), Tok::Int)
+                            }
+                        }
                     }
                 }
-            }
-            Value::Array(a) => Value::Array(
-                a.iter()
-                    .map(|x| self.fill(x, false, slots, k, r))
-                    .collect::<Result<_, _>>()?,
-            ),
-            Value::Object(m) => {
-                let mut out = Map::with_capacity(m.len());
-                for (key, v) in m {
-                    let value = if top && key == "type" {
-                        v.clone()
-                    } else {
-                        self.fill(v, false, slots, k, r)?
-                    };
-                    out.insert(key.clone(), value);
-                }
-                Value::Object(out)
-            }
-            other => other.clone(),
-        })
+                other => other,
+            };
+            out.toks.push(v);
+        }
+        Ok(())
     }
 
-    /// Reads the next record (declaring schemas on the way); `Ok(None)` at a clean end of the
-    /// stream (between blocks).
-    pub fn next<R: BufRead>(&mut self, r: &mut R) -> Result<Option<Value>, String> {
+    /// Reads the next record into `out` (declaring schemas on the way); `Ok(false)` at a
+    /// clean end of the stream (between blocks).
+    pub fn next_into<R: BufRead>(&mut self, r: &mut R, out: &mut Tape) -> Result<bool, String> {
         loop {
             let mut tag = [0u8; 1];
             match r.read(&mut tag) {
-                Ok(0) => return Ok(None),
+                Ok(0) => return Ok(false),
                 Ok(_) => {}
                 Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
                 Err(e) => return Err(e.to_string()),
@@ -331,25 +378,27 @@ impl Decoder {
                     }
                     let mut b = vec![0u8; len as usize];
                     read_exact(r, &mut b)?;
-                    let v: Value =
-                        serde_json::from_slice(&b).map_err(|e| format!("bad schema: {e}"))?;
-                    let template = v.get("template").cloned().unwrap_or(Value::Null);
-                    let slots = v
-                        .get("slots")
-                        .and_then(Value::as_str)
-                        .ok_or("schema without a `slots` string")?
-                        .as_bytes()
-                        .to_vec();
-                    let mut k = 0;
-                    if !template.is_object()
-                        || !check_template(&template, true, &slots, &mut k)
-                        || k != slots.len()
-                    {
+                    let mut doc = Tape::default();
+                    json::parse_record(&b, &mut doc)
+                        .map_err(|e| format!("bad schema: {}", e.message))?;
+                    let mut template = Tape::default();
+                    match doc.get(0, "template") {
+                        Some(i) if matches!(doc.toks.get(i), Some(Tok::Obj { .. })) => {
+                            template.copy_value(&doc, i)
+                        }
+                        _ => {}
+                    }
+                    let slots = match doc.get(0, "slots").and_then(|i| doc.toks.get(i)) {
+                        Some(Tok::Str(s)) => doc.bytes(*s).to_vec(),
+                        _ => return Err("schema without a `slots` string".into()),
+                    };
+                    if template.toks.is_empty() || !check_template(&template, &slots) {
                         return Err(format!(
                             "schema {} does not match its slots",
                             self.schemas.len()
                         ));
                     }
+                    self.runs.push(numeric_runs(&slots));
                     self.schemas.push(Schema { template, slots });
                 }
                 b'R' => {
@@ -358,10 +407,10 @@ impl Decoder {
                         .schemas
                         .get(id)
                         .ok_or_else(|| format!("record of undeclared schema {id}"))?;
-                    let mut k = 0;
-                    return self
-                        .fill(&schema.template, true, &schema.slots, &mut k, r)
-                        .map(Some);
+                    out.clear();
+                    let runs = self.runs.get(id).map_or(&[][..], Vec::as_slice);
+                    Self::fill(schema, runs, &mut self.scratch, r, out)?;
+                    return Ok(true);
                 }
                 other => return Err(format!("unknown block tag byte {other:#04x}")),
             }
@@ -372,6 +421,7 @@ impl Decoder {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use serde_json::Value;
 
     #[test]
     fn round_trip_of_mixed_records() {
@@ -387,20 +437,22 @@ mod tests {
         let mut enc = Encoder::default();
         let mut bytes = Vec::new();
         for r in &records {
-            enc.write(r, &mut bytes).expect("encodes");
+            enc.write(&Tape::from_value(r), &mut bytes)
+                .expect("encodes");
         }
         let mut cursor = std::io::Cursor::new(&bytes[MAGIC.len()..]);
         let mut dec = Decoder::default();
         let mut back = Vec::new();
-        while let Some(v) = dec.next(&mut cursor).expect("decodes") {
-            back.push(v);
+        let mut t = Tape::default();
+        while dec.next_into(&mut cursor, &mut t).expect("decodes") {
+            back.push(t.to_value());
         }
         assert_eq!(back, records);
         // Every prefix is either a clean end (between blocks) or an error, never a panic.
         for cut in 0..bytes.len() - MAGIC.len() {
             let mut c = std::io::Cursor::new(&bytes[MAGIC.len()..MAGIC.len() + cut]);
             let mut d = Decoder::default();
-            while let Ok(Some(_)) = d.next(&mut c) {}
+            while let Ok(true) = d.next_into(&mut c, &mut t) {}
         }
     }
 }

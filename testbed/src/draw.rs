@@ -16,6 +16,7 @@ use render::{Camera, Image, RenderMesh, RenderOptions};
 use crate::error::FilterError;
 use crate::filters::Pipe;
 use crate::record::{self, Vertex};
+use crate::stream::Record;
 
 /// Default view: azimuth and elevation in degrees (the octahedron's three front faces).
 pub const DEFAULT_VIEW: (f64, f64) = (35.0, 25.0);
@@ -30,14 +31,14 @@ pub const MAX_SIDE: u32 = 16_384;
 /// Reads every Triangle into a render mesh (unwelded); other records are ignored.
 pub fn collect_triangles(pipe: &mut Pipe) -> Result<Vec<[Vertex; 3]>, FilterError> {
     let mut tris = Vec::new();
-    while let Some(rec) = pipe.next_good()? {
+    let mut rec = Record::default();
+    while pipe.next_good(&mut rec)? {
         if rec.kind() != "Triangle" {
             continue;
         }
-        match rec.value.as_object().map(record::triangle) {
-            Some(Ok(t)) => tris.push(t),
-            Some(Err(e)) => pipe.bad_field(&rec, e)?,
-            None => {}
+        match record::triangle(&rec.tape) {
+            Ok(t) => tris.push(t),
+            Err(e) => pipe.bad_field(&rec, e)?,
         }
     }
     if pipe.skipped > 0 {
@@ -49,6 +50,48 @@ pub fn collect_triangles(pipe: &mut Pipe) -> Result<Vec<[Vertex; 3]>, FilterErro
     Ok(tris)
 }
 
+/// Reads every Triangle straight into a render mesh (unwelded, the uniform material where a
+/// vertex has no colour); other records are ignored. The pictures' reader: no triangle list
+/// is held beside the mesh.
+pub fn collect_mesh(pipe: &mut Pipe) -> Result<RenderMesh, FilterError> {
+    let mut m = RenderMesh {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        colors: Vec::new(),
+        faces: Vec::new(),
+    };
+    let mut rec = Record::default();
+    while pipe.next_good(&mut rec)? {
+        if rec.kind() != "Triangle" {
+            continue;
+        }
+        match record::triangle(&rec.tape) {
+            Ok(t) => push_triangle(&mut m, &t, render::colors::MATERIAL),
+            Err(e) => pipe.bad_field(&rec, e)?,
+        }
+    }
+    if pipe.skipped > 0 {
+        eprintln!(
+            "{}: {} bad record(s) skipped (--keep-going)",
+            pipe.name, pipe.skipped
+        );
+    }
+    Ok(m)
+}
+
+/// Appends one triangle to a render mesh: its normals (the geometric normal where a vertex
+/// has none) and colours (`default_color` where a vertex has none).
+pub fn push_triangle(m: &mut RenderMesh, t: &[Vertex; 3], default_color: [f32; 3]) {
+    let geometric = (t[1].pos - t[0].pos).cross(&(t[2].pos - t[0].pos));
+    let base = m.positions.len();
+    for v in t {
+        m.positions.push(v.pos);
+        m.normals.push(v.norm.unwrap_or(geometric));
+        m.colors.push(v.color.unwrap_or(default_color));
+    }
+    m.faces.push([base, base + 1, base + 2]);
+}
+
 /// Triangles to a render mesh.
 pub fn render_mesh(tris: &[[Vertex; 3]], default_color: [f32; 3]) -> RenderMesh {
     let mut m = RenderMesh {
@@ -58,14 +101,7 @@ pub fn render_mesh(tris: &[[Vertex; 3]], default_color: [f32; 3]) -> RenderMesh 
         faces: Vec::with_capacity(tris.len()),
     };
     for t in tris {
-        let geometric = (t[1].pos - t[0].pos).cross(&(t[2].pos - t[0].pos));
-        let base = m.positions.len();
-        for v in t {
-            m.positions.push(v.pos);
-            m.normals.push(v.norm.unwrap_or(geometric));
-            m.colors.push(v.color.unwrap_or(default_color));
-        }
-        m.faces.push([base, base + 1, base + 2]);
+        push_triangle(&mut m, t, default_color);
     }
     m
 }
@@ -102,6 +138,11 @@ pub struct View {
 
 /// Draws triangles.
 pub fn draw(tris: &[[Vertex; 3]], view: &View) -> Result<Image, FilterError> {
+    draw_mesh(&render_mesh(tris, render::colors::MATERIAL), view)
+}
+
+/// Draws a render mesh (unwelded triangles).
+pub fn draw_mesh(mesh: &RenderMesh, view: &View) -> Result<Image, FilterError> {
     let (w, h) = view.size;
     if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
         return Err(FilterError::Usage(format!(
@@ -113,70 +154,17 @@ pub fn draw(tris: &[[Vertex; 3]], view: &View) -> Result<Image, FilterError> {
         height: h,
         ..RenderOptions::default()
     };
-    let mesh = render_mesh(tris, render::colors::MATERIAL);
-    let (lo, hi) = bounds(&mesh);
+    let (lo, hi) = bounds(mesh);
     let camera = Camera::framing(lo, hi, view.view.0, view.view.1);
     if view.wire {
-        return Ok(wire_frame(&mesh, &camera, w, h));
+        return Ok(render::wire_frame(mesh, &camera, w, h));
     }
-    Ok(render::render(&mesh, &camera, &options)?)
+    Ok(render::render(mesh, &camera, &options)?)
 }
 
-/// Every triangle edge as a one-pixel dark line on white, seen by `camera` as
-/// [`render::render`] projects (XRender's wire-frame: no hidden lines removed).
-fn wire_frame(mesh: &RenderMesh, camera: &Camera, w: u32, h: u32) -> Image {
-    let mut img = Image {
-        width: w,
-        height: h,
-        rgb: vec![255u8; 3 * w as usize * h as usize],
-    };
-    let f = (camera.target - camera.eye).normalize();
-    let r = f.cross(&camera.up).normalize();
-    let u = r.cross(&f);
-    let fpx = (f64::from(h) * 0.5) / (camera.fov_y_degrees.to_radians() * 0.5).tan();
-    let project = |p: &Point3<f64>| -> Option<(f64, f64)> {
-        let d = p - camera.eye;
-        let z = d.dot(&f);
-        (z > 0.0 && z.is_finite()).then(|| {
-            (
-                f64::from(w) * 0.5 + fpx * d.dot(&r) / z,
-                f64::from(h) * 0.5 - fpx * d.dot(&u) / z,
-            )
-        })
-    };
-    for face in &mesh.faces {
-        for k in 0..3 {
-            let (Some(a), Some(b)) = (
-                mesh.positions.get(face[k]).and_then(project),
-                mesh.positions.get(face[(k + 1) % 3]).and_then(project),
-            ) else {
-                continue;
-            };
-            let steps = (b.0 - a.0).abs().max((b.1 - a.1).abs()).ceil().min(1e5) as usize + 1;
-            for i in 0..=steps {
-                let t = i as f64 / steps as f64;
-                let (x, y) = (a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t);
-                if x >= 0.0 && y >= 0.0 && x < f64::from(w) && y < f64::from(h) {
-                    let at = 3 * (y as usize * w as usize + x as usize);
-                    if let Some(px) = img.rgb.get_mut(at..at + 3) {
-                        px.copy_from_slice(&[20, 20, 60]);
-                    }
-                }
-            }
-        }
-    }
-    img
-}
-
-/// Encodes an image as PNG.
+/// Encodes an image as PNG (`render::write_png`).
 pub fn write_png(image: &Image, out: &mut dyn Write) -> Result<(), FilterError> {
-    let png_err = |e: png::EncodingError| FilterError::Png(e.to_string());
-    let mut enc = png::Encoder::new(out, image.width, image.height);
-    enc.set_color(png::ColorType::Rgb);
-    enc.set_depth(png::BitDepth::Eight);
-    let mut writer = enc.write_header().map_err(png_err)?;
-    writer.write_image_data(&image.rgb).map_err(png_err)?;
-    writer.finish().map_err(png_err)
+    render::write_png(image, out).map_err(|e| FilterError::Png(e.to_string()))
 }
 
 /// Triangles welded by exact position into a raw mesh with normals (the first seen at a

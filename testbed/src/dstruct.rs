@@ -18,7 +18,7 @@
 //!
 //! # Mapping to JSON records
 //!
-//! The in-memory record is a JSON object (`serde_json::Value`, order preserved). A record
+//! The in-memory record is a [`Tape`] holding one object (order preserved). A record
 //! `(Name . (a . 1) (b . "x"));` is the object `{"type": "Name", "a": 1, "b": "x"}`: the
 //! outer pair's name is the `type`, its list of pairs the remaining fields in order. A list of
 //! pairs is an object, an array an array, a number a number (integers stay integers), `nil`
@@ -27,7 +27,8 @@
 //!
 //! Nesting is limited to [`MAX_DEPTH`] levels, so hostile input cannot overflow the stack.
 
-use serde_json::{Map, Number, Value};
+use crate::json;
+use crate::tape::{Span, Tape, Tok};
 
 /// Deepest nesting of lists and arrays accepted: far above any record of the pipeline (a
 /// Triangle nests 3 levels), low enough that recursion cannot exhaust the stack (JSON's reader
@@ -43,10 +44,15 @@ pub struct SyntaxError {
     pub message: String,
 }
 
-struct Parser<'a> {
+struct Parser<'a, 't> {
+    /// The record when it is UTF-8 throughout (checked once; any ASCII position is then a
+    /// character boundary); `None` when some byte is not (in a comment, say): then strings
+    /// are checked one by one.
+    src: Option<&'a str>,
     s: &'a [u8],
     i: usize,
     depth: usize,
+    tape: &'t mut Tape,
 }
 
 fn is_ident_start(c: u8) -> bool {
@@ -57,7 +63,11 @@ fn is_ident(c: u8) -> bool {
     c.is_ascii_alphanumeric() || c == b'_' || c == b'-'
 }
 
-impl<'a> Parser<'a> {
+/// Lists with more pairs than this are checked for duplicate names with a hash set instead
+/// of a linear scan (records have about ten).
+const LINEAR_DUPLICATE_SCAN: usize = 16;
+
+impl Parser<'_, '_> {
     fn err<T>(&self, message: impl Into<String>) -> Result<T, SyntaxError> {
         Err(SyntaxError {
             offset: self.i,
@@ -106,16 +116,21 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
-    fn string(&mut self) -> Result<String, SyntaxError> {
+    /// A string (the opening quote next), decoded into the tape's text.
+    fn string(&mut self) -> Result<Span, SyntaxError> {
         let start = self.i;
         self.i += 1; // the opening quote
+        let mut escaped = false;
         loop {
             match self.s.get(self.i) {
                 None => {
                     self.i = start;
                     return self.err("unterminated string");
                 }
-                Some(b'\\') => self.i += 2,
+                Some(b'\\') => {
+                    escaped = true;
+                    self.i += 2;
+                }
                 Some(b'"') => {
                     self.i += 1;
                     break;
@@ -124,31 +139,44 @@ impl<'a> Parser<'a> {
             }
         }
         let text = self.s.get(start..self.i).unwrap_or_default();
-        serde_json::from_slice::<String>(text).or_else(|e| {
-            self.i = start;
-            self.err(format!("bad string: {e}"))
-        })
+        let inner = text
+            .get(1..text.len().saturating_sub(1))
+            .unwrap_or_default();
+        if !escaped
+            && inner.iter().all(|&c| c >= 0x20)
+            && (self.src.is_some() || std::str::from_utf8(inner).is_ok())
+        {
+            return Ok(self.tape.push_text(inner));
+        }
+        match serde_json::from_slice::<String>(text) {
+            Ok(s) => Ok(self.tape.push_text(s.as_bytes())),
+            Err(e) => {
+                self.i = start;
+                self.err(format!("bad string: {e}"))
+            }
+        }
     }
 
-    fn identifier(&mut self) -> &'a str {
+    fn identifier(&mut self) -> Span {
         let start = self.i;
         while self.s.get(self.i).copied().is_some_and(is_ident) {
             self.i += 1;
         }
         // Identifiers are ASCII by construction.
-        std::str::from_utf8(self.s.get(start..self.i).unwrap_or_default()).unwrap_or_default()
+        let bytes = self.s.get(start..self.i).unwrap_or_default();
+        self.tape.push_text(bytes)
     }
 
-    fn name(&mut self) -> Result<String, SyntaxError> {
+    fn name(&mut self) -> Result<Span, SyntaxError> {
         match self.peek() {
             Some(b'"') => self.string(),
-            Some(c) if is_ident_start(c) => Ok(self.identifier().to_string()),
+            Some(c) if is_ident_start(c) => Ok(self.identifier()),
             Some(c) => self.err(format!("expected a field name, found `{}`", c as char)),
             None => self.err("expected a field name, found the end"),
         }
     }
 
-    fn number(&mut self) -> Result<Value, SyntaxError> {
+    fn number(&mut self) -> Result<(), SyntaxError> {
         let start = self.i;
         let mut float = false;
         while let Some(&c) = self.s.get(self.i) {
@@ -159,19 +187,34 @@ impl<'a> Parser<'a> {
             }
             self.i += 1;
         }
-        let text =
-            std::str::from_utf8(self.s.get(start..self.i).unwrap_or_default()).unwrap_or_default();
+        let bytes = self.s.get(start..self.i).unwrap_or_default();
+        // Digits, signs, `.`, `e`: ASCII.
+        let text = match self.src {
+            Some(src) => src.get(start..self.i).unwrap_or_default(),
+            None => std::str::from_utf8(bytes).unwrap_or_default(),
+        };
         let text = text.strip_prefix('+').unwrap_or(text);
         if !float {
             if let Ok(v) = text.parse::<i64>() {
-                return Ok(Value::from(v));
+                self.tape.toks.push(Tok::Int(v));
+                return Ok(());
             }
             if let Ok(v) = text.parse::<u64>() {
-                return Ok(Value::from(v));
+                self.tape.toks.push(Tok::UInt(v));
+                return Ok(());
             }
         }
         match text.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(Number::from_f64(v).map_or(Value::Null, Value::Number)),
+            Ok(v) if v.is_finite() => {
+                // Text in JSON's grammar is kept to be written back as it came.
+                if json::is_json_number(text.as_bytes()) {
+                    let span = self.tape.push_text(text.as_bytes());
+                    self.tape.toks.push(Tok::Text(v, span));
+                } else {
+                    self.tape.toks.push(Tok::Float(v));
+                }
+                Ok(())
+            }
             Ok(_) => {
                 self.i = start;
                 self.err(format!("number `{text}` is out of range"))
@@ -183,36 +226,61 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// `( name . value )`, the opening parenthesis next.
-    fn pair(&mut self) -> Result<(String, Value), SyntaxError> {
-        self.expect(b'(')?;
-        let name = self.name()?;
-        self.expect(b'.')?;
-        let value = self.value()?;
-        self.expect(b')')?;
-        Ok((name, value))
-    }
-
-    /// One or more pairs, the first `(` next: an object.
-    fn pairs(&mut self) -> Result<Value, SyntaxError> {
-        self.enter()?;
-        let mut map = Map::new();
+    /// One or more pairs, the first `(` next: an object (its token at `obj`, `first` fields
+    /// already in it).
+    fn pairs(&mut self, obj: usize, first: usize) -> Result<usize, SyntaxError> {
+        let mut n = first;
+        let mut many: Option<std::collections::HashSet<Vec<u8>>> = None;
         while self.peek() == Some(b'(') {
             let at = self.i;
-            let (name, value) = self.pair()?;
-            if map.contains_key(&name) {
+            self.i += 1;
+            let k = self.name()?;
+            let name = self.tape.bytes(k);
+            let dup = if n < LINEAR_DUPLICATE_SCAN {
+                let mut j = obj + 1;
+                let mut found = false;
+                for _ in 0..n {
+                    if let Some(Tok::Key(s)) = self.tape.toks.get(j) {
+                        found |= self.tape.bytes(*s) == name;
+                    }
+                    j += 1 + self.tape.toks.get(j + 1).map_or(1, Tok::width);
+                }
+                found
+            } else {
+                let set = many.get_or_insert_with(|| {
+                    let mut set = std::collections::HashSet::new();
+                    let mut j = obj + 1;
+                    for _ in 0..n {
+                        if let Some(Tok::Key(s)) = self.tape.toks.get(j) {
+                            set.insert(self.tape.bytes(*s).to_vec());
+                        }
+                        j += 1 + self.tape.toks.get(j + 1).map_or(1, Tok::width);
+                    }
+                    set
+                });
+                !set.insert(name.to_vec())
+            };
+            if dup {
+                let name = String::from_utf8_lossy(name).into_owned();
                 self.i = at;
                 return self.err(format!("duplicate field `{name}`"));
             }
-            map.insert(name, value);
+            self.tape.toks.push(Tok::Key(k));
+            self.expect(b'.')?;
+            self.value()?;
+            self.expect(b')')?;
+            n += 1;
         }
-        self.depth -= 1;
-        Ok(Value::Object(map))
+        Ok(n)
     }
 
-    fn value(&mut self) -> Result<Value, SyntaxError> {
+    fn value(&mut self) -> Result<(), SyntaxError> {
         match self.peek() {
-            Some(b'"') => self.string().map(Value::String),
+            Some(b'"') => {
+                let s = self.string()?;
+                self.tape.toks.push(Tok::Str(s));
+                Ok(())
+            }
             Some(b'[') => self.array(),
             Some(b'(') => {
                 // `()` is the empty list; otherwise a list of pairs.
@@ -220,65 +288,84 @@ impl<'a> Parser<'a> {
                 self.i += 1;
                 if self.peek() == Some(b')') {
                     self.i += 1;
-                    return Ok(Value::Object(Map::new()));
+                    self.tape.toks.push(Tok::Obj { fields: 0, len: 0 });
+                    return Ok(());
                 }
                 self.i = save;
-                self.pairs()
+                self.enter()?;
+                let obj = self.tape.open(true);
+                let n = self.pairs(obj, 0)?;
+                self.tape.close(obj, n);
+                self.depth -= 1;
+                Ok(())
             }
             Some(c) if c.is_ascii_digit() || c == b'-' || c == b'+' || c == b'.' => self.number(),
             Some(c) if is_ident_start(c) => {
                 let at = self.i;
-                match self.identifier() {
-                    "true" => Ok(Value::Bool(true)),
-                    "false" => Ok(Value::Bool(false)),
-                    "nil" => Ok(Value::Null),
+                let start = self.i;
+                while self.s.get(self.i).copied().is_some_and(is_ident) {
+                    self.i += 1;
+                }
+                match self.s.get(start..self.i).unwrap_or_default() {
+                    b"true" => self.tape.toks.push(Tok::Bool(true)),
+                    b"false" => self.tape.toks.push(Tok::Bool(false)),
+                    b"nil" => self.tape.toks.push(Tok::Null),
                     other => {
-                        let other = other.to_string();
+                        let other = String::from_utf8_lossy(other).into_owned();
                         self.i = at;
-                        self.err(format!(
+                        return self.err(format!(
                             "unexpected word `{other}` (strings need double quotes)"
-                        ))
+                        ));
                     }
                 }
+                Ok(())
             }
             Some(c) => self.err(format!("expected a value, found `{}`", c as char)),
             None => self.err("expected a value, found the end"),
         }
     }
 
-    fn array(&mut self) -> Result<Value, SyntaxError> {
+    fn array(&mut self) -> Result<(), SyntaxError> {
         self.enter()?;
         self.i += 1; // '['
-        let mut items = Vec::new();
+        let at = self.tape.open(false);
+        let mut n = 0;
         if self.peek() == Some(b']') {
             self.i += 1;
-            self.depth -= 1;
-            return Ok(Value::Array(items));
-        }
-        loop {
-            items.push(self.value()?);
-            match self.peek() {
-                Some(b',') => self.i += 1,
-                Some(b']') => {
-                    self.i += 1;
-                    break;
+        } else {
+            loop {
+                self.value()?;
+                n += 1;
+                match self.peek() {
+                    Some(b',') => self.i += 1,
+                    Some(b']') => {
+                        self.i += 1;
+                        break;
+                    }
+                    Some(c) => {
+                        return self.err(format!("expected `,` or `]`, found `{}`", c as char))
+                    }
+                    None => return self.err("unterminated array"),
                 }
-                Some(c) => return self.err(format!("expected `,` or `]`, found `{}`", c as char)),
-                None => return self.err("unterminated array"),
             }
         }
+        self.tape.close(at, n);
         self.depth -= 1;
-        Ok(Value::Array(items))
+        Ok(())
     }
 }
 
-/// Parses one record's text (`(Name . …);`, the semicolon optional at the very end) into a
-/// JSON object whose first field is `type`.
-pub fn parse_record(text: &[u8]) -> Result<Value, SyntaxError> {
+/// Parses one record's text (`(Name . …);`, the semicolon optional at the very end) into
+/// `tape` (cleared first): an object whose first field is `type`.
+pub fn parse_record(text: &[u8], tape: &mut Tape) -> Result<(), SyntaxError> {
+    tape.clear();
+    let src = std::str::from_utf8(text).ok();
     let mut p = Parser {
+        src,
         s: text,
         i: 0,
         depth: 0,
+        tape,
     };
     if p.peek() != Some(b'(') {
         return match p.peek() {
@@ -287,20 +374,39 @@ pub fn parse_record(text: &[u8]) -> Result<Value, SyntaxError> {
         };
     }
     p.enter()?;
-    let (name, value) = p.pair()?;
-    let mut map = Map::new();
-    map.insert("type".to_string(), Value::String(name));
-    match value {
-        Value::Object(fields) => {
-            for (k, v) in fields {
-                if k == "type" {
-                    return p.err("a record's fields cannot be named `type` (it holds the name)");
-                }
-                map.insert(k, v);
-            }
+    p.i += 1;
+    let obj = p.tape.open(true);
+    p.tape.key("type");
+    let name = p.name()?;
+    p.tape.toks.push(Tok::Str(name));
+    p.expect(b'.')?;
+    // The value: a list of pairs (or `()`).
+    match p.peek() {
+        Some(b'(') => {
+            let save = p.i;
+            p.i += 1;
+            let n = if p.peek() == Some(b')') {
+                p.i += 1;
+                1
+            } else {
+                p.i = save;
+                p.pairs(obj, 1).map_err(|e| {
+                    if e.message == "duplicate field `type`" {
+                        SyntaxError {
+                            offset: e.offset,
+                            message: "a record's fields cannot be named `type` (it holds the name)"
+                                .into(),
+                        }
+                    } else {
+                        e
+                    }
+                })?
+            };
+            p.tape.close(obj, n);
         }
         _ => return p.err("a record's value must be a list of `(name . value)` pairs"),
     }
+    p.expect(b')')?;
     match p.peek() {
         Some(b';') => p.i += 1,
         None => {}
@@ -314,96 +420,98 @@ pub fn parse_record(text: &[u8]) -> Result<Value, SyntaxError> {
     if let Some(c) = p.peek() {
         return p.err(format!("text after the record's `;`: `{}`", c as char));
     }
-    Ok(Value::Object(map))
+    Ok(())
 }
 
-fn write_name(out: &mut Vec<u8>, name: &str) {
-    let plain = name.bytes().next().is_some_and(is_ident_start)
-        && name.bytes().all(is_ident)
-        && !matches!(name, "true" | "false" | "nil");
+fn write_name(out: &mut Vec<u8>, name: &[u8]) {
+    let plain = name.first().copied().is_some_and(is_ident_start)
+        && name.iter().copied().all(is_ident)
+        && !matches!(name, b"true" | b"false" | b"nil");
     if plain {
-        out.extend_from_slice(name.as_bytes());
+        out.extend_from_slice(name);
     } else {
-        write_string(out, name);
+        // JSON's escaping is the dstruct reader's.
+        json::write_string(out, name);
     }
 }
 
-fn write_string(out: &mut Vec<u8>, s: &str) {
-    // JSON's escaping is the dstruct reader's.
-    match serde_json::to_string(s) {
-        Ok(t) => out.extend_from_slice(t.as_bytes()),
-        Err(_) => out.extend_from_slice(b"\"\""),
-    }
-}
-
-/// Appends a number the way every writer of this crate does: integers as integers, floats by
-/// Ryū (shortest text that reads back to the same `f64`).
-pub fn write_number(out: &mut Vec<u8>, n: &Number, ryu: &mut ryu::Buffer) {
-    if let Some(i) = n.as_i64() {
-        out.extend_from_slice(i.to_string().as_bytes());
-    } else if let Some(u) = n.as_u64() {
-        out.extend_from_slice(u.to_string().as_bytes());
-    } else if let Some(f) = n.as_f64() {
-        out.extend_from_slice(ryu.format(f).as_bytes());
-    }
-}
-
-fn write_value(out: &mut Vec<u8>, v: &Value, ryu: &mut ryu::Buffer) {
-    match v {
-        Value::Null => out.extend_from_slice(b"nil"),
-        Value::Bool(b) => out.extend_from_slice(if *b { b"true" } else { b"false" }),
-        Value::Number(n) => write_number(out, n, ryu),
-        Value::String(s) => write_string(out, s),
-        Value::Array(items) => {
+/// Appends the value at `at`; the index after it.
+fn write_value(out: &mut Vec<u8>, tape: &Tape, at: usize, ryu: &mut ryu::Buffer) -> usize {
+    let Some(t) = tape.toks.get(at) else {
+        return at + 1;
+    };
+    match *t {
+        Tok::Null => {
+            out.extend_from_slice(b"nil");
+            at + 1
+        }
+        Tok::Str(s) | Tok::Key(s) => {
+            json::write_string(out, tape.bytes(s));
+            at + 1
+        }
+        Tok::Arr { items, .. } => {
             out.push(b'[');
-            for (k, item) in items.iter().enumerate() {
+            let mut i = at + 1;
+            for k in 0..items {
                 if k > 0 {
                     out.extend_from_slice(b", ");
                 }
-                write_value(out, item, ryu);
+                i = write_value(out, tape, i, ryu);
             }
             out.push(b']');
+            i
         }
-        Value::Object(map) if map.is_empty() => out.extend_from_slice(b"()"),
-        Value::Object(map) => {
-            for (k, (name, value)) in map.iter().enumerate() {
+        Tok::Obj { fields: 0, .. } => {
+            out.extend_from_slice(b"()");
+            at + 1
+        }
+        Tok::Obj { fields, .. } => {
+            let mut i = at + 1;
+            for k in 0..fields {
                 if k > 0 {
                     out.push(b' ');
                 }
                 out.push(b'(');
-                write_name(out, name);
+                if let Some(Tok::Key(s)) = tape.toks.get(i) {
+                    write_name(out, tape.bytes(*s));
+                }
                 out.extend_from_slice(b" . ");
-                write_value(out, value, ryu);
+                i = write_value(out, tape, i + 1, ryu);
                 out.push(b')');
             }
+            i
+        }
+        other => {
+            json::write_scalar(out, &other, tape, ryu);
+            at + 1
         }
     }
 }
 
 /// Appends `record` (an object with a string `type`) as one dstruct line ending in `;\n`.
 /// Errors name what cannot be written (no `type`, not an object).
-pub fn write_record(out: &mut Vec<u8>, record: &Value) -> Result<(), String> {
-    let map = record
-        .as_object()
-        .ok_or_else(|| "a record must be an object".to_string())?;
-    let name = map
-        .get("type")
-        .and_then(Value::as_str)
-        .ok_or_else(|| "a dstruct record needs a string field `type` (its name)".to_string())?;
+pub fn write_record(out: &mut Vec<u8>, record: &Tape) -> Result<(), String> {
+    if !matches!(record.toks.first(), Some(Tok::Obj { .. })) {
+        return Err("a record must be an object".to_string());
+    }
+    let name = match record.get(0, "type").and_then(|i| record.toks.get(i)) {
+        Some(Tok::Str(s)) => record.bytes(*s),
+        _ => return Err("a dstruct record needs a string field `type` (its name)".to_string()),
+    };
     let mut ryu = ryu::Buffer::new();
     out.push(b'(');
     write_name(out, name);
     out.extend_from_slice(b" .");
     let mut any = false;
-    for (k, v) in map {
-        if k == "type" {
+    for (k, v) in record.fields(0) {
+        if k == b"type" {
             continue;
         }
         any = true;
         out.extend_from_slice(b" (");
         write_name(out, k);
         out.extend_from_slice(b" . ");
-        write_value(out, v, &mut ryu);
+        write_value(out, record, v, &mut ryu);
         out.push(b')');
     }
     if !any {
@@ -417,6 +525,12 @@ pub fn write_record(out: &mut Vec<u8>, record: &Value) -> Result<(), String> {
 mod tests {
     use super::*;
 
+    fn parse(text: &[u8]) -> Result<serde_json::Value, SyntaxError> {
+        let mut t = Tape::default();
+        parse_record(text, &mut t)?;
+        Ok(t.to_value())
+    }
+
     /// Figure 1 of the seed, laid out as printed there.
     const FIGURE_1: &str = r#"(Triangle . (name . "tri-0")
            (vertex1 . (pos . [-1, 0, 0])
@@ -428,7 +542,7 @@ mod tests {
 
     #[test]
     fn figure_1_parses_to_the_documented_object() {
-        let v = parse_record(FIGURE_1.as_bytes()).expect("figure 1 parses");
+        let v = parse(FIGURE_1.as_bytes()).expect("figure 1 parses");
         assert_eq!(v["type"], "Triangle");
         assert_eq!(v["name"], "tri-0");
         assert_eq!(v["vertex1"]["pos"], serde_json::json!([-1, 0, 0]));
@@ -439,13 +553,13 @@ mod tests {
 
     #[test]
     fn round_trip_keeps_order_and_values() {
-        let v: Value = serde_json::from_str(
+        let v: serde_json::Value = serde_json::from_str(
             r#"{"type":"X","z":1,"a":[0.1,-2.5e-300,3],"s":"q\"uote","e":{},"n":null,"b":true,"weird key":[[1,2],[]],"o":{"k":{"j":1.5}}}"#,
         )
         .expect("json");
         let mut out = Vec::new();
-        write_record(&mut out, &v).expect("writable");
-        let back = parse_record(&out).expect("parses");
+        write_record(&mut out, &Tape::from_value(&v)).expect("writable");
+        let back = parse(&out).expect("parses");
         assert_eq!(back, v);
         let keys: Vec<&String> = back.as_object().expect("object").keys().collect();
         assert_eq!(
@@ -468,9 +582,9 @@ mod tests {
             "(T . (a . \"open));",
             "(T . (a . 1e999));",
         ] {
-            assert!(parse_record(bad.as_bytes()).is_err(), "{bad:?} should fail");
+            assert!(parse(bad.as_bytes()).is_err(), "{bad:?} should fail");
         }
         let deep = "(T . (a . ".to_string() + &"[".repeat(10_000);
-        assert!(parse_record(deep.as_bytes()).is_err());
+        assert!(parse(deep.as_bytes()).is_err());
     }
 }

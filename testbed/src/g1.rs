@@ -153,18 +153,18 @@ pub fn measure(patches: &[(usize, BezierTriangle)], samples: usize) -> G1Summary
 /// end, reports on standard error; with `strict` an angle above [`G1_TOLERANCE`] is an error.
 pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, FilterError> {
     let mut patches = Vec::new();
-    while let Some(rec) = pipe.next_good()? {
+    let mut rec = crate::stream::Record::default();
+    while pipe.next_good(&mut rec)? {
         if rec.kind() == "BezierTriangle" {
-            match rec.value.as_object().map(record::bezier_triangle) {
-                Some(Ok(p)) => patches.push((rec.at.record, p)),
-                Some(Err(e)) => {
+            match record::bezier_triangle(&rec.tape) {
+                Ok(p) => patches.push((rec.at.record, p)),
+                Err(e) => {
                     pipe.bad_field(&rec, e)?;
                     continue;
                 }
-                None => {}
             }
         }
-        pipe.write(&rec.value, &rec)?;
+        pipe.write(&rec)?;
     }
     pipe.finish()?;
     let summary = measure(&patches, samples);

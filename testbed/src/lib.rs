@@ -5,7 +5,11 @@
 //! * [`stream`] — records in and out: JSON Lines (default), the seed's dstruct external
 //!   format ([`dstruct`]), a self-describing binary form ([`binary`]); the input format is
 //!   detected, the output follows it unless chosen;
-//! * [`record`] — the record schemas (`BezierTriangle`, `Triangle`) and typed field access;
+//! * [`tape`] — a record in memory: tokens over one text buffer, reused from record to
+//!   record (no `serde_json::Value` per record), read and written by every format ([`json`],
+//!   [`dstruct`], [`binary`]);
+//! * [`record`] — the record schemas (`BezierTriangle`, `Triangle`) read from a tape straight
+//!   into typed structs;
 //! * [`fit`](mod@fit) — the head: a mesh file to patches (Fitter0, Piper, … by the
 //!   workbench's schemes), or sampled straight to triangles (Example 5);
 //! * [`filters`] — Tess, Mat0, KColor, Radial, and the pass-through rules;
@@ -23,8 +27,10 @@ pub mod error;
 pub mod filters;
 pub mod fit;
 pub mod g1;
+pub mod json;
 pub mod record;
 pub mod stream;
+pub mod tape;
 
 pub use error::{FieldError, FilterError, Position, StreamError};
 pub use stream::{Format, Record, RecordReader, RecordWriter};

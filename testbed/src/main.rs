@@ -104,11 +104,16 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-    /// Diverging colours of the curvature (default range ±the 95% quantile of |kg|).
+    /// Diverging colours of the curvature (default range ±the 95% quantile of |kg| over the
+    /// first --block triangles).
     Kcolor {
         /// Colour range `A:B` (mapped onto blue–grey–red).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
+        /// Without --range: triangles held to fix the range before streaming (0: the whole
+        /// stream).
+        #[arg(long, default_value_t = filters::DEFAULT_BLOCK)]
+        block: usize,
         /// Which curvature: kg (Gaussian) or km (mean).
         #[arg(long, default_value = "kg")]
         field: String,
@@ -120,9 +125,14 @@ enum Command {
         /// The true surface: ring, sphere, capsule (octa lies on the unit sphere).
         #[arg(long)]
         surface: String,
-        /// Colour range `A:B` of |distance| (default 0 to its 95% quantile).
+        /// Colour range `A:B` of |distance| (default 0 to its 95% quantile over the first
+        /// --block triangles).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
+        /// Without --range: triangles held to fix the range before streaming (0: the whole
+        /// stream).
+        #[arg(long, default_value_t = filters::DEFAULT_BLOCK)]
+        block: usize,
         #[command(flatten)]
         common: Common,
     },
@@ -275,6 +285,22 @@ fn sink(name: &'static str, c: &Common, f: &mut SinkFn) -> Result<(), FilterErro
     })
 }
 
+/// Runs a picture filter: the triangles read straight into a render mesh, drawn, PNG out.
+fn picture_sink(name: &'static str, c: &Common, view: &View) -> Result<(), FilterError> {
+    let mut input = open_input(&c.input)?;
+    let mut nothing = std::io::sink();
+    let mesh = {
+        let mut pipe = Pipe::new(name, &mut *input, &mut nothing, None, c.keep_going);
+        draw::collect_mesh(&mut pipe)?
+    };
+    if mesh.faces.is_empty() {
+        eprintln!("{name}: no triangles in the input");
+    }
+    let image = draw::draw_mesh(&mesh, view)?;
+    drop(mesh);
+    with_output(&c.output, &mut |out| draw::write_png(&image, out))
+}
+
 fn run(cli: Cli) -> Result<(), FilterError> {
     match cli.command {
         Command::Fit {
@@ -330,10 +356,11 @@ fn run(cli: Cli) -> Result<(), FilterError> {
             common,
         } => filter("g1", &common, &mut |p| testbed::g1::g1(p, strict, samples)),
         Command::Mat0 { common } => filter("mat0", &common, &mut |p| {
-            filters::colour(p, &filters::Mat0, "", None)
+            filters::colour(p, &filters::Mat0, "", None, 0)
         }),
         Command::Kcolor {
             range: r,
+            block,
             field,
             common,
         } => {
@@ -344,12 +371,13 @@ fn run(cli: Cli) -> Result<(), FilterError> {
             }
             let r = range(&r)?;
             filter("kcolor", &common, &mut |p| {
-                filters::colour(p, &filters::KColor, &field, r)
+                filters::colour(p, &filters::KColor, &field, r, block)
             })
         }
         Command::Radial {
             surface,
             range: r,
+            block,
             common,
         } => {
             let name = if surface == "octa" {
@@ -370,7 +398,7 @@ fn run(cli: Cli) -> Result<(), FilterError> {
             };
             let r = range(&r)?;
             filter("radial", &common, &mut |p| {
-                filters::colour(p, &colouring, "", r)
+                filters::colour(p, &colouring, "", r, block)
             })
         }
         Command::Render {
@@ -378,18 +406,14 @@ fn run(cli: Cli) -> Result<(), FilterError> {
             common,
         } => {
             let view = picture(&pic, false)?;
-            sink("render", &common, &mut |tris, out| {
-                draw::write_png(&draw::draw(&tris, &view)?, out)
-            })
+            picture_sink("render", &common, &view)
         }
         Command::Wire {
             picture: pic,
             common,
         } => {
             let view = picture(&pic, true)?;
-            sink("wire", &common, &mut |tris, out| {
-                draw::write_png(&draw::draw(&tris, &view)?, out)
-            })
+            picture_sink("wire", &common, &view)
         }
         Command::ToMesh { out, common } => sink("to-mesh", &common, &mut |tris, _| {
             draw::write_mesh(&tris, &out)

@@ -1,4 +1,5 @@
-//! The record schemas of the pipeline and typed access to their fields.
+//! The record schemas of the pipeline and typed access to their fields: each hot record kind
+//! is read from its [`Tape`] straight into a typed struct ([`Vertex`], `BezierTriangle`).
 //!
 //! ```text
 //! {"type": "BezierTriangle", "degree": n, "points": [[x, y, z], …], "face": f,
@@ -15,10 +16,11 @@
 //! every other field.
 
 use nalgebra::{Point3, Vector3};
-use serde_json::{Map, Number, Value};
+use serde_json::{Number, Value};
 use surface::BezierTriangle;
 
 use crate::error::FieldError;
+use crate::tape::{Tape, Tok};
 
 /// Highest patch degree a record may declare: far above any scheme (quartics), low enough
 /// that a hostile `degree` cannot make a reader allocate a huge net.
@@ -27,35 +29,42 @@ pub const MAX_DEGREE: usize = 32;
 /// The names of a triangle's vertex fields.
 pub const VERTEX_FIELDS: [&str; 3] = ["vertex1", "vertex2", "vertex3"];
 
-/// A field of an object.
-pub fn field<'a>(obj: &'a Map<String, Value>, name: &str) -> Result<&'a Value, FieldError> {
-    obj.get(name)
+/// A field of the record (the top-level object).
+pub fn field(t: &Tape, name: &str) -> Result<usize, FieldError> {
+    t.get(0, name)
         .ok_or_else(|| FieldError::new(name, "missing"))
 }
 
-/// A finite number.
-pub fn number(v: &Value, path: &str) -> Result<f64, FieldError> {
-    v.as_f64()
-        .filter(|x| x.is_finite())
-        .ok_or_else(|| FieldError::new(path, format!("expected a number, found {}", brief(v))))
+/// A finite number at token `at`; `path` names it in the error.
+pub fn number(t: &Tape, at: usize, path: &dyn Fn() -> String) -> Result<f64, FieldError> {
+    t.number(at).filter(|x| x.is_finite()).ok_or_else(|| {
+        FieldError::new(path(), format!("expected a number, found {}", brief(t, at)))
+    })
 }
 
-/// Three finite numbers.
-pub fn vec3(v: &Value, path: &str) -> Result<[f64; 3], FieldError> {
-    let a = v
-        .as_array()
-        .filter(|a| a.len() == 3)
-        .ok_or_else(|| FieldError::new(path, format!("expected [x, y, z], found {}", brief(v))))?;
-    Ok([
-        number(&a[0], &format!("{path}[0]"))?,
-        number(&a[1], &format!("{path}[1]"))?,
-        number(&a[2], &format!("{path}[2]"))?,
-    ])
+/// Three finite numbers at token `at`.
+pub fn vec3(t: &Tape, at: usize, path: &dyn Fn() -> String) -> Result<[f64; 3], FieldError> {
+    let bad = || {
+        FieldError::new(
+            path(),
+            format!("expected [x, y, z], found {}", brief(t, at)),
+        )
+    };
+    let mut items = t.items(at).ok_or_else(bad)?;
+    if items.len() != 3 {
+        return Err(bad());
+    }
+    let mut out = [0.0; 3];
+    for (k, o) in out.iter_mut().enumerate() {
+        let i = items.next().ok_or_else(bad)?;
+        *o = number(t, i, &|| format!("{}[{k}]", path()))?;
+    }
+    Ok(out)
 }
 
 /// A short description of a value for messages (at most ~40 characters).
-fn brief(v: &Value) -> String {
-    let s = v.to_string();
+fn brief(t: &Tape, at: usize) -> String {
+    let s = t.value(at).to_string();
     if s.len() > 40 {
         let cut = (0..=37).rev().find(|&i| s.is_char_boundary(i)).unwrap_or(0);
         format!("{}…", &s[..cut])
@@ -75,43 +84,35 @@ pub fn arr3(a: [f64; 3]) -> Value {
     Value::Array(a.iter().map(|&x| num(x)).collect())
 }
 
-/// A colour component rounded to 1e-4 (far below an 8-bit step, 1/255): short to write.
-pub fn color_value(c: [f32; 3]) -> Value {
-    Value::Array(
-        c.iter()
-            .map(|&x| num((f64::from(x) * 1e4).round() / 1e4))
-            .collect(),
-    )
-}
-
 /// The patch of a `BezierTriangle` record.
-pub fn bezier_triangle(obj: &Map<String, Value>) -> Result<BezierTriangle, FieldError> {
-    let degree = field(obj, "degree")?
-        .as_u64()
-        .filter(|&d| d >= 1 && d as usize <= MAX_DEGREE)
-        .ok_or_else(|| {
-            FieldError::new(
+pub fn bezier_triangle(t: &Tape) -> Result<BezierTriangle, FieldError> {
+    let d = field(t, "degree")?;
+    let degree = match t.toks.get(d) {
+        Some(Tok::Int(x)) if *x >= 1 && *x as usize <= MAX_DEGREE => *x as usize,
+        _ => {
+            return Err(FieldError::new(
                 "degree",
                 format!("expected an integer from 1 to {MAX_DEGREE}"),
-            )
-        })? as usize;
-    let pts = field(obj, "points")?
-        .as_array()
+            ))
+        }
+    };
+    let p = field(t, "points")?;
+    let items = t
+        .items(p)
         .ok_or_else(|| FieldError::new("points", "expected an array of [x, y, z]"))?;
     let want = (degree + 1) * (degree + 2) / 2;
-    if pts.len() != want {
+    if items.len() != want {
         return Err(FieldError::new(
             "points",
             format!(
                 "degree {degree} needs {want} control points, found {}",
-                pts.len()
+                items.len()
             ),
         ));
     }
-    let points = pts
-        .iter()
+    let points = items
         .enumerate()
-        .map(|(i, p)| vec3(p, &format!("points[{i}]")).map(Point3::from))
+        .map(|(i, at)| vec3(t, at, &|| format!("points[{i}]")).map(Point3::from))
         .collect::<Result<Vec<_>, _>>()?;
     BezierTriangle::new(degree, points).map_err(|e| FieldError::new("points", e.to_string()))
 }
@@ -132,71 +133,51 @@ pub struct Vertex {
 }
 
 /// The vertex object `name` of a Triangle record (only `pos` is required).
-pub fn vertex(obj: &Map<String, Value>, name: &str) -> Result<Vertex, FieldError> {
-    let v = field(obj, name)?
-        .as_object()
-        .ok_or_else(|| FieldError::new(name, "expected a list of (name . value) pairs"))?;
-    let pos = Point3::from(vec3(
-        v.get("pos")
-            .ok_or_else(|| FieldError::new(format!("{name}.pos"), "missing"))?,
-        &format!("{name}.pos"),
-    )?);
-    let norm = v
-        .get("norm")
-        .map(|n| vec3(n, &format!("{name}.norm")).map(Vector3::from))
-        .transpose()?;
-    let kg = v
-        .get("kg")
-        .map(|x| number(x, &format!("{name}.kg")))
-        .transpose()?;
-    let km = v
-        .get("km")
-        .map(|x| number(x, &format!("{name}.km")))
-        .transpose()?;
-    let color = v
-        .get("color")
-        .map(|c| vec3(c, &format!("{name}.color")).map(|c| c.map(|x| x as f32)))
-        .transpose()?;
-    Ok(Vertex {
-        pos,
-        norm,
-        kg,
-        km,
-        color,
-    })
+pub fn vertex(t: &Tape, name: &str) -> Result<Vertex, FieldError> {
+    let at = field(t, name)?;
+    if !matches!(t.toks.get(at), Some(Tok::Obj { .. })) {
+        return Err(FieldError::new(
+            name,
+            "expected a list of (name . value) pairs",
+        ));
+    }
+    let mut v = Vertex {
+        pos: Point3::origin(),
+        norm: None,
+        kg: None,
+        km: None,
+        color: None,
+    };
+    let mut pos = false;
+    for (key, i) in t.fields(at) {
+        match key {
+            b"pos" => {
+                v.pos = Point3::from(vec3(t, i, &|| format!("{name}.pos"))?);
+                pos = true;
+            }
+            b"norm" => v.norm = Some(Vector3::from(vec3(t, i, &|| format!("{name}.norm"))?)),
+            b"kg" => v.kg = Some(number(t, i, &|| format!("{name}.kg"))?),
+            b"km" => v.km = Some(number(t, i, &|| format!("{name}.km"))?),
+            b"color" => v.color = Some(vec3(t, i, &|| format!("{name}.color"))?.map(|c| c as f32)),
+            _ => {}
+        }
+    }
+    if !pos {
+        return Err(FieldError::new(format!("{name}.pos"), "missing"));
+    }
+    Ok(v)
 }
 
 /// The three vertices of a Triangle record.
-pub fn triangle(obj: &Map<String, Value>) -> Result<[Vertex; 3], FieldError> {
+pub fn triangle(t: &Tape) -> Result<[Vertex; 3], FieldError> {
     Ok([
-        vertex(obj, VERTEX_FIELDS[0])?,
-        vertex(obj, VERTEX_FIELDS[1])?,
-        vertex(obj, VERTEX_FIELDS[2])?,
+        vertex(t, VERTEX_FIELDS[0])?,
+        vertex(t, VERTEX_FIELDS[1])?,
+        vertex(t, VERTEX_FIELDS[2])?,
     ])
 }
 
-/// Sets `name` in `obj`: in place if present (keeping the field order), appended otherwise.
-pub fn set(obj: &mut Map<String, Value>, name: &str, value: Value) {
-    match obj.get_mut(name) {
-        Some(slot) => *slot = value,
-        None => {
-            obj.insert(name.to_string(), value);
-        }
-    }
-}
-
-/// Sets `field` of every vertex object of a Triangle record to `values[i]`.
-pub fn set_vertex_field(
-    obj: &mut Map<String, Value>,
-    field_name: &str,
-    values: [Value; 3],
-) -> Result<(), FieldError> {
-    for (name, value) in VERTEX_FIELDS.iter().zip(values) {
-        let v = obj
-            .get_mut(*name)
-            .and_then(Value::as_object_mut)
-            .ok_or_else(|| FieldError::new(*name, "expected a list of (name . value) pairs"))?;
-        set(v, field_name, value);
-    }
-    Ok(())
+/// A colour component rounded to 1e-4 (far below an 8-bit step, 1/255): short to write.
+pub fn color_component(x: f32) -> f64 {
+    (f64::from(x) * 1e4).round() / 1e4
 }

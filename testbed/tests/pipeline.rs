@@ -106,6 +106,118 @@ fn a_field_added_at_the_head_arrives_at_the_end_in_every_format() {
     }
 }
 
+/// Records of a kind no filter knows, and unknown fields before, between and inside the
+/// vertices of Triangles, in every format and through every filter: unchanged, in order.
+#[test]
+fn unknown_records_and_fields_pass_every_filter_in_every_format() {
+    let note = r#"{"type":"Note","text":"a \"quoted\" note","n":[1,-2,18446744073709551615],"o":{"deep":[[],{}]},"b":true,"z":null}"#;
+    let tri = r#"{"type":"Triangle","name":"t0","vertex1":{"label":"a","pos":[0,0,0],"kg":0.5,"norm":[0,0,1]},"vertex2":{"pos":[1,0,0],"kg":-0.25,"extra":{"k":[1.5]}},"vertex3":{"pos":[0,1,0],"kg":0.0},"provenance":"head"}"#;
+    let patch = r#"{"type":"BezierTriangle","note":"first","degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]],"provenance":"head"}"#;
+    let input = format!("{note}\n{tri}\n{patch}\n{note}\n");
+    let expected_note: Value = serde_json::from_str(note).expect("json");
+    for format in ["json", "dstruct", "binary"] {
+        let start = ok(&["g1", "--format", format], input.as_bytes());
+        for args in [
+            &["g1"][..],
+            &["tess", "-s", "1", "--kg"],
+            &["mat0"],
+            &["kcolor"],
+            &["kcolor", "--range", "-1:1"],
+            &["radial", "--surface", "sphere"],
+        ] {
+            let out = ok(args, &start);
+            let recs = json_records(&ok(&["g1", "--format", "json"], &out));
+            let kinds: Vec<&str> = recs.iter().map(|r| r["type"].as_str().unwrap()).collect();
+            let expect_kinds = if args[0] == "tess" {
+                ["Note", "Triangle", "Triangle", "Note"]
+            } else {
+                ["Note", "Triangle", "BezierTriangle", "Note"]
+            };
+            assert_eq!(kinds, expect_kinds, "{format} {args:?}");
+            assert_eq!(recs[0], expected_note, "{format} {args:?}");
+            assert_eq!(recs[3], expected_note, "{format} {args:?}");
+            let t = &recs[1];
+            let keys: Vec<&str> = t.as_object().unwrap().keys().map(String::as_str).collect();
+            assert_eq!(
+                keys,
+                [
+                    "type",
+                    "name",
+                    "vertex1",
+                    "vertex2",
+                    "vertex3",
+                    "provenance"
+                ],
+                "{format} {args:?}"
+            );
+            assert_eq!(t["vertex1"]["label"], "a");
+            assert_eq!(t["vertex2"]["extra"]["k"][0], 1.5);
+            let v1: Vec<&str> = t["vertex1"]
+                .as_object()
+                .unwrap()
+                .keys()
+                .map(String::as_str)
+                .collect();
+            assert_eq!(
+                &v1[..4],
+                ["label", "pos", "kg", "norm"],
+                "{format} {args:?}"
+            );
+            if args[0] == "tess" {
+                // The patch's triangle: vertices first, then the patch's other fields.
+                let keys: Vec<&str> = recs[2]
+                    .as_object()
+                    .unwrap()
+                    .keys()
+                    .map(String::as_str)
+                    .collect();
+                assert_eq!(
+                    keys,
+                    [
+                        "type",
+                        "vertex1",
+                        "vertex2",
+                        "vertex3",
+                        "note",
+                        "provenance"
+                    ]
+                );
+            } else {
+                assert_eq!(recs[2]["note"], "first");
+                assert_eq!(recs[2]["provenance"], "head");
+            }
+        }
+    }
+}
+
+/// `kcolor` without `--range` fixes the range from the first `--block` triangles and streams
+/// the rest; records keep their order; `--block 0` (the whole stream) matches the range of
+/// a block as long as the stream.
+#[test]
+fn kcolor_fixes_its_range_from_a_first_block_and_keeps_the_order() {
+    let patches = ok(&["fit", "--scheme", "shirman-sequin"], &octa());
+    let tris = ok(&["tess", "-s", "2", "--kg"], &patches);
+    let n = json_records(&tris).len();
+    let note = b"{\"type\":\"Note\",\"i\":1}\n";
+    let mut input = note.to_vec();
+    input.extend_from_slice(&tris);
+    input.extend_from_slice(note);
+    let whole = testbed(&["kcolor", "--block", "0"], &input);
+    let long = testbed(&["kcolor", "--block", &n.to_string()], &input);
+    assert_eq!(whole.stdout, long.stdout);
+    assert!(String::from_utf8_lossy(&whole.stderr).contains("over the whole stream"));
+    let small = testbed(&["kcolor", "--block", "5"], &input);
+    assert!(small.status.success());
+    assert!(String::from_utf8_lossy(&small.stderr).contains("over the first 5 triangles"));
+    let recs = json_records(&small.stdout);
+    assert_eq!(recs.len(), n + 2);
+    assert_eq!(recs[0]["type"], "Note");
+    assert_eq!(recs[n + 1]["type"], "Note");
+    assert!(recs[1..=n].iter().all(|r| r["vertex1"]["color"]
+        .as_array()
+        .is_some_and(|c| c.len() == 3)));
+}
+
 #[test]
 fn g1_passes_records_unchanged_and_strict_fails_only_on_creases() {
     let patches = patches_with_provenance();
