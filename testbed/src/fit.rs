@@ -10,7 +10,13 @@
 //! "scheme":"name"}`; with `sample = Some(N)` the fit is tessellated here
 //! (`surface::tessellate_fit`) and `Triangle`s are written instead, with `face`, `subpatch`
 //! and `scheme` after the vertices — the shape of the seed's Example 5, where a fitter
-//! samples its own surface.
+//! samples its own surface. A scheme whose patches are not Bézier nets (`nielson`,
+//! `discrete-side-vertex`: `surface::patch`) is always sampled here, at
+//! [`SAMPLED_DENSITY`] unless `sample` says otherwise, as the seed's non-Bézier fitters were.
+
+/// The density a non-Bézier scheme is sampled at when `--sample` is not given (the seed's
+/// Example 5: `Nielson -s 8`).
+pub const SAMPLED_DENSITY: usize = 8;
 
 use std::path::Path;
 
@@ -106,7 +112,17 @@ pub fn fit<W: std::io::Write>(
     let per_face = fitted.layout.patches_per_face().max(1);
     let scheme_name = Value::from(fitted.scheme);
     let mut at = Position::default();
-    if let Some(s) = options.sample {
+    let sample = match options.sample {
+        None if !fitted.layout.is_bezier() => {
+            eprintln!(
+                "fit: `{}` is evaluated, not a Bézier patch: sampled here at s = {SAMPLED_DENSITY} (--sample N to change)",
+                fitted.scheme
+            );
+            Some(SAMPLED_DENSITY)
+        }
+        s => s,
+    };
+    if let Some(s) = sample {
         if s == 0 {
             return Err(FilterError::Usage("fit --sample must be at least 1".into()));
         }
