@@ -45,10 +45,13 @@ mod error;
 pub mod exact_penalty;
 mod kind;
 pub mod lbfgs;
+mod lbfgs_fixed;
 pub mod lm;
+mod lm_fixed;
 mod options;
 pub mod problem;
 pub mod report;
+mod small;
 
 use nalgebra::SVector;
 
@@ -59,8 +62,8 @@ pub use check::{
 pub use error::SolveError;
 pub use exact_penalty::solve_exact_penalty;
 pub use kind::{SolverKind, UnknownSolver};
-pub use lbfgs::{minimize_lbfgs, solve_lbfgs};
-pub use lm::{solve_lm, solve_lm_any, Dims, LmDims};
+pub use lbfgs::{minimize_lbfgs, minimize_lbfgs_argmin, solve_lbfgs, solve_lbfgs_argmin};
+pub use lm::{solve_lm, solve_lm_any, solve_lm_crate, Dims, LmDims};
 pub use options::SolveOptions;
 pub use problem::{HalfSumOfSquares, LeastSquaresProblem, ObjectiveProblem};
 pub use report::{ConvergenceTest, FailureReason, SolveReport, Termination};
@@ -93,9 +96,9 @@ where
     Dims<N, M>: LmDims<N, M>,
 {
     match kind {
-        // The fixed-size fast path where the bound holds; the rest as for any size.
+        SolverKind::ExactPenalty => solve_exact_penalty(problem, x0, options),
+        SolverKind::Lbfgs => solve_lbfgs(problem, x0, options),
         SolverKind::Lm => solve_lm(problem, x0, options),
-        other => solve_any(other, problem, x0, options),
     }
 }
 
@@ -116,7 +119,7 @@ where
 {
     match kind {
         SolverKind::ExactPenalty => solve_exact_penalty(problem, x0, options),
-        SolverKind::Lbfgs => solve_lbfgs(problem, x0, options),
+        SolverKind::Lbfgs => solve_lbfgs_argmin(problem, x0, options),
         SolverKind::Lm => solve_lm_any(problem, x0, options),
     }
 }
