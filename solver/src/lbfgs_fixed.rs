@@ -141,6 +141,7 @@ fn line_search<P: ObjectiveProblem<N>, const N: usize>(
         };
         stp.x = stp.x.max(stpmin);
         stp.x = stp.x.min(stpmax);
+        #[allow(clippy::nonminimal_bool)] // argmin's condition as written
         if (brackt && (stp.x <= stmin || stp.x >= stmax))
             || (brackt && (stmax - stmin) <= LS_XTOL * stmax)
             || infoc == 0

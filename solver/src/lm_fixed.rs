@@ -104,11 +104,11 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     d
 }
 
-/// `y ← a x + y` (nalgebra's `axpy` with `β = 1`).
+/// `y ← a x + y` (nalgebra's `axpy` with `β = 1`; `y + a x` is the same sum).
 #[inline]
 fn axpy(a: f64, x: &[f64], y: &mut [f64]) {
     for (yi, xi) in y.iter_mut().zip(x) {
-        *yi = a * *xi + *yi;
+        *yi += a * *xi;
     }
 }
 
@@ -280,6 +280,7 @@ impl<const N: usize, const M: usize> Lls<N, M> {
 
     /// `solve_with_diagonal`: `eliminate_diag` then `solve_after_elimination`; the factor is
     /// `L` (lower, diagonal in `l_diag`).
+    #[allow(clippy::needless_range_loop)] // index loops as in the crate, for checking line by line
     fn solve_with_diagonal(&mut self, diag: &[f64; N]) -> [f64; N] {
         let mut rhs = self.qt_b;
         // eliminate_diag: Rᵀ into the lower triangle, then Givens rotations

@@ -25,17 +25,18 @@ pub(crate) fn cholesky_solve<const N: usize>(
     }
     let mut l = *b;
     // nalgebra's `Cholesky::new_internal`: column j updated by the earlier columns (axpy with
-    // factor −l[j][k], β = 1), then its pivot square-rooted and the column below divided by it.
+    // factor −l[j][k], β = 1: `y ← a x + y`, the same sum as `y += a x`), then its pivot square-rooted and the column below divided by it.
     for j in 0..N {
         for k in 0..j {
             let factor = -l[(j, k)];
             for i in j..N {
-                l[(i, j)] = factor * l[(i, k)] + l[(i, j)];
+                l[(i, j)] += factor * l[(i, k)];
             }
         }
         let diag = l[(j, j)];
-        // `is_zero` then simba's `try_sqrt` (`None` below zero and for NaN).
-        if diag == 0.0 || !(diag >= 0.0) {
+        // `is_zero` then simba's `try_sqrt` (`None` below zero and for NaN): only a positive
+        // pivot passes.
+        if diag.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             return None;
         }
         let denom = diag.sqrt();
@@ -50,7 +51,7 @@ pub(crate) fn cholesky_solve<const N: usize>(
         let coeff = x[i] / l[(i, i)];
         x[i] = coeff;
         for r in i + 1..N {
-            x[r] = -coeff * l[(r, i)] + x[r];
+            x[r] += -coeff * l[(r, i)];
         }
     }
     // `ad_solve_lower_triangular_unchecked_mut`: back substitution with dot products, which
