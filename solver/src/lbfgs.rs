@@ -1,6 +1,14 @@
 //! L-BFGS (argmin 0.11) with the Moré–Thuente line search, bounds by the change of variables
 //! `x = l + y²`.
 //!
+//! # Paths
+//!
+//! [`minimize_lbfgs`] / [`solve_lbfgs`] (what [`crate::solve`] runs) use a fixed-size
+//! transcription of one argmin run (`lbfgs_fixed`: argmin's arithmetic and bookkeeping without
+//! its executor, so the same iterates, counts and termination);
+//! [`minimize_lbfgs_argmin`] / [`solve_lbfgs_argmin`] run argmin's `Executor` itself (the
+//! reference, and [`crate::solve_any`]'s path). The restarts and the report below are shared.
+//!
 //! # Bounds
 //!
 //! argmin's L-BFGS has no bounds, so the adapter minimises `f(l + y²)` over `y` (free unknowns
@@ -22,7 +30,9 @@
 //!   cover all runs.
 //! - `step_tolerance` is not used (argmin's L-BFGS has no step test).
 //! - Function counting and the timer are switched on (`state.counting(true)`,
-//!   `Executor::timer(true)`), so the report's evaluation counts are argmin's own. One extra
+//!   `Executor::timer(true)`), so the report's evaluation counts are argmin's own (the fast path
+//!   counts the same calls, including the gradient argmin evaluates again at each accepted point,
+//!   which the fast path takes from its line search). One extra
 //!   gradient evaluation at the returned point, for the report's projected gradient, is included.
 //! - A cost that is not finite at a trial point is returned to argmin as an error; inside the
 //!   line search that ends the run with [`FailureReason::LineSearch`] and the best point so far.

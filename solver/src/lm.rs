@@ -1,6 +1,14 @@
 //! Levenberg–Marquardt (the `levenberg-marquardt` 0.15 crate, a port of MINPACK's `lmder`), bounds
 //! by the change of variables `x = l + y²`.
 //!
+//! # Paths
+//!
+//! [`solve_lm`] (what [`crate::solve`] runs) uses a fixed-size transcription of the crate's
+//! `minimize` for `M ≥ N` (`lm_fixed`: the same floating-point operations in the same order, so
+//! the same iterates, counts and termination); [`solve_lm_crate`] runs the crate itself on
+//! fixed-size matrices and [`solve_lm_any`] on dynamic ones (any number of residuals). All three
+//! share this wrapper, so their reports are the same.
+//!
 //! # Bounds
 //!
 //! The crate has no bounds, so the adapter solves for `y` with residuals `r(l + y²)` and Jacobian
