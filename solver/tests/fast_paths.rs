@@ -33,6 +33,14 @@ where
             ..SolveOptions::default()
         },
         SolveOptions {
+            max_iterations: 0,
+            ..SolveOptions::default()
+        },
+        SolveOptions {
+            max_iterations: 1,
+            ..SolveOptions::default()
+        },
+        SolveOptions {
             max_iterations: 2,
             ..SolveOptions::default()
         },
@@ -78,6 +86,27 @@ fn fixed_problems() {
     check(&Box3d, SVector::<f64, 3>::new(1.0, 1.0, 1.0));
     check(&Blowup, Vector2::new(1.0, 1.0));
     check(&Square, SVector::<f64, 2>::new(0.0, 0.0));
+    check(&Square, SVector::<f64, 2>::new(3.0, -1.0));
+    check(&Exp1, SVector::<f64, 1>::new(0.5));
+    check(&Exp1, SVector::<f64, 1>::new(-2.0));
+}
+
+/// One unknown, 20 residuals: `r_i = exp(x t_i) − (1 + t_i)`, a nonzero-residual fit.
+struct Exp1;
+
+impl LeastSquaresProblem<1, 20> for Exp1 {
+    fn residuals(&self, x: &SVector<f64, 1>) -> SVector<f64, 20> {
+        SVector::from_fn(|i, _| {
+            let t = i as f64 / 19.0;
+            (x[0] * t).exp() - (1.0 + t)
+        })
+    }
+    fn jacobian(&self, x: &SVector<f64, 1>) -> SMatrix<f64, 20, 1> {
+        SMatrix::from_fn(|i, _| {
+            let t = i as f64 / 19.0;
+            t * (x[0] * t).exp()
+        })
+    }
 }
 
 /// MINPACK's Box three-dimensional function (10 residuals, 3 unknowns, zero residual at
