@@ -107,3 +107,28 @@ fn circular_arc_is_nearly_matched() {
     let kk = u.end_curvatures(c.alpha);
     assert!((kk[0] - k).abs() < 0.05 * k.abs(), "{kk:?} vs {k}");
 }
+
+#[test]
+fn fast_paths_return_the_backends_results_on_every_ring_edge() {
+    // `solve` (the fixed-size fast paths the construction uses) against the backends themselves:
+    // the same optimum and report, bit for bit, on every edge (timing aside).
+    let o = MethodOptions::default();
+    let start = nalgebra::Vector2::new(1.0, 1.0);
+    let strip = |s: solver::Solution<2>| {
+        let mut r = s.report;
+        r.time_seconds = 0.0;
+        format!("{:?} {r:?}", s.x)
+    };
+    for u in ring_units() {
+        let objective =
+            cost::BoundaryCurveObjective::new(u.t0, u.t1, [u.k0, u.k1], o.weights, o.alpha_min)
+                .unwrap();
+        let opts = o.solve_options;
+        let lm = solver::solve(SolverKind::Lm, &objective, start, &opts).unwrap();
+        let lm_ref = solver::solve_lm_crate(&objective, start, &opts).unwrap();
+        assert_eq!(strip(lm), strip(lm_ref));
+        let lbfgs = solver::solve(SolverKind::Lbfgs, &objective, start, &opts).unwrap();
+        let lbfgs_ref = solver::solve_lbfgs_argmin(&objective, start, &opts).unwrap();
+        assert_eq!(strip(lbfgs), strip(lbfgs_ref));
+    }
+}

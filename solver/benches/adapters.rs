@@ -1,5 +1,6 @@
 //! Criterion benchmark: each adapter on the representative 2-unknown / 4-residual end-curvature
-//! problem (α ≥ 0.05), from the Shirman–Séquin start α = (1, 1), history off.
+//! problem (α ≥ 0.05), from the Shirman–Séquin start α = (1, 1), history off: `solve`'s fast
+//! paths (`exact-penalty`, `lbfgs`, `lm`) and the reference paths through the backends.
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -67,10 +68,21 @@ fn adapters(c: &mut Criterion) {
             })
         });
     }
-    // The dynamic-size LM path on the same 2-unknown problem: what the fixed-size fast path,
-    // which `solve` keeps for the boundary curves, saves.
+    // The reference paths on the same problem (the backends themselves; same results as the
+    // fast paths `solve` runs): the levenberg-marquardt crate on fixed-size and on dynamic
+    // matrices, argmin's executor.
+    c.bench_function("lm-crate", |b| {
+        b.iter(|| {
+            solver::solve_lm_crate(black_box(&p), black_box(Vector2::new(1.0, 1.0)), &options)
+        })
+    });
     c.bench_function("lm-any-size", |b| {
         b.iter(|| solver::solve_lm_any(black_box(&p), black_box(Vector2::new(1.0, 1.0)), &options))
+    });
+    c.bench_function("lbfgs-argmin", |b| {
+        b.iter(|| {
+            solver::solve_lbfgs_argmin(black_box(&p), black_box(Vector2::new(1.0, 1.0)), &options)
+        })
     });
 }
 

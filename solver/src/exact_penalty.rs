@@ -335,7 +335,7 @@ fn model_step<const N: usize>(
         }
     }
     let rhs = masked(&(-g), working);
-    let h = reduced.cholesky()?.solve(&rhs);
+    let h = crate::small::cholesky_solve(&reduced, &rhs)?;
     (h.iter().all(|v| v.is_finite()) && g.dot(&h) < 0.0).then_some(h)
 }
 

@@ -1,6 +1,14 @@
 //! L-BFGS (argmin 0.11) with the Moré–Thuente line search, bounds by the change of variables
 //! `x = l + y²`.
 //!
+//! # Paths
+//!
+//! [`minimize_lbfgs`] / [`solve_lbfgs`] (what [`crate::solve`] runs) use a fixed-size
+//! transcription of one argmin run (`lbfgs_fixed`: argmin's arithmetic and bookkeeping without
+//! its executor, so the same iterates, counts and termination);
+//! [`minimize_lbfgs_argmin`] / [`solve_lbfgs_argmin`] run argmin's `Executor` itself (the
+//! reference, and [`crate::solve_any`]'s path). The restarts and the report below are shared.
+//!
 //! # Bounds
 //!
 //! argmin's L-BFGS has no bounds, so the adapter minimises `f(l + y²)` over `y` (free unknowns
@@ -22,7 +30,9 @@
 //!   cover all runs.
 //! - `step_tolerance` is not used (argmin's L-BFGS has no step test).
 //! - Function counting and the timer are switched on (`state.counting(true)`,
-//!   `Executor::timer(true)`), so the report's evaluation counts are argmin's own. One extra
+//!   `Executor::timer(true)`), so the report's evaluation counts are argmin's own (the fast path
+//!   counts the same calls, including the gradient argmin evaluates again at each accepted point,
+//!   which the fast path takes from its line search). One extra
 //!   gradient evaluation at the returned point, for the report's projected gradient, is included.
 //! - A cost that is not finite at a trial point is returned to argmin as an error; inside the
 //!   line search that ends the run with [`FailureReason::LineSearch`] and the best point so far.
@@ -55,7 +65,7 @@ use crate::{
 const COST_FACTOR: f64 = 1e-4;
 
 /// Number of correction pairs kept by L-BFGS.
-const MEMORY: usize = 7;
+pub(crate) const MEMORY: usize = 7;
 
 /// The problem in transformed variables `y`, as argmin sees it.
 struct Transformed<'a, P, const N: usize> {
@@ -106,8 +116,12 @@ impl<const N: usize> Observe<LbfgsState<N>> for History {
     }
 }
 
-/// Minimises a smooth objective `f(x)` subject to `x ≥ l` with argmin's L-BFGS; the report's costs
-/// are values of `f`.
+/// Minimises a smooth objective `f(x)` subject to `x ≥ l` with argmin's L-BFGS algorithm; the
+/// report's costs are values of `f`.
+///
+/// Runs the fixed-size transcription of argmin's run (`lbfgs_fixed`: the same iterates, counts
+/// and termination, without the executor's overhead); [`minimize_lbfgs_argmin`] runs argmin
+/// itself.
 ///
 /// # Errors
 /// [`SolveError`] for invalid options, a non-finite start, invalid bounds or a start below a bound.
@@ -115,6 +129,126 @@ pub fn minimize_lbfgs<P, const N: usize>(
     problem: &P,
     x0: SVector<f64, N>,
     options: &SolveOptions,
+) -> Result<Solution<N>, SolveError>
+where
+    P: ObjectiveProblem<N>,
+{
+    minimize_lbfgs_with(problem, x0, options, Backend::Fixed)
+}
+
+/// [`minimize_lbfgs`] through argmin's `Executor`, `LBFGS` and `MoreThuenteLineSearch`: the
+/// reference for the fast path (same results; kept available and tested).
+///
+/// # Errors
+/// As [`minimize_lbfgs`].
+pub fn minimize_lbfgs_argmin<P, const N: usize>(
+    problem: &P,
+    x0: SVector<f64, N>,
+    options: &SolveOptions,
+) -> Result<Solution<N>, SolveError>
+where
+    P: ObjectiveProblem<N>,
+{
+    minimize_lbfgs_with(problem, x0, options, Backend::Argmin)
+}
+
+/// Which implementation runs L-BFGS.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Backend {
+    Fixed,
+    Argmin,
+}
+
+/// One run of argmin's L-BFGS with the Moré–Thuente line search through its `Executor`.
+fn run_argmin<P: ObjectiveProblem<N>, const N: usize>(
+    problem: &P,
+    map: SquareMap<N>,
+    y_start: SVector<f64, N>,
+    (tol_grad, tol_cost): (f64, f64),
+    max_iters: u64,
+    history: Option<&mut Vec<f64>>,
+) -> Result<Outcome<N>, RunFailed> {
+    let solver = LBFGS::new(MoreThuenteLineSearch::new(), MEMORY)
+        .with_tolerance_grad(tol_grad)
+        .and_then(|s| s.with_tolerance_cost(tol_cost))
+        .map_err(|e| RunFailed::Config(e.to_string()))?;
+    let run_history = Rc::new(RefCell::new(Vec::new()));
+    let mut executor = Executor::new(Transformed { problem, map }, solver)
+        .configure(|state| state.param(y_start).max_iters(max_iters).counting(true))
+        .timer(true);
+    if history.is_some() {
+        executor = executor.add_observer(History(Rc::clone(&run_history)), ObserverMode::Always);
+    }
+    let result = executor.run().map_err(|_| RunFailed::Start)?;
+    let state = result.state();
+    let counts = state.get_func_counts();
+    let count = |key: &str| {
+        counts
+            .get(key)
+            .and_then(|&c| usize::try_from(c).ok())
+            .unwrap_or(0)
+    };
+    if let Some(h) = history {
+        h.extend(run_history.take());
+    }
+    let status = match state.get_termination_status() {
+        TerminationStatus::Terminated(TerminationReason::SolverConverged) => RunStatus::Converged,
+        TerminationStatus::Terminated(TerminationReason::MaxItersReached) => RunStatus::MaxIters,
+        TerminationStatus::Terminated(TerminationReason::SolverExit(message))
+            if message.starts_with("Line search") =>
+        {
+            RunStatus::LineSearch
+        }
+        other => RunStatus::Other(format!("{other:?}")),
+    };
+    Ok(Outcome {
+        status,
+        iterations: state.get_iter(),
+        cost_count: count("cost_count"),
+        gradient_count: count("gradient_count"),
+        best_param: state.get_best_param().copied(),
+        best_cost: state.get_best_cost(),
+        prev_cost: state.get_prev_cost(),
+        cost: state.get_cost(),
+        gradient: state.get_gradient().copied(),
+    })
+}
+
+/// A run that could not start.
+enum RunFailed {
+    /// argmin refused the tolerances (unreachable after `validate`).
+    Config(String),
+    /// The cost or the gradient failed at the start point.
+    Start,
+}
+
+/// How one run ended, for either backend.
+enum RunStatus {
+    Converged,
+    MaxIters,
+    LineSearch,
+    /// argmin stopped for another reason (quoted).
+    Other(String),
+}
+
+/// What the adapter reads from a finished run, for either backend.
+struct Outcome<const N: usize> {
+    status: RunStatus,
+    iterations: u64,
+    cost_count: usize,
+    gradient_count: usize,
+    best_param: Option<SVector<f64, N>>,
+    best_cost: f64,
+    prev_cost: f64,
+    cost: f64,
+    gradient: Option<SVector<f64, N>>,
+}
+
+fn minimize_lbfgs_with<P, const N: usize>(
+    problem: &P,
+    x0: SVector<f64, N>,
+    options: &SolveOptions,
+    backend: Backend,
 ) -> Result<Solution<N>, SolveError>
 where
     P: ObjectiveProblem<N>,
@@ -152,17 +286,50 @@ where
     let (mut iterations, mut cost_evaluations, mut gradient_evaluations) = (0usize, 1usize, 0usize);
     let (status, prev_cost, last_cost, best_y) = loop {
         let cost_tolerance = options.function_tolerance * COST_FACTOR * run_start_cost.abs();
-        let solver = LBFGS::new(MoreThuenteLineSearch::new(), MEMORY)
-            .with_tolerance_grad(options.gradient_tolerance)
-            .and_then(|s| s.with_tolerance_cost(cost_tolerance));
-        let solver = match solver {
-            Ok(s) => s,
+        let remaining = options.max_iterations.saturating_sub(iterations);
+        let max_iters = u64::try_from(remaining).unwrap_or(u64::MAX);
+        let hist = options.record_history.then_some(&mut history);
+        let outcome = match backend {
+            Backend::Argmin => run_argmin(
+                problem,
+                map,
+                y_start,
+                (options.gradient_tolerance, cost_tolerance),
+                max_iters,
+                hist,
+            ),
+            Backend::Fixed => crate::lbfgs_fixed::run(
+                problem,
+                map,
+                y_start,
+                options.gradient_tolerance,
+                cost_tolerance,
+                max_iters,
+                hist,
+            )
+            .map_err(|()| RunFailed::Start)
+            .map(|o| Outcome {
+                status: match o.status {
+                    crate::lbfgs_fixed::Status::Converged => RunStatus::Converged,
+                    crate::lbfgs_fixed::Status::MaxIters => RunStatus::MaxIters,
+                    crate::lbfgs_fixed::Status::LineSearch => RunStatus::LineSearch,
+                },
+                iterations: o.iterations,
+                cost_count: o.cost_count,
+                gradient_count: o.gradient_count,
+                best_param: o.best_param,
+                best_cost: o.best_cost,
+                prev_cost: o.prev_cost,
+                cost: o.cost,
+                gradient: o.gradient,
+            }),
+        };
+        let state = match outcome {
+            Ok(state) => state,
             // Unreachable after `validate`, but reported rather than unwrapped.
-            Err(e) => {
+            Err(RunFailed::Config(message)) => {
                 let termination = Termination::Failure {
-                    reason: FailureReason::Backend {
-                        message: e.to_string(),
-                    },
+                    reason: FailureReason::Backend { message },
                 };
                 return Ok(reporter.solution(
                     x0,
@@ -175,62 +342,40 @@ where
                     Vec::new(),
                 ));
             }
-        };
-        let run_history = Rc::new(RefCell::new(Vec::new()));
-        let remaining = options.max_iterations.saturating_sub(iterations);
-        let max_iters = u64::try_from(remaining).unwrap_or(u64::MAX);
-        let mut executor = Executor::new(Transformed { problem, map }, solver)
-            .configure(|state| state.param(y_start).max_iters(max_iters).counting(true))
-            .timer(true);
-        if options.record_history {
-            executor =
-                executor.add_observer(History(Rc::clone(&run_history)), ObserverMode::Always);
-        }
-        let Ok(result) = executor.run() else {
             // The cost or gradient failed at the start point of the run.
-            let termination = Termination::Failure {
-                reason: FailureReason::NonFiniteDerivative,
-            };
-            let x = map.to_x(&y_start);
-            let c = problem.value(&x);
-            return Ok(reporter.solution(
-                x,
-                c,
-                f64::NAN,
-                termination,
-                iterations,
-                cost_evaluations,
-                gradient_evaluations,
-                history,
-            ));
+            Err(RunFailed::Start) => {
+                let termination = Termination::Failure {
+                    reason: FailureReason::NonFiniteDerivative,
+                };
+                let x = map.to_x(&y_start);
+                let c = problem.value(&x);
+                return Ok(reporter.solution(
+                    x,
+                    c,
+                    f64::NAN,
+                    termination,
+                    iterations,
+                    cost_evaluations,
+                    gradient_evaluations,
+                    history,
+                ));
+            }
         };
-        let state = result.state();
-        let counts = state.get_func_counts();
-        let count = |key: &str| {
-            counts
-                .get(key)
-                .and_then(|&c| usize::try_from(c).ok())
-                .unwrap_or(0)
-        };
-        cost_evaluations += count("cost_count");
-        gradient_evaluations += count("gradient_count");
-        iterations += usize::try_from(state.get_iter()).unwrap_or(usize::MAX);
-        history.extend(run_history.take());
-        let best_y = state.get_best_param().copied().unwrap_or(y_start);
-        let best_cost = state.get_best_cost();
-        let status = state.get_termination_status().clone();
-        let by_cost_test = matches!(
-            status,
-            TerminationStatus::Terminated(TerminationReason::SolverConverged)
-        ) && state
-            .get_gradient()
-            .is_none_or(|g| g.norm() >= options.gradient_tolerance);
+        cost_evaluations += state.cost_count;
+        gradient_evaluations += state.gradient_count;
+        iterations += usize::try_from(state.iterations).unwrap_or(usize::MAX);
+        let best_y = state.best_param.unwrap_or(y_start);
+        let best_cost = state.best_cost;
+        let by_cost_test = matches!(state.status, RunStatus::Converged)
+            && state
+                .gradient
+                .is_none_or(|g| g.norm() >= options.gradient_tolerance);
         if by_cost_test && best_cost < 0.5 * run_start_cost && iterations < options.max_iterations {
             y_start = best_y;
             run_start_cost = best_cost;
             continue;
         }
-        break (status, state.get_prev_cost(), state.get_cost(), best_y);
+        break (state.status, state.prev_cost, state.cost, best_y);
     };
 
     let x = map.to_x(&best_y);
@@ -240,7 +385,7 @@ where
     let gnorm_y = g.component_mul(&map.dx_dy(&best_y)).norm();
 
     let termination = match status {
-        TerminationStatus::Terminated(TerminationReason::SolverConverged) => {
+        RunStatus::Converged => {
             if gnorm_y < options.gradient_tolerance {
                 Termination::Converged {
                     test: ConvergenceTest::Gradient {
@@ -262,22 +407,14 @@ where
                 }
             }
         }
-        TerminationStatus::Terminated(TerminationReason::MaxItersReached) => {
-            Termination::MaxIterations {
-                limit: options.max_iterations,
-            }
-        }
-        TerminationStatus::Terminated(TerminationReason::SolverExit(message))
-            if message.starts_with("Line search") =>
-        {
-            Termination::Failure {
-                reason: FailureReason::LineSearch,
-            }
-        }
-        other => Termination::Failure {
-            reason: FailureReason::Backend {
-                message: format!("{other:?}"),
-            },
+        RunStatus::MaxIters => Termination::MaxIterations {
+            limit: options.max_iterations,
+        },
+        RunStatus::LineSearch => Termination::Failure {
+            reason: FailureReason::LineSearch,
+        },
+        RunStatus::Other(message) => Termination::Failure {
+            reason: FailureReason::Backend { message },
         },
     };
     Ok(reporter.solution(
@@ -292,7 +429,8 @@ where
     ))
 }
 
-/// Solves `min ½‖r(x)‖² s.t. x ≥ l` with L-BFGS on the cost `½‖r‖²` (gradient `Jᵀr`).
+/// Solves `min ½‖r(x)‖² s.t. x ≥ l` with L-BFGS on the cost `½‖r‖²` (gradient `Jᵀr`), by the
+/// fixed-size fast path ([`minimize_lbfgs`]).
 ///
 /// # Errors
 /// As [`minimize_lbfgs`].
@@ -305,4 +443,19 @@ where
     P: LeastSquaresProblem<N, M>,
 {
     minimize_lbfgs(&HalfSumOfSquares::<P, M>(problem), x0, options)
+}
+
+/// [`solve_lbfgs`] through argmin itself ([`minimize_lbfgs_argmin`]): the reference path.
+///
+/// # Errors
+/// As [`minimize_lbfgs`].
+pub fn solve_lbfgs_argmin<P, const N: usize, const M: usize>(
+    problem: &P,
+    x0: SVector<f64, N>,
+    options: &SolveOptions,
+) -> Result<Solution<N>, SolveError>
+where
+    P: LeastSquaresProblem<N, M>,
+{
+    minimize_lbfgs_argmin(&HalfSumOfSquares::<P, M>(problem), x0, options)
 }

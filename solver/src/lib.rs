@@ -16,6 +16,28 @@
 //! All arithmetic is `f64` on fixed-size nalgebra types (`SVector<f64, N>`, `SMatrix<f64, M, N>`),
 //! so the exact-penalty adapter allocates nothing per iteration.
 //!
+//! # Fast paths and reference paths
+//!
+//! [`solve`] — what the boundary curves (2 unknowns, 4 residuals) and every other fixed-size
+//! caller use — runs each adapter on a **fixed-size fast path**:
+//!
+//! - `exact-penalty` is this crate's own code; its 2×2 model system is solved by a Cholesky
+//!   factorisation written out in nalgebra's order (`small`).
+//! - `lm` runs `lm_fixed`, the `levenberg-marquardt` crate's MINPACK `lmder` (pivoted QR, `lmpar`,
+//!   `qrsolv`) transcribed over fixed-size arrays, for `M ≥ N`.
+//! - `lbfgs` runs `lbfgs_fixed`, one argmin `Executor` run of `LBFGS` with
+//!   `MoreThuenteLineSearch` transcribed (no executor, observers, state clones or `HashMap`
+//!   counters; cost and gradient from one [`ObjectiveProblem::value_and_gradient`] call; the
+//!   gradient argmin recomputes at each accepted point reused, and counted as argmin counts it).
+//!
+//! The transcriptions perform the backends' floating-point operations in the backends' order, so
+//! they return **the same points, termination reasons, iteration and evaluation counts and cost
+//! histories, bit for bit**, as the backends themselves; `tests/fast_paths.rs` checks this on
+//! fixed and random problems. The backends stay available as the reference paths:
+//! [`solve_lm_crate`] and [`solve_lbfgs_argmin`] (fixed size), and [`solve_any`], which runs
+//! [`solve_lm_any`] (dynamic matrices, any number of residuals) and argmin for problems of any
+//! size. `cargo run --release -p solver --example profile_solvers -- lm` is a loop for `perf`.
+//!
 //! ```
 //! use nalgebra::{SMatrix, SVector, Vector2};
 //! use solver::{solve, LeastSquaresProblem, SolveOptions, SolverKind};
@@ -45,10 +67,13 @@ mod error;
 pub mod exact_penalty;
 mod kind;
 pub mod lbfgs;
+mod lbfgs_fixed;
 pub mod lm;
+mod lm_fixed;
 mod options;
 pub mod problem;
 pub mod report;
+mod small;
 
 use nalgebra::SVector;
 
@@ -59,8 +84,8 @@ pub use check::{
 pub use error::SolveError;
 pub use exact_penalty::solve_exact_penalty;
 pub use kind::{SolverKind, UnknownSolver};
-pub use lbfgs::{minimize_lbfgs, solve_lbfgs};
-pub use lm::{solve_lm, solve_lm_any, Dims, LmDims};
+pub use lbfgs::{minimize_lbfgs, minimize_lbfgs_argmin, solve_lbfgs, solve_lbfgs_argmin};
+pub use lm::{solve_lm, solve_lm_any, solve_lm_crate, Dims, LmDims};
 pub use options::SolveOptions;
 pub use problem::{HalfSumOfSquares, LeastSquaresProblem, ObjectiveProblem};
 pub use report::{ConvergenceTest, FailureReason, SolveReport, Termination};
@@ -78,6 +103,7 @@ pub struct Solution<const N: usize> {
 ///
 /// A solver that does not converge still returns `Ok`, with its best point and a report saying
 /// why it stopped. The bound `Dims<N, M>: LmDims<N, M>` holds for every concrete size up to 127.
+/// Every adapter runs its fixed-size fast path (see the crate documentation).
 ///
 /// # Errors
 /// [`SolveError`] only for invalid input: a non-finite start, a start below its lower bound, a
@@ -93,15 +119,16 @@ where
     Dims<N, M>: LmDims<N, M>,
 {
     match kind {
-        // The fixed-size fast path where the bound holds; the rest as for any size.
+        SolverKind::ExactPenalty => solve_exact_penalty(problem, x0, options),
+        SolverKind::Lbfgs => solve_lbfgs(problem, x0, options),
         SolverKind::Lm => solve_lm(problem, x0, options),
-        other => solve_any(other, problem, x0, options),
     }
 }
 
-/// [`solve`] for problems of any size: Levenberg–Marquardt through [`solve_lm_any`] (dynamic
-/// linear algebra, no bound on the number of residuals), the other adapters as in [`solve`].
-/// Use [`solve`] where its bound holds: its LM path is the faster one on small problems.
+/// [`solve`] for problems of any size, through the backends themselves (the reference paths):
+/// Levenberg–Marquardt through [`solve_lm_any`] (the crate on dynamic linear algebra, no bound on
+/// the number of residuals), L-BFGS through argmin ([`solve_lbfgs_argmin`]), exact penalty as in
+/// [`solve`]. Use [`solve`] where its bound holds: its fast paths give the same results sooner.
 ///
 /// # Errors
 /// As [`solve`].
@@ -116,7 +143,7 @@ where
 {
     match kind {
         SolverKind::ExactPenalty => solve_exact_penalty(problem, x0, options),
-        SolverKind::Lbfgs => solve_lbfgs(problem, x0, options),
+        SolverKind::Lbfgs => solve_lbfgs_argmin(problem, x0, options),
         SolverKind::Lm => solve_lm_any(problem, x0, options),
     }
 }

@@ -1,6 +1,14 @@
 //! Levenberg–Marquardt (the `levenberg-marquardt` 0.15 crate, a port of MINPACK's `lmder`), bounds
 //! by the change of variables `x = l + y²`.
 //!
+//! # Paths
+//!
+//! [`solve_lm`] (what [`crate::solve`] runs) uses a fixed-size transcription of the crate's
+//! `minimize` for `M ≥ N` (`lm_fixed`: the same floating-point operations in the same order, so
+//! the same iterates, counts and termination); [`solve_lm_crate`] runs the crate itself on
+//! fixed-size matrices and [`solve_lm_any`] on dynamic ones (any number of residuals). All three
+//! share this wrapper, so their reports are the same.
+//!
 //! # Bounds
 //!
 //! The crate has no bounds, so the adapter solves for `y` with residuals `r(l + y²)` and Jacobian
@@ -90,6 +98,25 @@ where
     }
 }
 
+/// The crate's settings as the adapter chooses them (built into a `LevenbergMarquardt` for the
+/// crate's paths, read directly by the fixed-size transcription).
+struct LmSettings {
+    ftol: f64,
+    xtol: f64,
+    gtol: f64,
+    patience: usize,
+}
+
+impl LmSettings {
+    fn build(&self) -> LevenbergMarquardt<f64> {
+        LevenbergMarquardt::new()
+            .with_ftol(self.ftol)
+            .with_xtol(self.xtol)
+            .with_gtol(self.gtol)
+            .with_patience(self.patience)
+    }
+}
+
 /// The problem in transformed variables, with counters and the best point seen.
 struct Target<'a, P, const N: usize, const M: usize> {
     problem: &'a P,
@@ -175,6 +202,26 @@ where
     }
 }
 
+impl<P, const N: usize, const M: usize> crate::lm_fixed::FixedTarget<N, M> for Target<'_, P, N, M>
+where
+    P: LeastSquaresProblem<N, M>,
+{
+    #[inline]
+    fn set_params(&mut self, y: &SVector<f64, N>) {
+        self.y = *y;
+    }
+
+    #[inline]
+    fn residuals(&self) -> Option<SVector<f64, M>> {
+        self.eval_residuals()
+    }
+
+    #[inline]
+    fn jacobian(&self) -> Option<SMatrix<f64, M, N>> {
+        self.eval_jacobian()
+    }
+}
+
 /// The same problem with heap-allocated (dynamically sized) vectors and matrices, for sizes
 /// beyond the fixed-size backend's bound (more than 127 residuals).
 struct DynTarget<'a, P, const N: usize, const M: usize>(Target<'a, P, N, M>);
@@ -209,8 +256,14 @@ where
     }
 }
 
-/// Solves `min ½‖r(x)‖² s.t. x ≥ l` with the `levenberg-marquardt` crate, fixed-size (stack)
-/// linear algebra: the fast path, for every size up to 127 residuals.
+/// Solves `min ½‖r(x)‖² s.t. x ≥ l` with the `levenberg-marquardt` crate's algorithm on
+/// fixed-size (stack) linear algebra: the fast path, for every size up to 127 residuals.
+///
+/// With at least as many residuals as unknowns (every least-squares problem here, the
+/// boundary curve's 4 × 2 among them) the crate's `minimize` runs as a fixed-size transcription
+/// (`lm_fixed`, the same floating-point operations in the same order, so the same iterates and
+/// report, without the generic machinery); otherwise the crate itself runs on fixed-size
+/// matrices. [`solve_lm_crate`] always runs the crate.
 ///
 /// # Errors
 /// [`SolveError`] for invalid options, a non-finite start, invalid bounds or a start below a bound.
@@ -223,8 +276,39 @@ where
     P: LeastSquaresProblem<N, M>,
     Dims<N, M>: LmDims<N, M>,
 {
+    if M < N || N == 0 {
+        return solve_lm_crate(problem, x0, options);
+    }
+    solve_lm_with(problem, x0, options, |lm, mut target| {
+        let config = crate::lm_fixed::Config {
+            ftol: lm.ftol,
+            xtol: lm.xtol,
+            gtol: lm.gtol,
+            patience: lm.patience,
+        };
+        let y0 = target.y;
+        let termination = crate::lm_fixed::minimize(&config, &mut target, y0);
+        (target, termination)
+    })
+}
+
+/// [`solve_lm`] through the `levenberg-marquardt` crate's own `minimize` on fixed-size
+/// matrices: the reference for the fast path (same results; kept available and tested).
+///
+/// # Errors
+/// As [`solve_lm`].
+pub fn solve_lm_crate<P, const N: usize, const M: usize>(
+    problem: &P,
+    x0: SVector<f64, N>,
+    options: &SolveOptions,
+) -> Result<Solution<N>, SolveError>
+where
+    P: LeastSquaresProblem<N, M>,
+    Dims<N, M>: LmDims<N, M>,
+{
     solve_lm_with(problem, x0, options, |lm, target| {
-        <Dims<N, M> as LmDims<N, M>>::minimize(lm, target)
+        let (t, report) = <Dims<N, M> as LmDims<N, M>>::minimize(&lm.build(), target);
+        (t, report.termination)
     })
 }
 
@@ -244,8 +328,8 @@ where
     P: LeastSquaresProblem<N, M>,
 {
     solve_lm_with(problem, x0, options, |lm, target| {
-        let (t, report) = lm.minimize(DynTarget(target));
-        (t.0, report)
+        let (t, report) = lm.build().minimize(DynTarget(target));
+        (t.0, report.termination)
     })
 }
 
@@ -254,10 +338,7 @@ fn solve_lm_with<'p, P, const N: usize, const M: usize>(
     problem: &'p P,
     x0: SVector<f64, N>,
     options: &SolveOptions,
-    minimize: impl FnOnce(
-        &LevenbergMarquardt<f64>,
-        Target<'p, P, N, M>,
-    ) -> (Target<'p, P, N, M>, MinimizationReport<f64>),
+    minimize: impl FnOnce(&LmSettings, Target<'p, P, N, M>) -> (Target<'p, P, N, M>, TerminationReason),
 ) -> Result<Solution<N>, SolveError>
 where
     P: LeastSquaresProblem<N, M>,
@@ -283,11 +364,12 @@ where
     }
 
     let patience = options.max_iterations.max(1).saturating_mul(4);
-    let lm = LevenbergMarquardt::new()
-        .with_ftol(options.function_tolerance)
-        .with_xtol(options.step_tolerance)
-        .with_gtol(options.gradient_tolerance)
-        .with_patience(patience);
+    let lm = LmSettings {
+        ftol: options.function_tolerance,
+        xtol: options.step_tolerance,
+        gtol: options.gradient_tolerance,
+        patience,
+    };
     let y_start = map.to_y(&x0);
     let target = Target::<P, N, M> {
         problem,
@@ -304,7 +386,7 @@ where
             .record_history
             .then(|| RefCell::new(Vec::with_capacity(16))),
     };
-    let (target, lm_report) = minimize(&lm, target);
+    let (target, lm_termination) = minimize(&lm, target);
 
     let (best_cost, best_y) = target.best.get();
     let y = if best_cost.is_finite() {
@@ -350,7 +432,7 @@ where
             .fold(0.0, f64::max)
     };
     let converged = |test| Termination::Converged { test };
-    let termination = match lm_report.termination {
+    let termination = match lm_termination {
         TerminationReason::ResidualsZero => {
             converged(ConvergenceTest::ZeroResidual { cost: final_cost })
         }

@@ -66,6 +66,13 @@ pub trait ObjectiveProblem<const N: usize> {
     /// The gradient `∇f(x)`.
     fn gradient(&self, x: &SVector<f64, N>) -> SVector<f64, N>;
 
+    /// `(f(x), ∇f(x))` in one call, for solvers that need both at the same point; the default
+    /// calls [`value`](Self::value) and [`gradient`](Self::gradient). Implementations that share
+    /// work between the two must return exactly the same numbers as the separate calls.
+    fn value_and_gradient(&self, x: &SVector<f64, N>) -> (f64, SVector<f64, N>) {
+        (self.value(x), self.gradient(x))
+    }
+
     /// Simple lower bounds `x ≥ l`; `f64::NEG_INFINITY` marks a free unknown (the default).
     fn lower_bounds(&self) -> SVector<f64, N> {
         SVector::from_element(f64::NEG_INFINITY)
@@ -90,6 +97,12 @@ where
 
     fn gradient(&self, x: &SVector<f64, N>) -> SVector<f64, N> {
         self.0.jacobian(x).transpose() * self.0.residuals(x)
+    }
+
+    /// The residuals evaluated once for both.
+    fn value_and_gradient(&self, x: &SVector<f64, N>) -> (f64, SVector<f64, N>) {
+        let r = self.0.residuals(x);
+        (0.5 * r.norm_squared(), self.0.jacobian(x).transpose() * r)
     }
 
     fn lower_bounds(&self) -> SVector<f64, N> {

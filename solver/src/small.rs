@@ -1,0 +1,116 @@
+//! Fixed-size kernels for the fast paths: the operations of nalgebra (and of the backends'
+//! own loops) the adapters use, written out over fixed-size arrays in **the same floating-point
+//! order**, so a fast path returns bit for bit what the general path returns, without the
+//! generic machinery (views, strides, non-inlined calls) around a handful of flops.
+//!
+//! Every function states which operation it reproduces; the tests in `tests/fast_paths.rs` hold
+//! the fast paths to exact equality with the reference paths.
+
+use nalgebra::{SMatrix, SVector};
+
+/// Longest vector for which nalgebra's dot product is the plain left-to-right sum (nalgebra
+/// unrolls by 8 beyond that, which changes the order of the additions).
+pub(crate) const PLAIN_DOT_MAX: usize = 7;
+
+/// `B h = rhs` for symmetric positive definite `B` by Cholesky, exactly as
+/// `b.cholesky()?.solve(&rhs)` of nalgebra 0.34 computes it (`None` where nalgebra's
+/// factorisation fails: a zero, negative or NaN pivot). Only the lower triangle of `b` is read.
+#[inline]
+pub(crate) fn cholesky_solve<const N: usize>(
+    b: &SMatrix<f64, N, N>,
+    rhs: &SVector<f64, N>,
+) -> Option<SVector<f64, N>> {
+    if N > PLAIN_DOT_MAX {
+        return b.cholesky().map(|c| c.solve(rhs));
+    }
+    let mut l = *b;
+    // nalgebra's `Cholesky::new_internal`: column j updated by the earlier columns (axpy with
+    // factor −l[j][k], β = 1: `y ← a x + y`, the same sum as `y += a x`), then its pivot square-rooted and the column below divided by it.
+    for j in 0..N {
+        for k in 0..j {
+            let factor = -l[(j, k)];
+            for i in j..N {
+                l[(i, j)] += factor * l[(i, k)];
+            }
+        }
+        let diag = l[(j, j)];
+        // `is_zero` then simba's `try_sqrt` (`None` below zero and for NaN): only a positive
+        // pivot passes.
+        if diag.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return None;
+        }
+        let denom = diag.sqrt();
+        l[(j, j)] = denom;
+        for i in j + 1..N {
+            l[(i, j)] /= denom;
+        }
+    }
+    let mut x = *rhs;
+    // `solve_lower_triangular_unchecked_mut`: forward substitution by columns (axpy).
+    for i in 0..N {
+        let coeff = x[i] / l[(i, i)];
+        x[i] = coeff;
+        for r in i + 1..N {
+            x[r] += -coeff * l[(r, i)];
+        }
+    }
+    // `ad_solve_lower_triangular_unchecked_mut`: back substitution with dot products, which
+    // nalgebra sums from zero left to right for these lengths.
+    for i in (0..N).rev() {
+        let mut dot = 0.0;
+        for r in i + 1..N {
+            dot += l[(r, i)] * x[r];
+        }
+        x[i] = (x[i] - dot) / l[(i, i)];
+    }
+    Some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A symmetric positive definite `N × N` matrix and a right-hand side from a simple
+    /// deterministic generator (`AᵀA + I` with `A` of entries in [−1, 1]).
+    fn spd<const N: usize>(seed: u64) -> (SMatrix<f64, N, N>, SVector<f64, N>) {
+        let mut state = seed;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let a = SMatrix::<f64, N, N>::from_fn(|_, _| next());
+        let b = SVector::<f64, N>::from_fn(|_, _| next());
+        (a.transpose() * a + SMatrix::identity() * 1e-3, b)
+    }
+
+    fn same_as_nalgebra<const N: usize>() {
+        for seed in 0..200 {
+            let (m, b) = spd::<N>(seed);
+            let ours = cholesky_solve(&m, &b);
+            let theirs = m.cholesky().map(|c| c.solve(&b));
+            assert_eq!(
+                format!("{ours:?}"),
+                format!("{theirs:?}"),
+                "N = {N}, seed {seed}"
+            );
+        }
+        // Not positive definite: both refuse.
+        let (m, b) = spd::<N>(7);
+        assert!(cholesky_solve(&(-m), &b).is_none());
+        assert!((-m).cholesky().is_none());
+    }
+
+    #[test]
+    fn bit_for_bit_nalgebra_for_every_size_it_replaces() {
+        same_as_nalgebra::<1>();
+        same_as_nalgebra::<2>();
+        same_as_nalgebra::<3>();
+        same_as_nalgebra::<4>();
+        same_as_nalgebra::<5>();
+        same_as_nalgebra::<6>();
+        same_as_nalgebra::<7>();
+        same_as_nalgebra::<9>();
+    }
+}
