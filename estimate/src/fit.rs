@@ -129,6 +129,7 @@ pub struct Workspace {
     pub local: Vec<[f64; 3]>,
     a: Vec<f64>,
     b: Vec<f64>,
+    marks: crate::topology::RingMarks,
 }
 
 /// Fits `z ≈ Σ c_ij x^i y^j` (total degree `1..=degree`, or `0..=degree` with `constant`) to the
@@ -459,12 +460,13 @@ pub fn fit_vertex(
         return Err(FitFailure::TooFewPoints);
     };
     let rule = spec.rule;
-    topo.rings_into(
+    topo.rings_into_marked(
         v,
         rule.min_points,
         rule.max_rings,
         rule.max_points,
         &mut ws.ring,
+        &mut ws.marks,
     );
     let FitSpec {
         degree, constant, ..
