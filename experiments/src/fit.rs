@@ -109,6 +109,14 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let face_source = loaded.face_source;
     let vertex_source = loaded.vertex_source;
     let t_read = t0.elapsed().as_secs_f64();
+    // Peak resident memory after each stage (where the system says), for the summary.
+    let mut peaks: Vec<(&str, u64)> = Vec::new();
+    let mut peak_after = |stage| {
+        if let Some(b) = limits::peak_resident_bytes() {
+            peaks.push((stage, b));
+        }
+    };
+    peak_after("read");
     let options = args.fit.curve.method_options();
     let method = method_by_name(&args.fit.curves, &options).map_err(ExperimentError::from)?;
     let params = InteriorParameters {
@@ -130,6 +138,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     )
     .map_err(fit_error)?;
     let t_fit = t1.elapsed().as_secs_f64();
+    peak_after("fit");
     if args.fit.interior.choice != InteriorChoice::Default {
         say!(
             "  interior {}: {} faces, {} converged, {} kept at defaults, energy {:.4e} → {:.4e}",
@@ -144,6 +153,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t2 = Instant::now();
     let g1 = measure_g1(&mesh, &fitted, 9);
     let t_g1 = t2.elapsed().as_secs_f64();
+    peak_after("G1");
 
     if let Some(out) = &args.out {
         crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
@@ -162,6 +172,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             out.display(),
             t_out.elapsed().as_secs_f64()
         );
+        peak_after("write");
     }
     if let Some(path) = &args.mesh_out {
         check_memory(
@@ -196,6 +207,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             t3.elapsed().as_secs_f64(),
             path.display()
         );
+        peak_after("tessellate");
     }
     let faces = mesh.num_faces();
     let settings = match (fitted.scheme, scheme.uses_curves()) {
@@ -281,6 +293,18 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         t_fit,
         faces as f64 / t_fit.max(1e-12),
         t_g1
+    );
+    say!(
+        "  peak memory: {}",
+        peaks
+            .iter()
+            .map(|(stage, b)| format!(
+                "{stage} {:.0} MB ({:.0} bytes/triangle)",
+                *b as f64 / 1e6,
+                *b as f64 / faces.max(1) as f64
+            ))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     let departures = [
         (usize::from(repaired), "repaired input"),

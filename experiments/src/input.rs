@@ -56,25 +56,34 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         || !surface::DATASET_NAMES.contains(&args.data.as_str()) && path.extension().is_some()
     {
         let t = std::time::Instant::now();
-        let raw = meshio::read_file(path).map_err(ExperimentError::MeshIo)?;
+        let mut raw = meshio::read_file(path).map_err(ExperimentError::MeshIo)?;
         let t_read = t.elapsed().as_secs_f64();
         let choice =
             EstimateChoice::parse(&args.estimate).map_err(|source| ExperimentError::Estimate {
                 value: args.estimate.clone(),
                 source,
             })?;
-        let prepared = estimate::prepare(&raw, choice, args.replace_normals).map_err(|source| {
-            ExperimentError::Prepare {
+        let peak_read = crate::limits::peak_resident_bytes();
+        let mut notes: Vec<String> = std::mem::take(&mut raw.notes);
+        // The raw mesh is handed over and freed once repaired: a large file is not held twice.
+        let prepared = estimate::prepare_owned(raw, choice, args.replace_normals).map_err(
+            |source| ExperimentError::Prepare {
                 path: path.to_path_buf(),
                 source,
-            }
-        })?;
-        let mut notes: Vec<String> = raw.notes.clone();
+            },
+        )?;
         notes.extend(prepared.summary_lines());
         notes.push(format!(
             "time: read {:.3} s, repair {:.3} s, estimation {:.3} s",
             t_read, prepared.repair_time_seconds, prepared.estimate_time_seconds
         ));
+        if let (Some(a), Some(b)) = (peak_read, crate::limits::peak_resident_bytes()) {
+            notes.push(format!(
+                "peak memory: read {:.0} MB, repair and estimation {:.0} MB",
+                a as f64 / 1e6,
+                b as f64 / 1e6
+            ));
+        }
         return Ok(Loaded {
             mesh: prepared.mesh,
             frame: prepared.frame,
