@@ -66,12 +66,13 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         let peak_read = crate::limits::peak_resident_bytes();
         let mut notes: Vec<String> = std::mem::take(&mut raw.notes);
         // The raw mesh is handed over and freed once repaired: a large file is not held twice.
-        let prepared = estimate::prepare_owned(raw, choice, args.replace_normals).map_err(
-            |source| ExperimentError::Prepare {
-                path: path.to_path_buf(),
-                source,
-            },
-        )?;
+        let prepared =
+            estimate::prepare_owned(raw, choice, args.replace_normals).map_err(|source| {
+                ExperimentError::Prepare {
+                    path: path.to_path_buf(),
+                    source,
+                }
+            })?;
         notes.extend(prepared.summary_lines());
         notes.push(format!(
             "time: read {:.3} s, repair {:.3} s, estimation {:.3} s",
