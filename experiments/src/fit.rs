@@ -111,12 +111,19 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t_read = t0.elapsed().as_secs_f64();
     // Peak resident memory after each stage (where the system says), for the summary.
     let mut peaks: Vec<(&str, u64)> = Vec::new();
+    if let Some(b) = loaded.peak_after_read {
+        peaks.push(("read", b));
+    }
     let mut peak_after = |stage| {
         if let Some(b) = limits::peak_resident_bytes() {
             peaks.push((stage, b));
         }
     };
-    peak_after("read");
+    peak_after(if loaded.peak_after_read.is_some() {
+        "repair and estimation"
+    } else {
+        "data set"
+    });
     let options = args.fit.curve.method_options();
     let method = method_by_name(&args.fit.curves, &options).map_err(ExperimentError::from)?;
     let params = InteriorParameters {

@@ -45,6 +45,9 @@ pub struct Loaded {
     pub face_source: Option<Vec<usize>>,
     /// For each mesh vertex, the file's vertex it came from (`None` for a data set).
     pub vertex_source: Option<Vec<usize>>,
+    /// The process's peak resident memory once the file was read, before the repair (`None`
+    /// for a data set, or where the system does not say), bytes.
+    pub peak_after_read: Option<u64>,
 }
 
 /// Loads `--data`: an existing file is read as a mesh; otherwise the name is a data set.
@@ -78,13 +81,7 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
             "time: read {:.3} s, repair {:.3} s, estimation {:.3} s",
             t_read, prepared.repair_time_seconds, prepared.estimate_time_seconds
         ));
-        if let (Some(a), Some(b)) = (peak_read, crate::limits::peak_resident_bytes()) {
-            notes.push(format!(
-                "peak memory: read {:.0} MB, repair and estimation {:.0} MB",
-                a as f64 / 1e6,
-                b as f64 / 1e6
-            ));
-        }
+
         return Ok(Loaded {
             mesh: prepared.mesh,
             frame: prepared.frame,
@@ -92,6 +89,7 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
             repairs: Some(prepared.report),
             face_source: Some(prepared.face_source),
             vertex_source: Some(prepared.vertex_source),
+            peak_after_read: peak_read,
         });
     }
     let data = surface::dataset_by_name(&args.data, args.resolution).map_err(|source| {
@@ -110,5 +108,6 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         repairs: None,
         face_source: None,
         vertex_source: None,
+        peak_after_read: None,
     })
 }
