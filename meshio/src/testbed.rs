@@ -42,7 +42,6 @@
 //! `f0…` when absent; they must be identifiers, unique, and not `mesh`. Numbers are written in
 //! Rust's shortest round-trip form, so reading back gives identical values.
 
-use std::collections::hash_map::Entry;
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 
@@ -354,9 +353,19 @@ struct Point<'a> {
     name: &'a [u8],
     line: usize,
     pos: [f64; 3],
-    norm: Option<Vector3<f64>>,
-    shape: Option<Matrix3<f64>>,
+    /// Whether the point has `norm` (the normals of the points that have one are in a list
+    /// of their own, in point order: a point costs no room for what it lacks).
+    norm: bool,
+    /// Whether the point has `shape` (likewise).
+    shape: bool,
     fields: Vec<(String, Vec<f64>)>,
+}
+
+/// The normals and shape tensors of the points that have them, in point order.
+#[derive(Default)]
+struct Given {
+    normals: Vec<Vector3<f64>>,
+    shapes: Vec<Matrix3<f64>>,
 }
 
 fn parse_point<'a>(
@@ -364,6 +373,7 @@ fn parse_point<'a>(
     name: &'a [u8],
     line: usize,
     v: &mut Vec<f64>,
+    given: &mut Given,
 ) -> Result<Point<'a>, ReadError> {
     p.punct(b'(', "`(`")?;
     let (head, hl) = p.ident("`Point`")?;
@@ -440,12 +450,18 @@ fn parse_point<'a>(
         p.punct_or(b')', || format!("`)` to close field `{}`", text(key)))?;
     }
     let pos = pos.ok_or_else(|| err(line, format!("point `{}` has no `pos` field", text(name))))?;
+    if let Some(n) = norm {
+        given.normals.push(n);
+    }
+    if let Some(s) = shape {
+        given.shapes.push(s);
+    }
     Ok(Point {
         name,
         line,
         pos,
-        norm,
-        shape,
+        norm: norm.is_some(),
+        shape: shape.is_some(),
         fields,
     })
 }
@@ -455,8 +471,8 @@ fn parse_point<'a>(
 enum Def {
     /// Point number `i`.
     Point(usize),
-    /// Face number `i`: its corners are `corners[start..start + len]`.
-    Face { start: usize, len: usize },
+    /// Face statement number `i`.
+    Face(usize),
     /// A mesh field.
     Field,
 }
@@ -522,38 +538,46 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
     let mut points: Vec<Point<'_>> = Vec::new();
     // Every defined name (but `mesh`): what it is and its line.
     let mut defined: Names<'_> = HashMap::with_hasher(NameHash(seed));
-    let mut corners: Vec<(&[u8], usize)> = Vec::new();
+    // Face corners as point indices, resolved as the face is read when the name is a point's
+    // own number (`v17`), [`UNRESOLVED`] otherwise, with the name kept in `deferred`.
+    let mut corners: Vec<usize> = Vec::new();
+    let mut deferred: Vec<(usize, NameAt<'_>)> = Vec::new();
+    let mut corner_names: Vec<NameAt<'_>> = Vec::new();
     let mut n_faces = 0usize;
     let mut mesh_fields: BTreeMap<String, Vec<f64>> = BTreeMap::new();
     let mut mesh_stmt: Option<(usize, Vec<NameAt<'_>>)> = None;
     let mut scratch: Vec<f64> = Vec::new();
     // A point and a face named `mesh` (not in `defined`, as `mesh` may be redefined).
-    let mut mesh_named: (Option<usize>, Option<(usize, usize)>) = (None, None);
+    let mut mesh_named: (Option<usize>, Option<usize>) = (None, None);
+    let mut face_defs: Vec<FaceDef<'_>> = Vec::new();
+    let mut given = Given::default();
     while p.tok != Tok::Eof {
         let (name, line) = p.ident("a name at the start of a statement")?;
         p.punct_or(b'=', || format!("`=` after `{}`", text(name)))?;
-        // One lookup per statement: the slot is taken now and filled when the statement is
-        // parsed (an error drops everything anyway).
-        let mut slot = None;
         if name != b"mesh" {
-            match defined.entry(name) {
-                Entry::Occupied(e) => {
-                    return Err(err(
-                        line,
-                        format!("`{}` is already defined (line {})", text(name), e.get().1),
-                    ));
-                }
-                Entry::Vacant(v) => slot = Some(v),
+            if let Some(first) = names_so_far(&points, &face_defs, &defined, name) {
+                return Err(err(
+                    line,
+                    format!("`{}` is already defined (line {first})", text(name)),
+                ));
             }
         }
+        // Names that end in their own statement's number (`v17` for point 17, `f3` for face 3,
+        // as writers number them) are found by that number and stay out of the map: a million
+        // points cost no hashing and no scattered lookups.
+        let index = trailing_index(name);
         let mut define = |def: Def| {
-            if let Some(v) = slot.take() {
-                v.insert((def, line));
+            let own_number = match def {
+                Def::Point(i) | Def::Face(i) => index == Some(i),
+                Def::Field => false,
+            };
+            if !own_number {
+                defined.insert(name, (def, line));
             }
         };
         match p.tok {
             Tok::Punct(b'(') => {
-                let point = parse_point(&mut p, name, line, &mut scratch)?;
+                let point = parse_point(&mut p, name, line, &mut scratch, &mut given)?;
                 if name == b"mesh" {
                     // `mesh` is not a reserved name for a point (the last one counts).
                     mesh_named.0 = Some(points.len());
@@ -566,7 +590,19 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                 p.bump()?;
                 if matches!(p.tok, Tok::Ident(_)) {
                     let start = corners.len();
-                    p.name_list(b']', "vertex", &mut corners)?;
+                    corner_names.clear();
+                    p.name_list(b']', "vertex", &mut corner_names)?;
+                    for &(vname, vline) in &corner_names {
+                        match trailing_index(vname) {
+                            Some(i) if points.get(i).is_some_and(|pt| pt.name == vname) => {
+                                corners.push(i);
+                            }
+                            _ => {
+                                deferred.push((corners.len(), (vname, vline)));
+                                corners.push(UNRESOLVED);
+                            }
+                        }
+                    }
                     let len = corners.len() - start;
                     if len < 3 {
                         return Err(err(
@@ -574,16 +610,23 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                             format!("face `{}` has {len} corners, at least 3 needed", text(name)),
                         ));
                     }
+                    let k = face_defs.len();
                     if name == b"mesh" {
                         // Nor for a face (the last one counts).
                         if mesh_named.1.is_none() {
                             n_faces += 1;
                         }
-                        mesh_named.1 = Some((start, len));
+                        mesh_named.1 = Some(k);
                     } else {
-                        define(Def::Face { start, len });
+                        define(Def::Face(k));
                         n_faces += 1;
                     }
+                    face_defs.push(FaceDef {
+                        name,
+                        line,
+                        start,
+                        len,
+                    });
                 } else {
                     // A mesh field: re-read the array from its first element.
                     let mut v = Vec::new();
@@ -647,21 +690,101 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
     };
     let names = Lookup {
         defined: &defined,
+        points: &points,
+        faces: &face_defs,
         mesh_named,
     };
-    assemble(points, &names, &corners, n_faces, mesh_faces, mesh_fields)
+    let corners = Corners {
+        index: &corners,
+        deferred: &deferred,
+    };
+    assemble(
+        &points,
+        given,
+        &names,
+        &corners,
+        n_faces,
+        mesh_faces,
+        mesh_fields,
+    )
+}
+
+/// A face corner whose point is found only once the whole file is read.
+const UNRESOLVED: usize = usize::MAX;
+
+/// The corners of every face statement.
+struct Corners<'m, 'a> {
+    /// Point index per corner, or [`UNRESOLVED`].
+    index: &'m [usize],
+    /// The unresolved corners' positions in `index` (increasing), names and lines.
+    deferred: &'m [(usize, NameAt<'a>)],
+}
+
+/// A face statement: its name, line and corners (`corners[start..start + len]`).
+struct FaceDef<'a> {
+    name: &'a [u8],
+    line: usize,
+    start: usize,
+    len: usize,
+}
+
+/// The number a name ends in (`v17` → 17; `v017`, `v` and `17` end in none): a name that is
+/// its statement's own number is found by it ([`read_testbed`]).
+fn trailing_index(name: &[u8]) -> Option<usize> {
+    let digits = name.iter().rev().take_while(|c| c.is_ascii_digit()).count();
+    let (prefix, number) = name.split_at(name.len() - digits);
+    if prefix.is_empty() || number.is_empty() || number.len() > 18 {
+        return None;
+    }
+    if number.len() > 1 && number[0] == b'0' {
+        return None;
+    }
+    Some(
+        number
+            .iter()
+            .fold(0usize, |n, d| n * 10 + usize::from(d - b'0')),
+    )
+}
+
+/// The line of the definition of `name` so far, if any (points and faces by their own number,
+/// everything else by the map).
+fn names_so_far(
+    points: &[Point<'_>],
+    faces: &[FaceDef<'_>],
+    defined: &Names<'_>,
+    name: &[u8],
+) -> Option<usize> {
+    if let Some(i) = trailing_index(name) {
+        if let Some(pt) = points.get(i).filter(|pt| pt.name == name) {
+            return Some(pt.line);
+        }
+        if let Some(f) = faces.get(i).filter(|f| f.name == name) {
+            return Some(f.line);
+        }
+    }
+    if defined.is_empty() {
+        return None;
+    }
+    defined.get(name).map(|(_, line)| *line)
 }
 
 /// Name resolution for [`assemble`].
 struct Lookup<'m, 'a> {
     defined: &'m Names<'a>,
-    mesh_named: (Option<usize>, Option<(usize, usize)>),
+    points: &'m [Point<'a>],
+    faces: &'m [FaceDef<'a>],
+    mesh_named: (Option<usize>, Option<usize>),
 }
 
 impl Lookup<'_, '_> {
     fn point(&self, name: &[u8]) -> Option<usize> {
         if name == b"mesh" {
             return self.mesh_named.0;
+        }
+        if let Some(i) = trailing_index(name) {
+            if self.points.get(i).is_some_and(|pt| pt.name == name) {
+                return Some(i);
+            }
         }
         match self.defined.get(name) {
             Some((Def::Point(i), _)) => Some(*i),
@@ -671,20 +794,26 @@ impl Lookup<'_, '_> {
 
     /// A face's corner range.
     fn face(&self, name: &[u8]) -> Option<(usize, usize)> {
-        if name == b"mesh" {
-            return self.mesh_named.1;
-        }
-        match self.defined.get(name) {
-            Some((Def::Face { start, len }, _)) => Some((*start, *len)),
-            _ => None,
-        }
+        let k = if name == b"mesh" {
+            self.mesh_named.1?
+        } else {
+            match trailing_index(name) {
+                Some(i) if self.faces.get(i).is_some_and(|f| f.name == name) => i,
+                _ => match self.defined.get(name) {
+                    Some((Def::Face(k), _)) => *k,
+                    _ => return None,
+                },
+            }
+        };
+        self.faces.get(k).map(|f| (f.start, f.len))
     }
 }
 
 fn assemble(
-    points: Vec<Point<'_>>,
+    points: &[Point<'_>],
+    given: Given,
     names: &Lookup<'_, '_>,
-    corners: &[(&[u8], usize)],
+    corners: &Corners<'_, '_>,
     n_faces: usize,
     mesh_faces: Vec<(&[u8], usize)>,
     mesh_fields: BTreeMap<String, Vec<f64>>,
@@ -694,7 +823,7 @@ fn assemble(
     let mut face_names = Vec::with_capacity(mesh_faces.len());
     let mut face_corners = Vec::new();
     // Faces listed, flagged at the start of their corners (each face's range is its own).
-    let mut listed = vec![false; corners.len()];
+    let mut listed = vec![false; corners.index.len()];
     let mut listed_count = 0usize;
     for &(fname, fline) in &mesh_faces {
         let Some((start, len)) = names.face(fname) else {
@@ -709,16 +838,24 @@ fn assemble(
             ));
         };
         face_corners.clear();
-        for &(vname, vline) in corners.get(start..start + len).unwrap_or(&[]) {
-            let Some(i) = names.point(vname) else {
-                return Err(err(
-                    vline,
-                    format!(
-                        "face `{}` refers to unknown vertex `{}`",
-                        text(fname),
-                        text(vname)
-                    ),
-                ));
+        for q in start..start + len {
+            let i = match corners.index.get(q) {
+                Some(&i) if i != UNRESOLVED => i,
+                _ => {
+                    let at = corners.deferred.binary_search_by_key(&q, |d| d.0);
+                    let (vname, vline) = at.map_or((&b"?"[..], fline), |k| corners.deferred[k].1);
+                    let Some(i) = names.point(vname) else {
+                        return Err(err(
+                            vline,
+                            format!(
+                                "face `{}` refers to unknown vertex `{}`",
+                                text(fname),
+                                text(vname)
+                            ),
+                        ));
+                    };
+                    i
+                }
             };
             face_corners.push(i);
         }
@@ -752,10 +889,10 @@ fn assemble(
             ),
         ))
     };
-    let has_norm = all_or_none("norm", &|pt| pt.norm.is_some())?;
-    let has_shape = all_or_none("shape", &|pt| pt.shape.is_some())?;
+    let has_norm = all_or_none("norm", &|pt| pt.norm)?;
+    let has_shape = all_or_none("shape", &|pt| pt.shape)?;
     let mut keys: Vec<String> = Vec::new();
-    for pt in &points {
+    for pt in points {
         for (k, _) in &pt.fields {
             if !keys.contains(k) {
                 keys.push(k.clone());
@@ -774,7 +911,7 @@ fn assemble(
             })
             .unwrap_or(0);
         let mut cols: Vec<Vec<f64>> = vec![Vec::with_capacity(n); len];
-        for pt in &points {
+        for pt in points {
             let Some((_, v)) = pt.fields.iter().find(|(k, _)| k == key) else {
                 return Err(err(
                     pt.line,
@@ -808,18 +945,9 @@ fn assemble(
     }
     let mut mesh = RawMesh {
         positions: points.iter().map(|pt| Point3::from(pt.pos)).collect(),
-        normals: has_norm.then(|| {
-            points
-                .iter()
-                .map(|pt| pt.norm.unwrap_or_else(Vector3::zeros))
-                .collect()
-        }),
-        shapes: has_shape.then(|| {
-            points
-                .iter()
-                .map(|pt| pt.shape.unwrap_or_else(Matrix3::zeros))
-                .collect()
-        }),
+        // Every point has one (or none does): the lists are one per point, in point order.
+        normals: has_norm.then_some(given.normals),
+        shapes: has_shape.then_some(given.shapes),
         properties,
         polygons: polys,
         face_names: Some(face_names),
