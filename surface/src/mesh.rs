@@ -32,6 +32,7 @@ use std::collections::BTreeMap;
 
 use curves::VertexData;
 use nalgebra::{Matrix3, Point3, Vector3};
+use rayon::prelude::*;
 
 /// A face whose doubled area is below this fraction of the product of its two longest edges
 /// (the sine of its largest angle, in effect) is degenerate: below `1e-12` a face normal has lost
@@ -307,8 +308,14 @@ impl Mesh {
         allow_degenerate: bool,
     ) -> Result<Self, MeshError> {
         let count = vertices.len();
-        for (i, v) in vertices.iter().enumerate() {
-            check_vertex(i, v)?;
+        // The first bad vertex, in parallel (`find_first`: the lowest index, as a loop finds).
+        if let Some(Err(e)) = vertices
+            .par_iter()
+            .enumerate()
+            .map(|(i, v)| check_vertex(i, v))
+            .find_first(Result::is_err)
+        {
+            return Err(e);
         }
         for (f, face) in faces.iter().enumerate() {
             for (corner, &vertex) in face.iter().enumerate() {
@@ -438,10 +445,12 @@ impl Mesh {
             outgoing,
             extra: ExtraFields::new(),
         };
-        for (v, &n) in incident.iter().enumerate() {
-            if mesh.fan_len(v) != n {
-                return Err(MeshError::NonManifoldVertex { vertex: v });
-            }
+        // Every vertex's faces form one fan (in parallel; the lowest bad vertex is named).
+        if let Some(v) = (0..count)
+            .into_par_iter()
+            .find_first(|&v| mesh.fan_len(v) != incident[v])
+        {
+            return Err(MeshError::NonManifoldVertex { vertex: v });
         }
         Ok(mesh)
     }

@@ -37,6 +37,7 @@
 
 use meshio::RawMesh;
 use nalgebra::{Matrix3, Vector3};
+use rayon::prelude::*;
 
 use crate::mesh::{ExtraFields, Mesh, MeshError, Vertex};
 
@@ -672,6 +673,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     }
     mesh.extra = raw.mesh_fields.clone();
     report.degenerate_faces = (0..mesh.num_faces())
+        .into_par_iter()
         .filter(|&f| mesh.is_degenerate_face(f))
         .collect();
     report.boundary_edges = mesh.edges().iter().filter(|e| e.is_boundary()).count();
