@@ -129,6 +129,7 @@ pub struct Workspace {
     pub local: Vec<[f64; 3]>,
     a: Vec<f64>,
     b: Vec<f64>,
+    marks: crate::topology::RingMarks,
 }
 
 /// Fits `z ≈ Σ c_ij x^i y^j` (total degree `1..=degree`, or `0..=degree` with `constant`) to the
@@ -168,13 +169,26 @@ pub fn fit_height(
     let mut gram = [[0.0; MAX_COEFFS]; MAX_COEFFS];
     let mut rhs = [0.0; MAX_COEFFS];
     let mut r = [0.0; MAX_COEFFS];
-    for p in ws.local.iter() {
-        row(p, &mut r);
-        for i in 0..n {
-            let ri = r[i];
-            rhs[i] += ri * p[2];
-            for (g, rj) in gram[i][i..n].iter_mut().zip(&r[i..n]) {
-                *g += ri * rj;
+    // The upper triangle of `AᵀA` and `Aᵀz`, point by point in order (each entry is its own
+    // sequential sum, so the sizes the jets use are unrolled at compile time with the same
+    // results to the bit).
+    match n {
+        15 => accumulate_normal_equations::<15, _>(&ws.local, &row, &mut gram, &mut rhs),
+        14 => accumulate_normal_equations::<14, _>(&ws.local, &row, &mut gram, &mut rhs),
+        10 => accumulate_normal_equations::<10, _>(&ws.local, &row, &mut gram, &mut rhs),
+        9 => accumulate_normal_equations::<9, _>(&ws.local, &row, &mut gram, &mut rhs),
+        6 => accumulate_normal_equations::<6, _>(&ws.local, &row, &mut gram, &mut rhs),
+        5 => accumulate_normal_equations::<5, _>(&ws.local, &row, &mut gram, &mut rhs),
+        _ => {
+            for p in ws.local.iter() {
+                row(p, &mut r);
+                for i in 0..n {
+                    let ri = r[i];
+                    rhs[i] += ri * p[2];
+                    for (g, rj) in gram[i][i..n].iter_mut().zip(&r[i..n]) {
+                        *g += ri * rj;
+                    }
+                }
             }
         }
     }
@@ -204,6 +218,28 @@ pub fn fit_height(
         grad: [c(0), c(1)],
         hess: [2.0 * c(2), c(3), 2.0 * c(4)],
     })
+}
+
+/// Adds `rowᵀ row` (upper triangle) and `row · z` of every point to `gram` and `rhs`, for `N`
+/// coefficients known at compile time.
+#[allow(clippy::needless_range_loop)] // triangular index arithmetic reads clearer with indices
+fn accumulate_normal_equations<const N: usize, F: Fn(&[f64; 3], &mut [f64; MAX_COEFFS])>(
+    local: &[[f64; 3]],
+    row: &F,
+    gram: &mut [[f64; MAX_COEFFS]; MAX_COEFFS],
+    rhs: &mut [f64; MAX_COEFFS],
+) {
+    let mut r = [0.0; MAX_COEFFS];
+    for p in local {
+        row(p, &mut r);
+        for i in 0..N.min(MAX_COEFFS) {
+            let ri = r[i];
+            rhs[i] += ri * p[2];
+            for j in i..N.min(MAX_COEFFS) {
+                gram[i][j] += ri * r[j];
+            }
+        }
+    }
 }
 
 /// `Σ xᵢ yᵢ` over the shorter of the two slices, with four independent accumulators (a serial
@@ -459,12 +495,13 @@ pub fn fit_vertex(
         return Err(FitFailure::TooFewPoints);
     };
     let rule = spec.rule;
-    topo.rings_into(
+    topo.rings_into_marked(
         v,
         rule.min_points,
         rule.max_rings,
         rule.max_points,
         &mut ws.ring,
+        &mut ws.marks,
     );
     let FitSpec {
         degree, constant, ..

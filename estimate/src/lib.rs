@@ -47,10 +47,10 @@ pub mod topology;
 pub use hybrid::{Hybrid, HYBRID};
 pub use jet::{Jet, JET, JET2, JET3, JET4};
 pub use normals::{vertex_normals, NormalWeighting, Normals};
-pub use prepare::{prepare, EstimateChoice, PrepareError, Prepared};
+pub use prepare::{prepare, prepare_owned, EstimateChoice, PrepareError, Prepared};
 pub use quadric::{Quadric, QUADRIC};
 pub use rusinkiewicz::{Rusinkiewicz, RUSINKIEWICZ};
-pub use topology::Topology;
+pub use topology::{RingMarks, Topology};
 
 /// A way to estimate per-vertex normals and shape tensors.
 pub trait Estimator: Send + Sync {

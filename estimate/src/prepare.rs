@@ -125,9 +125,29 @@ pub fn prepare(
     choice: EstimateChoice,
     replace_normals: bool,
 ) -> Result<Prepared, PrepareError> {
+    prepare_owned(raw.clone(), choice, replace_normals)
+}
+
+/// [`prepare`], taking the raw mesh: it is moved into the working frame in place and freed as
+/// soon as the repaired mesh is built, so a large file is not held twice (the `fit` and
+/// `convert` commands read a file only to prepare it).
+pub fn prepare_owned(
+    raw: RawMesh,
+    choice: EstimateChoice,
+    replace_normals: bool,
+) -> Result<Prepared, PrepareError> {
     let t0 = std::time::Instant::now();
     let frame = surface::Frame::of_points(&raw.positions)?;
-    let work = frame.raw_to_work(raw);
+    // What `Frame::raw_to_work` does, in place.
+    let mut work = raw;
+    for p in &mut work.positions {
+        *p = frame.to_work(p);
+    }
+    if let Some(shapes) = &mut work.shapes {
+        for s in shapes {
+            *s *= frame.scale;
+        }
+    }
     let Repaired {
         mut mesh,
         normals_given,

@@ -109,6 +109,21 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let face_source = loaded.face_source;
     let vertex_source = loaded.vertex_source;
     let t_read = t0.elapsed().as_secs_f64();
+    // Peak resident memory after each stage (where the system says), for the summary.
+    let mut peaks: Vec<(&str, u64)> = Vec::new();
+    if let Some(b) = loaded.peak_after_read {
+        peaks.push(("read", b));
+    }
+    let mut peak_after = |stage| {
+        if let Some(b) = limits::peak_resident_bytes() {
+            peaks.push((stage, b));
+        }
+    };
+    peak_after(if loaded.peak_after_read.is_some() {
+        "repair and estimation"
+    } else {
+        "data set"
+    });
     let options = args.fit.curve.method_options();
     let method = method_by_name(&args.fit.curves, &options).map_err(ExperimentError::from)?;
     let params = InteriorParameters {
@@ -130,6 +145,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     )
     .map_err(fit_error)?;
     let t_fit = t1.elapsed().as_secs_f64();
+    peak_after("fit");
     if args.fit.interior.choice != InteriorChoice::Default {
         say!(
             "  interior {}: {} faces, {} converged, {} kept at defaults, energy {:.4e} → {:.4e}",
@@ -144,6 +160,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let t2 = Instant::now();
     let g1 = measure_g1(&mesh, &fitted, 9);
     let t_g1 = t2.elapsed().as_secs_f64();
+    peak_after("G1");
 
     if let Some(out) = &args.out {
         crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
@@ -162,6 +179,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             out.display(),
             t_out.elapsed().as_secs_f64()
         );
+        peak_after("write");
     }
     if let Some(path) = &args.mesh_out {
         check_memory(
@@ -198,6 +216,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             tessellate_time,
             path.display()
         );
+        peak_after("tessellate");
     }
     let faces = mesh.num_faces();
     let settings = match (fitted.scheme, scheme.uses_curves()) {
@@ -283,6 +302,18 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         t_fit,
         faces as f64 / t_fit.max(1e-12),
         t_g1
+    );
+    say!(
+        "  peak memory: {}",
+        peaks
+            .iter()
+            .map(|(stage, b)| format!(
+                "{stage} {:.0} MB ({:.0} bytes/triangle)",
+                *b as f64 / 1e6,
+                *b as f64 / faces.max(1) as f64
+            ))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     let departures = [
         (usize::from(repaired), "repaired input"),

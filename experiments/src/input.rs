@@ -45,6 +45,9 @@ pub struct Loaded {
     pub face_source: Option<Vec<usize>>,
     /// For each mesh vertex, the file's vertex it came from (`None` for a data set).
     pub vertex_source: Option<Vec<usize>>,
+    /// The process's peak resident memory once the file was read, before the repair (`None`
+    /// for a data set, or where the system does not say), bytes.
+    pub peak_after_read: Option<u64>,
 }
 
 /// Loads `--data`: an existing file is read as a mesh; otherwise the name is a data set.
@@ -56,25 +59,29 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         || !surface::DATASET_NAMES.contains(&args.data.as_str()) && path.extension().is_some()
     {
         let t = std::time::Instant::now();
-        let raw = meshio::read_file(path).map_err(ExperimentError::MeshIo)?;
+        let mut raw = meshio::read_file(path).map_err(ExperimentError::MeshIo)?;
         let t_read = t.elapsed().as_secs_f64();
         let choice =
             EstimateChoice::parse(&args.estimate).map_err(|source| ExperimentError::Estimate {
                 value: args.estimate.clone(),
                 source,
             })?;
-        let prepared = estimate::prepare(&raw, choice, args.replace_normals).map_err(|source| {
-            ExperimentError::Prepare {
-                path: path.to_path_buf(),
-                source,
-            }
-        })?;
-        let mut notes: Vec<String> = raw.notes.clone();
+        let peak_read = crate::limits::peak_resident_bytes();
+        let mut notes: Vec<String> = std::mem::take(&mut raw.notes);
+        // The raw mesh is handed over and freed once repaired: a large file is not held twice.
+        let prepared =
+            estimate::prepare_owned(raw, choice, args.replace_normals).map_err(|source| {
+                ExperimentError::Prepare {
+                    path: path.to_path_buf(),
+                    source,
+                }
+            })?;
         notes.extend(prepared.summary_lines());
         notes.push(format!(
             "time: read {:.3} s, repair {:.3} s, estimation {:.3} s",
             t_read, prepared.repair_time_seconds, prepared.estimate_time_seconds
         ));
+
         return Ok(Loaded {
             mesh: prepared.mesh,
             frame: prepared.frame,
@@ -82,6 +89,7 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
             repairs: Some(prepared.report),
             face_source: Some(prepared.face_source),
             vertex_source: Some(prepared.vertex_source),
+            peak_after_read: peak_read,
         });
     }
     let data = surface::dataset_by_name(&args.data, args.resolution).map_err(|source| {
@@ -100,5 +108,6 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
         repairs: None,
         face_source: None,
         vertex_source: None,
+        peak_after_read: None,
     })
 }

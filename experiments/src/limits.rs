@@ -33,6 +33,15 @@ pub const FIT_BYTES_PER_FACE: usize = 2000;
 /// The share of the available memory a run may plan to use.
 const MEMORY_SHARE: f64 = 0.8;
 
+/// The process's peak resident memory so far, bytes (`VmHWM` of `/proc/self/status`; `None`
+/// where the system does not say).
+pub fn peak_resident_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
 /// Memory assumed available where the system does not say (`/proc/meminfo` absent).
 const FALLBACK_AVAILABLE: u64 = 8 << 30;
 

@@ -26,6 +26,18 @@ fn bench(c: &mut Criterion) {
     g.bench_function("ply_binary_write", |b| {
         b.iter(|| ply.write(&mesh, &opts).expect("write"))
     });
+    // The testbed format against OBJ on the same mesh (issue 15: within 2× in time and memory).
+    let obj = format_by_name("obj").expect("obj");
+    let testbed = format_by_name("testbed").expect("testbed");
+    let obj_bytes = obj.write(&mesh, &opts).expect("write obj");
+    let testbed_bytes = testbed.write(&mesh, &opts).expect("write testbed");
+    g.throughput(Throughput::Elements(mesh.polygons.len() as u64));
+    g.bench_function("obj_read", |b| {
+        b.iter(|| obj.read(&obj_bytes).expect("read"))
+    });
+    g.bench_function("testbed_read", |b| {
+        b.iter(|| testbed.read(&testbed_bytes).expect("read"))
+    });
     g.throughput(Throughput::Bytes(glb_bytes.len() as u64));
     g.bench_function("glb_write", |b| {
         b.iter(|| glb.write(&mesh, &opts).expect("write"))

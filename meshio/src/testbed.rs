@@ -238,11 +238,16 @@ impl<'a> Parser<'a> {
     }
 
     fn punct(&mut self, c: u8, expected: &str) -> Result<(), ReadError> {
+        self.punct_or(c, || expected.to_string())
+    }
+
+    /// [`Parser::punct`] with the message built only on failure (no allocation per token).
+    fn punct_or(&mut self, c: u8, expected: impl FnOnce() -> String) -> Result<(), ReadError> {
         if self.tok == Tok::Punct(c) {
             self.bump()?;
             Ok(())
         } else {
-            self.fail(expected)
+            self.fail(&expected())
         }
     }
 
@@ -254,19 +259,27 @@ impl<'a> Parser<'a> {
         Ok(hit)
     }
 
-    fn ident(&mut self, expected: &str) -> Result<(String, usize), ReadError> {
+    /// An identifier, borrowed from the input, and its line.
+    fn ident(&mut self, expected: &str) -> Result<(&'a [u8], usize), ReadError> {
+        self.ident_or(|| expected.to_string())
+    }
+
+    fn ident_or(
+        &mut self,
+        expected: impl FnOnce() -> String,
+    ) -> Result<(&'a [u8], usize), ReadError> {
         match self.tok {
             Tok::Ident(s) => {
-                let out = (String::from_utf8_lossy(s).into_owned(), self.line);
+                let out = (s, self.line);
                 self.bump()?;
                 Ok(out)
             }
-            _ => self.fail(expected),
+            _ => self.fail(&expected()),
         }
     }
 
     /// A number or a (nested) array of numbers, flattened into `out`.
-    fn numbers(&mut self, key: &str, out: &mut Vec<f64>, depth: usize) -> Result<(), ReadError> {
+    fn numbers(&mut self, key: &[u8], out: &mut Vec<f64>, depth: usize) -> Result<(), ReadError> {
         match self.tok {
             Tok::Num(x) => {
                 out.push(x);
@@ -277,7 +290,10 @@ impl<'a> Parser<'a> {
                 if depth >= MAX_NESTING_DEPTH {
                     return Err(err(
                         self.line,
-                        format!("arrays in `{key}` nested deeper than {MAX_NESTING_DEPTH}"),
+                        format!(
+                            "arrays in `{}` nested deeper than {MAX_NESTING_DEPTH}",
+                            text(key)
+                        ),
                     ));
                 }
                 self.bump()?;
@@ -289,51 +305,82 @@ impl<'a> Parser<'a> {
                     if self.eat(b']')? {
                         return Ok(());
                     }
-                    self.punct(b',', &format!("`,` or `]` in the array of `{key}`"))?;
+                    self.punct_or(b',', || {
+                        format!("`,` or `]` in the array of `{}`", text(key))
+                    })?;
                 }
             }
             Tok::Str => Err(err(
                 self.line,
-                format!("field `{key}` holds a string; only numeric fields are kept"),
+                format!(
+                    "field `{}` holds a string; only numeric fields are kept",
+                    text(key)
+                ),
             )),
-            _ => self.fail(&format!("a number or `[` for the value of `{key}`")),
+            _ => self.fail(&format!("a number or `[` for the value of `{}`", text(key))),
         }
     }
 
-    fn name_list(&mut self, close: u8, what: &str) -> Result<Vec<(String, usize)>, ReadError> {
-        let mut out = Vec::new();
+    /// A list of names up to `close`, appended to `out` (borrowed from the input, with lines).
+    fn name_list(
+        &mut self,
+        close: u8,
+        what: &str,
+        out: &mut Vec<(&'a [u8], usize)>,
+    ) -> Result<(), ReadError> {
         if self.eat(close)? {
-            return Ok(out);
+            return Ok(());
         }
         loop {
-            out.push(self.ident(&format!("a {what} name"))?);
+            out.push(self.ident_or(|| format!("a {what} name"))?);
             if self.eat(close)? {
-                return Ok(out);
+                return Ok(());
             }
-            self.punct(
-                b',',
-                &format!("`,` or `{}` in the list of {what}s", char::from(close)),
-            )?;
+            self.punct_or(b',', || {
+                format!("`,` or `{}` in the list of {what}s", char::from(close))
+            })?;
         }
     }
 }
 
-struct Point {
-    name: String,
+/// A name or key as text for messages and outputs (as the names were always read: invalid
+/// UTF-8 replaced).
+fn text(s: &[u8]) -> std::borrow::Cow<'_, str> {
+    String::from_utf8_lossy(s)
+}
+
+struct Point<'a> {
+    name: &'a [u8],
     line: usize,
     pos: [f64; 3],
-    norm: Option<Vector3<f64>>,
-    shape: Option<Matrix3<f64>>,
+    /// Whether the point has `norm` (the normals of the points that have one are in a list
+    /// of their own, in point order: a point costs no room for what it lacks).
+    norm: bool,
+    /// Whether the point has `shape` (likewise).
+    shape: bool,
     fields: Vec<(String, Vec<f64>)>,
 }
 
-fn parse_point(p: &mut Parser<'_>, name: String, line: usize) -> Result<Point, ReadError> {
+/// The normals and shape tensors of the points that have them, in point order.
+#[derive(Default)]
+struct Given {
+    normals: Vec<Vector3<f64>>,
+    shapes: Vec<Matrix3<f64>>,
+}
+
+fn parse_point<'a>(
+    p: &mut Parser<'a>,
+    name: &'a [u8],
+    line: usize,
+    v: &mut Vec<f64>,
+    given: &mut Given,
+) -> Result<Point<'a>, ReadError> {
     p.punct(b'(', "`(`")?;
     let (head, hl) = p.ident("`Point`")?;
-    if head != "Point" {
+    if head != b"Point" {
         return Err(err(
             hl,
-            format!("expected `Point` after `(`, found `{head}`"),
+            format!("expected `Point` after `(`, found `{}`", text(head)),
         ));
     }
     p.punct(b'.', "`.` after `Point`")?;
@@ -345,124 +392,272 @@ fn parse_point(p: &mut Parser<'_>, name: String, line: usize) -> Result<Point, R
         let fl = p.line;
         p.punct(b'(', "`(` to open a field or `)` to close the point")?;
         let (key, _) = p.ident("a field name")?;
-        p.punct(b'.', &format!("`.` after field name `{key}`"))?;
-        let mut v = Vec::new();
-        p.numbers(&key, &mut v, 0)?;
-        let dup = match key.as_str() {
-            "pos" | "norm" | "shape" => {
-                let want = if key == "shape" { 9 } else { 3 };
+        p.punct_or(b'.', || format!("`.` after field name `{}`", text(key)))?;
+        v.clear();
+        p.numbers(key, v, 0)?;
+        let dup = match key {
+            b"pos" | b"norm" | b"shape" => {
+                let want = if key == b"shape" { 9 } else { 3 };
                 if v.len() != want {
                     return Err(err(
                         fl,
                         format!(
-                            "`{key}` of `{name}` has {} numbers, expected {want}",
+                            "`{}` of `{}` has {} numbers, expected {want}",
+                            text(key),
+                            text(name),
                             v.len()
                         ),
                     ));
                 }
-                match key.as_str() {
-                    "pos" => pos.replace([v[0], v[1], v[2]]).is_some(),
-                    "norm" => {
+                match key {
+                    b"pos" => pos.replace([v[0], v[1], v[2]]).is_some(),
+                    b"norm" => {
                         let n = Vector3::new(v[0], v[1], v[2]);
                         let Some(unit) = n.try_normalize(0.0) else {
-                            return Err(err(fl, format!("point `{name}` has a zero normal")));
+                            return Err(err(
+                                fl,
+                                format!("point `{}` has a zero normal", text(name)),
+                            ));
                         };
                         norm.replace(unit).is_some()
                     }
                     _ => {
-                        let s = Matrix3::from_row_slice(&v);
+                        let s = Matrix3::from_row_slice(v);
                         let scale = s.amax().max(f64::MIN_POSITIVE);
                         if (s - s.transpose()).amax() > SHAPE_SYMMETRY_TOLERANCE * scale {
-                            return Err(err(fl, format!("`shape` of `{name}` is not symmetric")));
+                            return Err(err(
+                                fl,
+                                format!("`shape` of `{}` is not symmetric", text(name)),
+                            ));
                         }
                         shape.replace((s + s.transpose()) * 0.5).is_some()
                     }
                 }
             }
             _ => {
+                let key = text(key).into_owned();
                 let dup = fields.iter().any(|(k, _)| *k == key);
-                fields.push((key.clone(), v));
+                fields.push((key, v.clone()));
                 dup
             }
         };
         if dup {
-            return Err(err(fl, format!("field `{key}` of `{name}` is given twice")));
+            return Err(err(
+                fl,
+                format!("field `{}` of `{}` is given twice", text(key), text(name)),
+            ));
         }
-        p.punct(b')', &format!("`)` to close field `{key}`"))?;
+        p.punct_or(b')', || format!("`)` to close field `{}`", text(key)))?;
     }
-    let pos = pos.ok_or_else(|| err(line, format!("point `{name}` has no `pos` field")))?;
+    let pos = pos.ok_or_else(|| err(line, format!("point `{}` has no `pos` field", text(name))))?;
+    if let Some(n) = norm {
+        given.normals.push(n);
+    }
+    if let Some(s) = shape {
+        given.shapes.push(s);
+    }
     Ok(Point {
         name,
         line,
         pos,
-        norm,
-        shape,
+        norm: norm.is_some(),
+        shape: shape.is_some(),
         fields,
     })
 }
 
+/// What a name was defined as, and where.
+#[derive(Clone, Copy)]
+enum Def {
+    /// Point number `i`.
+    Point(usize),
+    /// Face statement number `i`.
+    Face(usize),
+    /// A mesh field.
+    Field,
+}
+
+/// A small fast hasher for the names of a file (FxHash's multiply–rotate, seeded per read so
+/// that collisions cannot be planted in a file): a million names hash in milliseconds.
+#[derive(Clone, Copy)]
+struct NameHasher(u64);
+
+impl std::hash::Hasher for NameHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        let mut chunks = bytes.chunks_exact(8);
+        for c in &mut chunks {
+            let mut w = [0u8; 8];
+            w.copy_from_slice(c);
+            self.add(u64::from_le_bytes(w));
+        }
+        let rest = chunks.remainder();
+        if !rest.is_empty() {
+            let mut w = [0u8; 8];
+            w[..rest.len()].copy_from_slice(rest);
+            self.add(u64::from_le_bytes(w) ^ 0xff);
+        }
+    }
+
+    fn write_usize(&mut self, n: usize) {
+        self.add(n as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        // The multiply leaves the low bits depending on the low input bits only (names that
+        // differ in their last characters would share buckets): fold the high bits down.
+        let x = self.0 ^ (self.0 >> 32);
+        x.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ (x >> 29)
+    }
+}
+
+impl NameHasher {
+    fn add(&mut self, w: u64) {
+        self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+#[derive(Clone, Copy)]
+struct NameHash(u64);
+
+impl std::hash::BuildHasher for NameHash {
+    type Hasher = NameHasher;
+    fn build_hasher(&self) -> NameHasher {
+        NameHasher(self.0)
+    }
+}
+
+type Names<'a> = HashMap<&'a [u8], (Def, usize), NameHash>;
+
+/// A name in the input and the line it is on.
+type NameAt<'a> = (&'a [u8], usize);
+
 fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
+    use std::hash::BuildHasher as _;
+    let seed = std::collections::hash_map::RandomState::new().hash_one(0x07e5_7bed_u64);
     let mut p = Parser::new(bytes)?;
-    let mut points: Vec<Point> = Vec::new();
-    let mut faces: HashMap<String, Vec<(String, usize)>> = HashMap::new();
-    let mut defined: HashMap<String, usize> = HashMap::new();
+    let mut points: Vec<Point<'_>> = Vec::new();
+    // Every defined name (but `mesh`): what it is and its line.
+    let mut defined: Names<'_> = HashMap::with_hasher(NameHash(seed));
+    // Face corners as point indices, resolved as the face is read when the name is a point's
+    // own number (`v17`), [`UNRESOLVED`] otherwise, with the name kept in `deferred`.
+    let mut corners: Vec<usize> = Vec::new();
+    let mut deferred: Vec<(usize, NameAt<'_>)> = Vec::new();
+    let mut corner_names: Vec<NameAt<'_>> = Vec::new();
+    let mut n_faces = 0usize;
     let mut mesh_fields: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-    let mut mesh_stmt: Option<(usize, Vec<(String, usize)>)> = None;
+    let mut mesh_stmt: Option<(usize, Vec<NameAt<'_>>)> = None;
+    let mut scratch: Vec<f64> = Vec::new();
+    // A point and a face named `mesh` (not in `defined`, as `mesh` may be redefined).
+    let mut mesh_named: (Option<usize>, Option<usize>) = (None, None);
+    let mut face_defs: Vec<FaceDef<'_>> = Vec::new();
+    let mut given = Given::default();
     while p.tok != Tok::Eof {
         let (name, line) = p.ident("a name at the start of a statement")?;
-        p.punct(b'=', &format!("`=` after `{name}`"))?;
-        if name != "mesh" {
-            if let Some(first) = defined.get(&name) {
+        p.punct_or(b'=', || format!("`=` after `{}`", text(name)))?;
+        if name != b"mesh" {
+            if let Some(first) = names_so_far(&points, &face_defs, &defined, name) {
                 return Err(err(
                     line,
-                    format!("`{name}` is already defined (line {first})"),
+                    format!("`{}` is already defined (line {first})", text(name)),
                 ));
             }
-            defined.insert(name.clone(), line);
         }
+        // Names that end in their own statement's number (`v17` for point 17, `f3` for face 3,
+        // as writers number them) are found by that number and stay out of the map: a million
+        // points cost no hashing and no scattered lookups.
+        let index = trailing_index(name);
+        let mut define = |def: Def| {
+            let own_number = match def {
+                Def::Point(i) | Def::Face(i) => index == Some(i),
+                Def::Field => false,
+            };
+            if !own_number {
+                defined.insert(name, (def, line));
+            }
+        };
         match p.tok {
             Tok::Punct(b'(') => {
-                let point = parse_point(&mut p, name, line)?;
+                let point = parse_point(&mut p, name, line, &mut scratch, &mut given)?;
+                if name == b"mesh" {
+                    // `mesh` is not a reserved name for a point (the last one counts).
+                    mesh_named.0 = Some(points.len());
+                } else {
+                    define(Def::Point(points.len()));
+                }
                 points.push(point);
             }
             Tok::Punct(b'[') => {
                 p.bump()?;
                 if matches!(p.tok, Tok::Ident(_)) {
-                    let names = p.name_list(b']', "vertex")?;
-                    if names.len() < 3 {
+                    let start = corners.len();
+                    corner_names.clear();
+                    p.name_list(b']', "vertex", &mut corner_names)?;
+                    for &(vname, vline) in &corner_names {
+                        match trailing_index(vname) {
+                            Some(i) if points.get(i).is_some_and(|pt| pt.name == vname) => {
+                                corners.push(i);
+                            }
+                            _ => {
+                                deferred.push((corners.len(), (vname, vline)));
+                                corners.push(UNRESOLVED);
+                            }
+                        }
+                    }
+                    let len = corners.len() - start;
+                    if len < 3 {
                         return Err(err(
                             line,
-                            format!(
-                                "face `{name}` has {} corners, at least 3 needed",
-                                names.len()
-                            ),
+                            format!("face `{}` has {len} corners, at least 3 needed", text(name)),
                         ));
                     }
-                    faces.insert(name, names);
+                    let k = face_defs.len();
+                    if name == b"mesh" {
+                        // Nor for a face (the last one counts).
+                        if mesh_named.1.is_none() {
+                            n_faces += 1;
+                        }
+                        mesh_named.1 = Some(k);
+                    } else {
+                        define(Def::Face(k));
+                        n_faces += 1;
+                    }
+                    face_defs.push(FaceDef {
+                        name,
+                        line,
+                        start,
+                        len,
+                    });
                 } else {
                     // A mesh field: re-read the array from its first element.
                     let mut v = Vec::new();
                     if !p.eat(b']')? {
                         loop {
-                            p.numbers(&name, &mut v, 1)?;
+                            p.numbers(name, &mut v, 1)?;
                             if p.eat(b']')? {
                                 break;
                             }
-                            p.punct(b',', &format!("`,` or `]` in the array of `{name}`"))?;
+                            p.punct_or(b',', || {
+                                format!("`,` or `]` in the array of `{}`", text(name))
+                            })?;
                         }
                     }
-                    mesh_fields.insert(name, v);
+                    define(Def::Field);
+                    mesh_fields.insert(text(name).into_owned(), v);
                 }
             }
             Tok::Num(x) => {
                 p.bump()?;
-                mesh_fields.insert(name, vec![x]);
+                define(Def::Field);
+                mesh_fields.insert(text(name).into_owned(), vec![x]);
             }
             Tok::Punct(b'{') => {
-                if name != "mesh" {
+                if name != b"mesh" {
                     return Err(err(
                         line,
-                        format!("a face list in braces must be `mesh = {{…}};`, found `{name}`"),
+                        format!(
+                            "a face list in braces must be `mesh = {{…}};`, found `{}`",
+                            text(name)
+                        ),
                     ));
                 }
                 if let Some((first, _)) = mesh_stmt {
@@ -472,11 +667,14 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                     ));
                 }
                 p.bump()?;
-                mesh_stmt = Some((line, p.name_list(b'}', "face")?));
+                let mut list = Vec::new();
+                p.name_list(b'}', "face", &mut list)?;
+                mesh_stmt = Some((line, list));
             }
             _ => {
                 return p.fail(&format!(
-                    "`(Point . …)`, `[` (a face), `{{` (the mesh) or a number after `{name} =`"
+                    "`(Point . …)`, `[` (a face), `{{` (the mesh) or a number after `{} =`",
+                    text(name)
                 ))
             }
         }
@@ -490,55 +688,186 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
             "no `mesh = {…};` statement: the mesh has no faces",
         ));
     };
-    assemble(points, &faces, mesh_faces, mesh_fields)
+    let names = Lookup {
+        defined: &defined,
+        points: &points,
+        faces: &face_defs,
+        mesh_named,
+    };
+    let corners = Corners {
+        index: &corners,
+        deferred: &deferred,
+    };
+    assemble(
+        &points,
+        given,
+        &names,
+        &corners,
+        n_faces,
+        mesh_faces,
+        mesh_fields,
+    )
+}
+
+/// A face corner whose point is found only once the whole file is read.
+const UNRESOLVED: usize = usize::MAX;
+
+/// The corners of every face statement.
+struct Corners<'m, 'a> {
+    /// Point index per corner, or [`UNRESOLVED`].
+    index: &'m [usize],
+    /// The unresolved corners' positions in `index` (increasing), names and lines.
+    deferred: &'m [(usize, NameAt<'a>)],
+}
+
+/// A face statement: its name, line and corners (`corners[start..start + len]`).
+struct FaceDef<'a> {
+    name: &'a [u8],
+    line: usize,
+    start: usize,
+    len: usize,
+}
+
+/// The number a name ends in (`v17` → 17; `v017`, `v` and `17` end in none): a name that is
+/// its statement's own number is found by it ([`read_testbed`]).
+fn trailing_index(name: &[u8]) -> Option<usize> {
+    let digits = name.iter().rev().take_while(|c| c.is_ascii_digit()).count();
+    let (prefix, number) = name.split_at(name.len() - digits);
+    if prefix.is_empty() || number.is_empty() || number.len() > 18 {
+        return None;
+    }
+    if number.len() > 1 && number[0] == b'0' {
+        return None;
+    }
+    Some(
+        number
+            .iter()
+            .fold(0usize, |n, d| n * 10 + usize::from(d - b'0')),
+    )
+}
+
+/// The line of the definition of `name` so far, if any (points and faces by their own number,
+/// everything else by the map).
+fn names_so_far(
+    points: &[Point<'_>],
+    faces: &[FaceDef<'_>],
+    defined: &Names<'_>,
+    name: &[u8],
+) -> Option<usize> {
+    if let Some(i) = trailing_index(name) {
+        if let Some(pt) = points.get(i).filter(|pt| pt.name == name) {
+            return Some(pt.line);
+        }
+        if let Some(f) = faces.get(i).filter(|f| f.name == name) {
+            return Some(f.line);
+        }
+    }
+    if defined.is_empty() {
+        return None;
+    }
+    defined.get(name).map(|(_, line)| *line)
+}
+
+/// Name resolution for [`assemble`].
+struct Lookup<'m, 'a> {
+    defined: &'m Names<'a>,
+    points: &'m [Point<'a>],
+    faces: &'m [FaceDef<'a>],
+    mesh_named: (Option<usize>, Option<usize>),
+}
+
+impl Lookup<'_, '_> {
+    fn point(&self, name: &[u8]) -> Option<usize> {
+        if name == b"mesh" {
+            return self.mesh_named.0;
+        }
+        if let Some(i) = trailing_index(name) {
+            if self.points.get(i).is_some_and(|pt| pt.name == name) {
+                return Some(i);
+            }
+        }
+        match self.defined.get(name) {
+            Some((Def::Point(i), _)) => Some(*i),
+            _ => None,
+        }
+    }
+
+    /// A face's corner range.
+    fn face(&self, name: &[u8]) -> Option<(usize, usize)> {
+        let k = if name == b"mesh" {
+            self.mesh_named.1?
+        } else {
+            match trailing_index(name) {
+                Some(i) if self.faces.get(i).is_some_and(|f| f.name == name) => i,
+                _ => match self.defined.get(name) {
+                    Some((Def::Face(k), _)) => *k,
+                    _ => return None,
+                },
+            }
+        };
+        self.faces.get(k).map(|f| (f.start, f.len))
+    }
 }
 
 fn assemble(
-    points: Vec<Point>,
-    faces: &HashMap<String, Vec<(String, usize)>>,
-    mesh_faces: Vec<(String, usize)>,
+    points: &[Point<'_>],
+    given: Given,
+    names: &Lookup<'_, '_>,
+    corners: &Corners<'_, '_>,
+    n_faces: usize,
+    mesh_faces: Vec<(&[u8], usize)>,
     mesh_fields: BTreeMap<String, Vec<f64>>,
 ) -> Result<RawMesh, ReadError> {
     let n = points.len();
-    let index: HashMap<&str, usize> = points
-        .iter()
-        .enumerate()
-        .map(|(i, pt)| (pt.name.as_str(), i))
-        .collect();
     let mut polys = Polygons::with_capacity(mesh_faces.len(), 3 * mesh_faces.len());
     let mut face_names = Vec::with_capacity(mesh_faces.len());
-    let mut corners = Vec::new();
-    for (fname, fline) in &mesh_faces {
-        let Some(def) = faces.get(fname) else {
-            let what = if index.contains_key(fname.as_str()) {
+    let mut face_corners = Vec::new();
+    // Faces listed, flagged at the start of their corners (each face's range is its own).
+    let mut listed = vec![false; corners.index.len()];
+    let mut listed_count = 0usize;
+    for &(fname, fline) in &mesh_faces {
+        let Some((start, len)) = names.face(fname) else {
+            let what = if names.point(fname).is_some() {
                 "a point, not a face"
             } else {
                 "not defined"
             };
             return Err(err(
-                *fline,
-                format!("mesh refers to unknown face `{fname}` ({what})"),
+                fline,
+                format!("mesh refers to unknown face `{}` ({what})", text(fname)),
             ));
         };
-        corners.clear();
-        for (vname, vline) in def {
-            let Some(&i) = index.get(vname.as_str()) else {
-                return Err(err(
-                    *vline,
-                    format!("face `{fname}` refers to unknown vertex `{vname}`"),
-                ));
+        face_corners.clear();
+        for q in start..start + len {
+            let i = match corners.index.get(q) {
+                Some(&i) if i != UNRESOLVED => i,
+                _ => {
+                    let at = corners.deferred.binary_search_by_key(&q, |d| d.0);
+                    let (vname, vline) = at.map_or((&b"?"[..], fline), |k| corners.deferred[k].1);
+                    let Some(i) = names.point(vname) else {
+                        return Err(err(
+                            vline,
+                            format!(
+                                "face `{}` refers to unknown vertex `{}`",
+                                text(fname),
+                                text(vname)
+                            ),
+                        ));
+                    };
+                    i
+                }
             };
-            corners.push(i);
+            face_corners.push(i);
         }
-        polys.push(&corners);
-        face_names.push(fname.clone());
+        polys.push(&face_corners);
+        face_names.push(text(fname).into_owned());
+        if let Some(flag) = listed.get_mut(start) {
+            listed_count += usize::from(!*flag);
+            *flag = true;
+        }
     }
     let mut notes = Vec::new();
-    let listed: HashSet<&str> = mesh_faces.iter().map(|(f, _)| f.as_str()).collect();
-    let unlisted = faces
-        .keys()
-        .filter(|f| !listed.contains(f.as_str()))
-        .count();
+    let unlisted = n_faces.saturating_sub(listed_count);
     if unlisted > 0 {
         notes.push(format!(
             "{unlisted} faces are defined but not listed in `mesh`: not part of the mesh"
@@ -551,16 +880,19 @@ fn assemble(
             return Ok(k > 0);
         }
         let missing = points.iter().find(|pt| !has(pt));
-        let (name, line) = missing.map_or(("?", 0), |pt| (pt.name.as_str(), pt.line));
+        let (name, line) = missing.map_or(("?".into(), 0), |pt| (text(pt.name), pt.line));
         Err(err(
             line,
-            format!("point `{name}` has no `{what}` field, but {k} of the {n} points have one"),
+            format!(
+                "point `{}` has no `{what}` field, but {k} of the {n} points have one",
+                name
+            ),
         ))
     };
-    let has_norm = all_or_none("norm", &|pt| pt.norm.is_some())?;
-    let has_shape = all_or_none("shape", &|pt| pt.shape.is_some())?;
+    let has_norm = all_or_none("norm", &|pt| pt.norm)?;
+    let has_shape = all_or_none("shape", &|pt| pt.shape)?;
     let mut keys: Vec<String> = Vec::new();
-    for pt in &points {
+    for pt in points {
         for (k, _) in &pt.fields {
             if !keys.contains(k) {
                 keys.push(k.clone());
@@ -579,13 +911,13 @@ fn assemble(
             })
             .unwrap_or(0);
         let mut cols: Vec<Vec<f64>> = vec![Vec::with_capacity(n); len];
-        for pt in &points {
+        for pt in points {
             let Some((_, v)) = pt.fields.iter().find(|(k, _)| k == key) else {
                 return Err(err(
                     pt.line,
                     format!(
                         "point `{}` has no `{key}` field, but other points have one",
-                        pt.name
+                        text(pt.name)
                     ),
                 ));
             };
@@ -594,7 +926,7 @@ fn assemble(
                     pt.line,
                     format!(
                         "field `{key}` of point `{}` has {} values, other points have {len}",
-                        pt.name,
+                        text(pt.name),
                         v.len()
                     ),
                 ));
@@ -613,18 +945,9 @@ fn assemble(
     }
     let mut mesh = RawMesh {
         positions: points.iter().map(|pt| Point3::from(pt.pos)).collect(),
-        normals: has_norm.then(|| {
-            points
-                .iter()
-                .map(|pt| pt.norm.unwrap_or_else(Vector3::zeros))
-                .collect()
-        }),
-        shapes: has_shape.then(|| {
-            points
-                .iter()
-                .map(|pt| pt.shape.unwrap_or_else(Matrix3::zeros))
-                .collect()
-        }),
+        // Every point has one (or none does): the lists are one per point, in point order.
+        normals: has_norm.then_some(given.normals),
+        shapes: has_shape.then_some(given.shapes),
         properties,
         polygons: polys,
         face_names: Some(face_names),
@@ -632,7 +955,7 @@ fn assemble(
         notes,
         ..RawMesh::default()
     };
-    mesh.vertex_names = Some(points.into_iter().map(|pt| pt.name).collect());
+    mesh.vertex_names = Some(points.iter().map(|pt| text(pt.name).into_owned()).collect());
     Ok(mesh)
 }
 

@@ -32,6 +32,7 @@ use std::collections::BTreeMap;
 
 use curves::VertexData;
 use nalgebra::{Matrix3, Point3, Vector3};
+use rayon::prelude::*;
 
 /// A face whose doubled area is below this fraction of the product of its two longest edges
 /// (the sine of its largest angle, in effect) is degenerate: below `1e-12` a face normal has lost
@@ -41,6 +42,50 @@ pub const DEGENERATE_FACE_SINE: f64 = 1e-12;
 /// Extra named per-vertex (or per-mesh) fields a reader found and did not interpret, kept so that
 /// a writer can put them back (the testbed's extensibility rule).
 pub type ExtraFields = BTreeMap<String, Vec<f64>>;
+
+/// Half-edges `h = 3f + l` (running from corner `l` of face `f` to corner `l + 1`) as `(min,
+/// max, h)` with `min, max` the edge's two vertices, in the order a full sort of these triples
+/// gives — grouped by undirected edge, each group in half-edge order — by a counting sort on
+/// `min` and a small sort per bucket (about the valence): linear in practice, deterministic.
+pub(crate) fn half_edges_by_key(faces: &[[usize; 3]]) -> Vec<(usize, usize, usize)> {
+    let n = faces
+        .iter()
+        .flat_map(|t| t.iter().copied())
+        .max()
+        .map_or(0, |m| m + 1);
+    let mut next = vec![0usize; n + 1];
+    for t in faces {
+        for l in 0..3 {
+            next[t[l].min(t[(l + 1) % 3]) + 1] += 1;
+        }
+    }
+    for v in 0..n {
+        next[v + 1] += next[v];
+    }
+    let bounds = next.clone();
+    let mut out = vec![(0usize, 0usize, 0usize); 3 * faces.len()];
+    for (f, t) in faces.iter().enumerate() {
+        for l in 0..3 {
+            let (a, b) = (t[l], t[(l + 1) % 3]);
+            let lo = a.min(b);
+            out[next[lo]] = (lo, a.max(b), 3 * f + l);
+            next[lo] += 1;
+        }
+    }
+    drop(next);
+    for w in bounds.windows(2) {
+        if w[1] - w[0] > 1 {
+            // Scattered in half-edge order already: a stable sort by `max` keeps it.
+            if let Some(bucket) = out.get_mut(w[0]..w[1]) {
+                bucket.sort_by_key(|x| x.1);
+            }
+        }
+    }
+    out
+}
+
+/// [`Mesh`]'s twin of a boundary half-edge.
+const NO_TWIN: usize = usize::MAX;
 
 /// One vertex: position, normal and shape tensor, whether the curvature is known, a name and
 /// extra fields.
@@ -192,9 +237,11 @@ impl Edge {
 pub struct Mesh {
     vertices: Vec<Vertex>,
     faces: Vec<[usize; 3]>,
+    /// Face names, empty when no face has one (8 bytes a face saved on the common case).
     face_names: Vec<Option<String>>,
-    /// Twin of each half-edge, `None` on the boundary.
-    twin: Vec<Option<usize>>,
+    /// Twin of each half-edge, [`NO_TWIN`] on the boundary (a plain index: half the memory of
+    /// an `Option<usize>`).
+    twin: Vec<usize>,
     /// Undirected edge of each half-edge.
     edge_of: Vec<usize>,
     edges: Vec<Edge>,
@@ -261,8 +308,14 @@ impl Mesh {
         allow_degenerate: bool,
     ) -> Result<Self, MeshError> {
         let count = vertices.len();
-        for (i, v) in vertices.iter().enumerate() {
-            check_vertex(i, v)?;
+        // The first bad vertex, in parallel (`find_first`: the lowest index, as a loop finds).
+        if let Some(Err(e)) = vertices
+            .par_iter()
+            .enumerate()
+            .map(|(i, v)| check_vertex(i, v))
+            .find_first(Result::is_err)
+        {
+            return Err(e);
         }
         for (f, face) in faces.iter().enumerate() {
             for (corner, &vertex) in face.iter().enumerate() {
@@ -292,21 +345,12 @@ impl Mesh {
         }
 
         let nh = 3 * faces.len();
-        let mut twin = vec![None; nh];
+        let mut twin = vec![NO_TWIN; nh];
         let mut edge_of = vec![0; nh];
-        // Half-edges grouped by undirected key by one sort (no hashing: a million faces sort in
-        // a fraction of the time a map of lists takes); within a group, in half-edge order.
-        let key_of = |h: usize| {
-            let (a, b) = (faces[h / 3][h % 3], faces[h / 3][(h % 3 + 1) % 3]);
-            (a.min(b), a.max(b))
-        };
-        let mut order: Vec<(usize, usize, usize)> = (0..nh)
-            .map(|h| {
-                let (a, b) = key_of(h);
-                (a, b, h)
-            })
-            .collect();
-        rayon::slice::ParallelSliceMut::par_sort_unstable(&mut order[..]);
+        // Half-edges grouped by undirected key (no hashing, no comparison sort of the whole
+        // list: a counting sort on the smaller vertex, small sorts per bucket); within a group, in
+        // half-edge order.
+        let order = half_edges_by_key(&faces);
         // Groups as ranges of `order`, then the first error in half-edge order (the one the
         // half-edge-by-half-edge construction meets first): a second half-edge running the same
         // way, or a third half-edge.
@@ -350,11 +394,16 @@ impl Mesh {
         if let Some((_, e)) = first_error {
             return Err(e);
         }
-        // Edges numbered in the order of their first half-edge.
-        groups.sort_unstable_by_key(|g| order[g.start].2);
+        // Edges numbered in the order of their first half-edge: mark each group's leader, then
+        // walk the half-edges in order (linear; no sort of the groups).
+        let mut leader = vec![usize::MAX; nh];
+        for (gi, g) in groups.iter().enumerate() {
+            leader[order[g.start].2] = gi;
+        }
         let mut edges: Vec<Edge> = Vec::with_capacity(groups.len());
-        for (e, g) in groups.iter().enumerate() {
-            let hs = &order[g.clone()];
+        for &gi in leader.iter().filter(|&&gi| gi != usize::MAX) {
+            let e = edges.len();
+            let hs = &order[groups[gi].clone()];
             let h0 = hs[0].2;
             let (f, l) = (h0 / 3, h0 % 3);
             edge_of[h0] = e;
@@ -365,12 +414,15 @@ impl Mesh {
             };
             if let Some(&(_, _, h1)) = hs.get(1) {
                 edge_of[h1] = e;
-                twin[h0] = Some(h1);
-                twin[h1] = Some(h0);
+                twin[h0] = h1;
+                twin[h1] = h0;
                 edge.second = Some((h1 / 3, h1 % 3));
             }
             edges.push(edge);
         }
+        drop(leader);
+        drop(groups);
+        drop(order);
 
         let mut outgoing = vec![None; count];
         let mut incident = vec![0usize; count];
@@ -379,12 +431,12 @@ impl Mesh {
             incident[v] += 1;
             // Prefer an outgoing half-edge on the boundary: not needed for correctness (queries
             // rotate to the boundary), but makes the common case cheap.
-            if outgoing[v].is_none() || t.is_none() {
+            if outgoing[v].is_none() || t == NO_TWIN {
                 outgoing[v] = Some(h);
             }
         }
         let mesh = Mesh {
-            face_names: vec![None; faces.len()],
+            face_names: Vec::new(),
             vertices,
             faces,
             twin,
@@ -393,10 +445,12 @@ impl Mesh {
             outgoing,
             extra: ExtraFields::new(),
         };
-        for (v, &n) in incident.iter().enumerate() {
-            if mesh.faces_around_vertex(v).len() != n {
-                return Err(MeshError::NonManifoldVertex { vertex: v });
-            }
+        // Every vertex's faces form one fan (in parallel; the lowest bad vertex is named).
+        if let Some(v) = (0..count)
+            .into_par_iter()
+            .find_first(|&v| mesh.fan_len(v) != incident[v])
+        {
+            return Err(MeshError::NonManifoldVertex { vertex: v });
         }
         Ok(mesh)
     }
@@ -404,8 +458,14 @@ impl Mesh {
     /// The same mesh with face names (for writers and messages); `names` shorter than the face
     /// list leaves the remaining faces unnamed.
     pub fn with_face_names(mut self, names: Vec<String>) -> Self {
+        if self.face_names.is_empty() {
+            self.face_names = vec![None; self.faces.len()];
+        }
         for (slot, name) in self.face_names.iter_mut().zip(names) {
             *slot = Some(name);
+        }
+        if self.face_names.iter().all(Option::is_none) {
+            self.face_names = Vec::new();
         }
         self
     }
@@ -492,7 +552,7 @@ impl Mesh {
     /// face; `None` on a boundary edge.
     pub fn neighbour(&self, f: usize, l: usize) -> Result<Option<(usize, usize)>, MeshError> {
         let h = self.check_local(f, l)?;
-        Ok(self.twin[h].map(|t| (t / 3, t % 3)))
+        Ok(self.twin_of(h).map(|t| (t / 3, t % 3)))
     }
 
     /// The stable undirected index of local edge `l` of face `f`.
@@ -533,6 +593,11 @@ impl Mesh {
         self.edges.iter().all(|e| !e.is_boundary())
     }
 
+    /// The twin of half-edge `h`, `None` on the boundary.
+    fn twin_of(&self, h: usize) -> Option<usize> {
+        self.twin.get(h).copied().filter(|&t| t != NO_TWIN)
+    }
+
     fn next(h: usize) -> usize {
         3 * (h / 3) + (h % 3 + 1) % 3
     }
@@ -546,7 +611,7 @@ impl Mesh {
         // Turn clockwise (h → next(twin(h))) until a boundary or back at the start.
         let mut h = start;
         for _ in 0..nh {
-            match self.twin[h] {
+            match self.twin_of(h) {
                 Some(t) if Self::next(t) != start => h = Self::next(t),
                 _ => break,
             }
@@ -555,7 +620,7 @@ impl Mesh {
         let first = h;
         let mut out = vec![h / 3];
         for _ in 0..nh {
-            match self.twin[Self::prev(h)] {
+            match self.twin_of(Self::prev(h)) {
                 Some(t) if t != first => {
                     h = t;
                     out.push(h / 3);
@@ -577,6 +642,34 @@ impl Mesh {
         }
     }
 
+    /// `faces_around_vertex(v).len()` without building the list (the validation of a mesh asks
+    /// it of every vertex).
+    fn fan_len(&self, v: usize) -> usize {
+        let Some(start) = self.outgoing.get(v).copied().flatten() else {
+            return 0;
+        };
+        let nh = self.twin.len();
+        let mut h = start;
+        for _ in 0..nh {
+            match self.twin_of(h) {
+                Some(t) if Self::next(t) != start => h = Self::next(t),
+                _ => break,
+            }
+        }
+        let first = h;
+        let mut len = 1;
+        for _ in 0..nh {
+            match self.twin_of(Self::prev(h)) {
+                Some(t) if t != first => {
+                    h = t;
+                    len += 1;
+                }
+                _ => break,
+            }
+        }
+        len
+    }
+
     /// The vertices adjacent to `v` in the same counter-clockwise order as
     /// [`Mesh::faces_around_vertex`] (the one-ring; at a boundary vertex one more vertex than
     /// faces).
@@ -593,7 +686,7 @@ impl Mesh {
                 out.push(face[(c + 1) % 3]);
             }
             let b = face[(c + 2) % 3];
-            if i + 1 < fan.len() || self.twin[3 * f + (c + 2) % 3].is_none() {
+            if i + 1 < fan.len() || self.twin_of(3 * f + (c + 2) % 3).is_none() {
                 out.push(b);
             }
         }

@@ -37,7 +37,7 @@
 
 use meshio::RawMesh;
 use nalgebra::{Matrix3, Vector3};
-use rayon::slice::ParallelSliceMut;
+use rayon::prelude::*;
 
 use crate::mesh::{ExtraFields, Mesh, MeshError, Vertex};
 
@@ -279,17 +279,13 @@ impl Dsu {
     }
 }
 
-/// Half-edges grouped by undirected edge: `(key, face, local edge)` sorted by key.
+/// Half-edges grouped by undirected edge: `(key, face, local edge)` sorted by key, then face and
+/// local edge (a counting sort, [`crate::mesh::half_edges_by_key`]).
 fn sorted_half_edges(faces: &[[usize; 3]]) -> Vec<((usize, usize), usize, usize)> {
-    let mut hs: Vec<((usize, usize), usize, usize)> = Vec::with_capacity(3 * faces.len());
-    for (f, t) in faces.iter().enumerate() {
-        for l in 0..3 {
-            let (a, b) = (t[l], t[(l + 1) % 3]);
-            hs.push(((a.min(b), a.max(b)), f, l));
-        }
-    }
-    hs.par_sort_unstable();
-    hs
+    crate::mesh::half_edges_by_key(faces)
+        .into_iter()
+        .map(|(a, b, h)| ((a, b), h / 3, h % 3))
+        .collect()
 }
 
 /// Groups of equal keys in a sorted half-edge list, as index ranges.
@@ -347,16 +343,37 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         }
     }
     {
-        let mut keys: Vec<([usize; 3], usize)> = faces
+        // Faces grouped by their sorted corners: a counting sort on the smallest corner, then
+        // small sorts per bucket (the first face of each group is kept).
+        let sorted: Vec<[usize; 3]> = faces
             .iter()
-            .enumerate()
-            .map(|(f, t)| {
+            .map(|t| {
                 let mut k = *t;
                 k.sort_unstable();
-                (k, f)
+                k
             })
             .collect();
-        keys.par_sort_unstable();
+        let mut next = vec![0usize; nv + 1];
+        for k in &sorted {
+            next[k[0] + 1] += 1;
+        }
+        for v in 0..nv {
+            next[v + 1] += next[v];
+        }
+        let bounds = next.clone();
+        let mut keys: Vec<([usize; 3], usize)> = vec![([0; 3], 0); faces.len()];
+        for (f, k) in sorted.iter().enumerate() {
+            keys[next[k[0]]] = (*k, f);
+            next[k[0]] += 1;
+        }
+        drop((next, sorted));
+        for w in bounds.windows(2) {
+            if w[1] - w[0] > 1 {
+                if let Some(bucket) = keys.get_mut(w[0]..w[1]) {
+                    bucket.sort_unstable();
+                }
+            }
+        }
         let mut dup = vec![false; faces.len()];
         for w in keys.windows(2) {
             if w[0].0 == w[1].0 {
@@ -390,8 +407,10 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     // Rule 4: consistent orientation by a walk across two-face edges.
     let hs = sorted_half_edges(&faces);
     let edge_groups = groups(&hs);
-    // Neighbours across two-face edges: (neighbour, same direction as given?).
-    let mut adj: Vec<Vec<(usize, bool)>> = vec![Vec::new(); faces.len()];
+    // Neighbours across two-face edges: (neighbour, same direction as given?), at most one per
+    // local edge, so three slots a face (filled in the order of the edge groups).
+    let mut adj: Vec<[(usize, bool); 3]> = vec![[(usize::MAX, false); 3]; faces.len()];
+    let mut adj_len: Vec<u8> = vec![0; faces.len()];
     for g in &edge_groups {
         if g.len() == 2 {
             let (_, f, l) = hs[g.start];
@@ -400,8 +419,13 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
                 continue;
             }
             let same = faces[f][l] == faces[h][m];
-            adj[f].push((h, same));
-            adj[h].push((f, same));
+            for (x, y) in [(f, h), (h, f)] {
+                let k = usize::from(adj_len[x]);
+                if let Some(slot) = adj[x].get_mut(k) {
+                    *slot = (y, same);
+                    adj_len[x] += 1;
+                }
+            }
         }
     }
     let mut flipped: Vec<Option<bool>> = vec![None; faces.len()];
@@ -418,7 +442,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         queue.push_back(seed);
         while let Some(f) = queue.pop_front() {
             let ff = flipped[f].unwrap_or(false);
-            for &(h, same) in &adj[f] {
+            for &(h, same) in &adj[f][..usize::from(adj_len[f])] {
                 // Consistent when, after flips, the two run the edge in opposite directions.
                 let want = ff ^ same;
                 match flipped[h] {
@@ -649,6 +673,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     }
     mesh.extra = raw.mesh_fields.clone();
     report.degenerate_faces = (0..mesh.num_faces())
+        .into_par_iter()
         .filter(|&f| mesh.is_degenerate_face(f))
         .collect();
     report.boundary_edges = mesh.edges().iter().filter(|e| e.is_boundary()).count();
@@ -686,7 +711,10 @@ fn join_and_split(
         vertex_source.len() - 1
     };
     let hs = sorted_half_edges(tris);
-    let mut pairs: Vec<((usize, usize), (usize, usize))> = Vec::new();
+    let mut pairs: Vec<((usize, usize), (usize, usize))> = Vec::with_capacity(hs.len() / 2);
+    // Whether some edge has more than two faces or two running the same way: only then can a
+    // face still be a third one after the split (splitting vertices only separates groups).
+    let mut any_cut = false;
     for g in groups(&hs) {
         let members = &hs[g];
         let (key, _, _) = members[0];
@@ -705,7 +733,7 @@ fn join_and_split(
         let mut cut = members.len() > 2;
         match (fwd, bwd) {
             (Some((f, l)), Some((h, m))) => {
-                if conflict_set.contains(&(f.min(h), f.max(h))) {
+                if !conflict_set.is_empty() && conflict_set.contains(&(f.min(h), f.max(h))) {
                     cut = true;
                 } else {
                     pairs.push(((f, l), (h, m)));
@@ -717,7 +745,9 @@ fn join_and_split(
         if cut {
             detached.insert([vertex_source[key.0], vertex_source[key.1]]);
         }
+        any_cut |= cut;
     }
+    drop(hs);
     // Fans: union corners (f, corner) around each vertex across joined edges. Edge l of f runs
     // a → b and edge m of h runs b → a: vertex a is corner l of f and corner m + 1 of h, vertex
     // b is corner l + 1 of f and corner m of h.
@@ -750,6 +780,9 @@ fn join_and_split(
         }
     }
     // Faces still a third (or same-direction second) face on an edge: cut loose.
+    if !any_cut {
+        return false;
+    }
     let mut joined = vec![false; 3 * tris.len()];
     for &((f, l), (h, m)) in &pairs {
         joined[3 * f + l] = true;
