@@ -10,8 +10,9 @@
 //! (`subdiv`: Loop, Catmull–Clark) join the table at the limit of three levels, with curvature
 //! estimated on that mesh (they approximate, and are C2 away from extraordinary points, so the
 //! G1 columns do not apply). Pictures: per data set
-//! one composite, the schemes in columns, shaded above and coloured by Gaussian curvature
-//! (KColor, one scale per data set: the true surface's largest |K|) below.
+//! one composite, the schemes in columns of five, each row of shaded pictures followed by the
+//! same schemes coloured by Gaussian curvature (KColor, one scale per data set: the true
+//! surface's largest |K|).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -34,6 +35,9 @@ use surface::{
 use crate::curve_args::CurveOptions;
 use crate::error::ExperimentError;
 use crate::output::{write_result, Staged};
+
+/// Schemes per row of a composite (ten schemes in one row were 3000 pixels wide).
+const COLUMNS: usize = 5;
 
 /// Size of one picture in a composite.
 const TILE: (u32, u32) = (300, 230);
@@ -312,15 +316,33 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
                 label: format!("{scheme} — K"),
             });
         }
-        let columns = tiles_shaded.len();
-        tiles_shaded.extend(tiles_k);
+        // Blocks of COLUMNS schemes: a shaded row, then the same schemes' K row.
+        let columns = COLUMNS.min(tiles_shaded.len()).max(1);
+        let mut tiles = Vec::with_capacity(2 * tiles_shaded.len());
+        let mut k_tiles = tiles_k.into_iter();
+        let blank = |t: &Tile| Tile {
+            image: render::Image {
+                width: t.image.width,
+                height: t.image.height,
+                rgb: vec![255; t.image.rgb.len()],
+            },
+            label: String::new(),
+        };
+        for block in tiles_shaded.chunks(columns) {
+            // A short last block is padded with blank tiles so its K row starts a row.
+            let pad = columns - block.len();
+            tiles.extend(block.iter().cloned());
+            tiles.extend(std::iter::repeat_with(|| blank(&block[0])).take(pad));
+            tiles.extend(k_tiles.by_ref().take(block.len()));
+            tiles.extend(std::iter::repeat_with(|| blank(&block[0])).take(pad));
+        }
         let file = format!("{name}.png");
         write_composite(
-            &tiles_shaded,
+            &tiles,
             columns,
-            &format!("{name}: every scheme, shaded (top) and Gaussian curvature (bottom)"),
+            &format!("{name}: every scheme, shaded and Gaussian curvature K (rows alternate)"),
             Some(&Legend {
-                title: "Gaussian curvature K (bottom row)".into(),
+                title: "Gaussian curvature K (the K rows)".into(),
                 kind: LegendKind::Diverging { limit: k_limit },
             }),
             &out.join(&file),
