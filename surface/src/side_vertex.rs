@@ -25,16 +25,26 @@
 //!
 //! * at `V_i`, from the two curves leaving it: `T_0(s) = (1 − s) D_{ij} + s D_{ik}` with
 //!   `D_{ij} = 3(c^i_1 − c^i_0)` and `D_{ik} = −3(c^k_3 − c^k_2)`;
-//! * at the side, the derivative across it: `T_1(s) = X(s) + s E'(s)`, where `X(s)` is the
-//!   surface's derivative in the domain direction `V_j − V_i` at `E(s)`.
+//! * at the side, the derivative across it: `T_1(s) = X(s) + (s − ½) E'(s)`, where `X(s)` is
+//!   the surface's derivative at `E(s)` in the domain direction of the median,
+//!   `M − V_i = ½(V_j − V_i) + ½(V_k − V_i)` (`M` the side's midpoint): the ray direction is
+//!   the median direction plus `(s − ½)(V_k − V_j)`.
 //!
-//! At the ends of the side `X` is fixed by the curves: `X(0) = 3(c^i_3 − c^i_2)` (the end
-//! tangent at `V_j` of the curve from `V_i`) and `X(1) = −E'(1) − 3(c^k_1 − c^k_0)` (at
-//! `V_k`, `V_j − V_i = (V_j − V_k) + (V_k − V_i)`). With these ends each operator reproduces
-//! all three boundary curves: along `V_i V_j` (`s = 0`) it is the Hermite cubic with the end
-//! tangents of `E_i`, which is `E_i`; along `V_i V_k` (`s = 1`) the reversed `E_k`; along the
-//! opposite side (`u = 1`) it is `E(s)`.
+//! At the ends of the side `X` is fixed by the curves: `X(0) = 3(c^i_3 − c^i_2) + ½E'(0)`
+//! (at `V_j`: the end tangent of the curve from `V_i`, the derivative towards `V_j − V_i`, plus
+//! half the side's tangent) and `X(1) = −½E'(1) − 3(c^k_1 − c^k_0)` (at `V_k`:
+//! `M − V_i = (V_k − V_i) − ½(V_k − V_j)`). With these ends each operator reproduces all three
+//! boundary curves: along `V_i V_j` (`s = 0`) it is the Hermite cubic with the end tangents of
+//! `E_i`, which is `E_i`; along `V_i V_k` (`s = 1`) the reversed `E_k`; along the opposite side
+//! (`u = 1`) it is `E(s)`.
 //!
+//! The median is the one transversal direction that treats `V_j` and `V_k` alike: reversing the
+//! face (corners `i, k, j`, the side traversed backwards, `s → 1 − s`) leaves `X` and `T_1`
+//! unchanged, so the surface does not depend on the face's orientation (a property test). An
+//! interpolant of the derivative towards `V_j − V_i` instead, the first version of this module,
+//! differs from its mirror image by `½(E'(s) − (1 − s)E'(0) − sE'(1))`, up to 2e-3 on unit
+//! data.
+
 //! # Cross-boundary data
 //!
 //! * **Nielson (transfinite):** the tangent plane along the side is given by a normal field
@@ -449,11 +459,17 @@ fn sub_scaled1(a: &V1, t: S1, b: &V1) -> V1 {
     }
 }
 
-/// The transversal `X(s)` with its derivatives along side `j` of operator `i` (module docs).
+/// The transversal `X(s)` (the derivative along the median direction) with its derivatives
+/// along side `j` of operator `i` (module docs).
 fn transversal(data: &FaceData, cross: CrossBoundary, i: usize, s: f64, e1: &V1) -> V1 {
     let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-    let x0 = (data.c[i][3] - data.c[i][2]) * 3.0;
-    let x1 = (data.c[j][3] - data.c[j][2]) * -3.0 - (data.c[k][1] - data.c[k][0]) * 3.0;
+    // E'(0) = 3(c1 − c0), E'(1) = 3(c3 − c2) of the side's curve.
+    let (e0, e1end) = (
+        (data.c[j][1] - data.c[j][0]) * 3.0,
+        (data.c[j][3] - data.c[j][2]) * 3.0,
+    );
+    let x0 = (data.c[i][3] - data.c[i][2]) * 3.0 + e0 * 0.5;
+    let x1 = e1end * -0.5 - (data.c[k][1] - data.c[k][0]) * 3.0;
     let xl = V1 {
         v: x0 + (x1 - x0) * s,
         d: x1 - x0,
@@ -535,11 +551,12 @@ fn operator(data: &FaceData, cross: CrossBoundary, i: usize, p: &[f64]) -> [Vect
         dd: e[3],
     };
     let x = transversal(data, cross, i, s, &e1);
-    // T1 = X + s E'.
+    // T1 = X + (s − ½) E'.
+    let off = s - 0.5;
     let t1 = [
-        x.v + e[1] * s,
-        x.d + e[1] + e[2] * s,
-        x.dd + e[2] * 2.0 + e[3] * s,
+        x.v + e[1] * off,
+        x.d + e[1] + e[2] * off,
+        x.dd + e[2] * 2.0 + e[3] * off,
     ];
     let (dij, dik) = (data.d_next(i), data.d_prev(i));
     let t0 = [dij + (dik - dij) * s, dik - dij];

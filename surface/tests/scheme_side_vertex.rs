@@ -253,3 +253,132 @@ fn folded_edge_detects_a_transversal_on_the_wrong_side() {
         assert!(folded_edge(&flipped, CrossBoundary::Discrete).is_some());
     }
 }
+
+/// One face's stored data from a seed: a random triangle with random unit normals within 60°
+/// of its plane normal and curve tangents in the vertex tangent planes at random lengths.
+fn random_face(seed: u64) -> Vec<Point3<f64>> {
+    let mut rng = fixtures::SplitMix64::new(seed);
+    let v: [Vector3<f64>; 3] = std::array::from_fn(|_| {
+        Vector3::new(
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-0.2, 0.2),
+        )
+    });
+    let up = (v[1] - v[0]).cross(&(v[2] - v[0])).normalize();
+    let n: [Vector3<f64>; 3] = std::array::from_fn(|_| {
+        (up + Vector3::new(
+            rng.uniform(-0.5, 0.5),
+            rng.uniform(-0.5, 0.5),
+            rng.uniform(-0.5, 0.5),
+        ))
+        .normalize()
+    });
+    let mut pts = Vec::new();
+    for l in 0..3 {
+        let (a, b) = (v[l], v[(l + 1) % 3]);
+        let (na, nb) = (n[l], n[(l + 1) % 3]);
+        let chord = b - a;
+        let ta = (chord - na * na.dot(&chord)) * rng.uniform(0.2, 0.45);
+        let tb = (chord - nb * nb.dot(&chord)) * rng.uniform(0.2, 0.45);
+        for p in [a, a + ta, b - tb, b] {
+            pts.push(Point3::from(p));
+        }
+    }
+    for x in n {
+        pts.push(Point3::from(x));
+    }
+    pts
+}
+
+fn eval_form(pts: &[Point3<f64>], discrete: bool, x: Bary) -> surface::Derivatives {
+    use surface::patch::SampledForm;
+    let form = if discrete {
+        &surface::side_vertex::DISCRETE
+    } else {
+        &surface::side_vertex::NIELSON
+    };
+    form.eval(pts, &form.prepare(x))
+}
+
+/// Similar data (rotation, uniform scale, shift; normals rotated) give the similar surface.
+const SIMILAR: f64 = 1e-10;
+
+proptest::proptest! {
+    /// Similarity invariance of both forms at random points of random faces.
+    #[test]
+    fn side_vertex_forms_are_similarity_invariant(
+        seed in 0u64..1_000_000,
+        angles in proptest::array::uniform3(-3.0f64..3.0),
+        scale in 0.01f64..100.0,
+        discrete in proptest::bool::ANY,
+        u in 0.05f64..0.9,
+        t in 0.05f64..0.95,
+    ) {
+        let pts = random_face(seed);
+        let rot = nalgebra::Rotation3::from_euler_angles(angles[0], angles[1], angles[2]);
+        let shift = Vector3::new(3.0, -1.0, 2.0);
+        let moved: Vec<Point3<f64>> = pts
+            .iter()
+            .enumerate()
+            .map(|(k, p)| if k < 12 { Point3::from(rot * p.coords * scale + shift) } else { Point3::from(rot * p.coords) })
+            .collect();
+        let x = [u, (1.0 - u) * t, (1.0 - u) * (1.0 - t)];
+        let a = eval_form(&pts, discrete, x);
+        let b = eval_form(&moved, discrete, x);
+        let want = rot * a.p.coords * scale + shift;
+        proptest::prop_assert!((want - b.p.coords).norm() < SIMILAR * scale.max(1.0) * 10.0);
+        let (na, nb) = (a.du.cross(&a.dv).normalize(), b.du.cross(&b.dv).normalize());
+        proptest::prop_assert!((rot * na - nb).norm() < 1e-9);
+    }
+
+    /// Relabelling the corners (a rotation of the face's order) gives the same surface at the
+    /// same point: the construction treats the three corners alike.
+    #[test]
+    fn side_vertex_forms_do_not_depend_on_the_corner_order(
+        seed in 0u64..1_000_000,
+        discrete in proptest::bool::ANY,
+        u in 0.05f64..0.9,
+        t in 0.05f64..0.95,
+    ) {
+        let pts = random_face(seed);
+        // Corner order (1, 2, 0): edges 1, 2, 0 and normals 1, 2, 0.
+        let mut turned = Vec::with_capacity(15);
+        for l in [1, 2, 0] {
+            turned.extend_from_slice(&pts[4 * l..4 * l + 4]);
+        }
+        for l in [1, 2, 0] {
+            turned.push(pts[12 + l]);
+        }
+        let x = [u, (1.0 - u) * t, (1.0 - u) * (1.0 - t)];
+        let a = eval_form(&pts, discrete, x);
+        let b = eval_form(&turned, discrete, [x[1], x[2], x[0]]);
+        proptest::prop_assert!((a.p - b.p).norm() < 1e-12, "{} vs {}", a.p, b.p);
+    }
+
+    /// Reversing the face (corners 0, 2, 1, curves reversed, normals negated) gives the same
+    /// surface with the opposite normal: orientation enters only through the winding.
+    #[test]
+    fn side_vertex_forms_are_orientation_invariant(
+        seed in 0u64..1_000_000,
+        discrete in proptest::bool::ANY,
+        u in 0.05f64..0.9,
+        t in 0.05f64..0.95,
+    ) {
+        let pts = random_face(seed);
+        let rev = |l: usize| -> Vec<Point3<f64>> { pts[4 * l..4 * l + 4].iter().rev().copied().collect() };
+        let mut flipped = Vec::with_capacity(15);
+        for l in [2, 1, 0] {
+            flipped.extend(rev(l));
+        }
+        for c in [0, 2, 1] {
+            flipped.push(Point3::from(-pts[12 + c].coords));
+        }
+        let x = [u, (1.0 - u) * t, (1.0 - u) * (1.0 - t)];
+        let a = eval_form(&pts, discrete, x);
+        let b = eval_form(&flipped, discrete, [x[0], x[2], x[1]]);
+        proptest::prop_assert!((a.p - b.p).norm() < 1e-12, "{} vs {}", a.p, b.p);
+        let (na, nb) = (a.du.cross(&a.dv).normalize(), b.du.cross(&b.dv).normalize());
+        proptest::prop_assert!((na + nb).norm() < 1e-9);
+    }
+}
