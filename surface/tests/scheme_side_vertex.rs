@@ -214,7 +214,7 @@ fn folded_faces_are_refused_and_named() {
     for scheme in [
         "nielson",
         "discrete-side-vertex",
-        "pn-triangles",
+        "powell-sabin",
         "clough-tocher",
     ] {
         let f = fit_of(&mesh, scheme, "chord");

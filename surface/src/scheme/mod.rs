@@ -246,7 +246,10 @@ pub fn folded_corner(input: &FaceInput<'_>) -> Option<usize> {
 
 /// [`folded_corner`] for schemes that make their own boundaries: the first corner where the
 /// face's winding is against the vertex normal, `((V_{i+1} − V_i) × (V_{i+2} − V_i)) · N_i ≤ 0`
-/// (a patch through the corner with that normal folds there).
+/// (a patch through the corner with that normal folds there). Only for schemes whose fallback
+/// keeps the boundaries (`powell-sabin`): PN triangles and Phong tessellation are determined by
+/// their edges, so the flat fallback of a refused face would break C0 with its neighbours,
+/// and they take such faces as they come (the G1 measurement reports the fold).
 pub fn folded_winding(input: &FaceInput<'_>) -> Option<usize> {
     let p = input.vertices.map(|v| v.p);
     (0..3).find(|&i| {

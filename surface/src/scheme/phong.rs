@@ -74,9 +74,6 @@ impl Scheme for Phong {
                 value: self.alpha,
             }));
         }
-        if let Some(corner) = super::folded_winding(input) {
-            return Err(FaceFallbackReason::Folded { corner });
-        }
         let p = input.vertices.map(|v| v.p);
         let n = input.vertices.map(|v| v.n.normalize());
         let a = self.alpha;

@@ -92,9 +92,6 @@ impl Scheme for PnTriangles {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
-        if let Some(corner) = super::folded_winding(input) {
-            return Err(FaceFallbackReason::Folded { corner });
-        }
         let p = input.vertices.map(|v| v.p);
         let n = input.vertices.map(|v| v.n.normalize());
         let mut edge_sum = Vector3::zeros();
