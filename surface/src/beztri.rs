@@ -142,6 +142,12 @@ pub struct SampleWeights {
     /// At `(u, v)`.
     pub at: (f64, f64),
     weights: Vec<[f64; 6]>,
+    /// The control points whose six weights are not all zero, with their weights: on a patch
+    /// edge only the two rows next to it count, at a corner six points of fifteen (quartic).
+    /// Leaving the others out changes no bit of the sums: each of them adds `b · 0 = ±0` to an
+    /// accumulator that starts at `+0` and never becomes `−0` (a sum of products that cancels
+    /// rounds to `+0`).
+    nonzero: Vec<(usize, [f64; 6])>,
 }
 
 impl SampleWeights {
@@ -159,11 +165,18 @@ impl SampleWeights {
                 .derivatives(u, v);
                 [d.p.x, d.du.x, d.dv.x, d.duu.x, d.duv.x, d.dvv.x]
             })
+            .collect::<Vec<[f64; 6]>>();
+        let nonzero = weights
+            .iter()
+            .enumerate()
+            .filter(|(_, w)| w.iter().any(|x| *x != 0.0))
+            .map(|(i, w)| (i, *w))
             .collect();
         SampleWeights {
             degree,
             at: (u, v),
             weights,
+            nonzero,
         }
     }
 
@@ -183,7 +196,10 @@ impl SampleWeights {
 /// [`crate::fit::Fit`]'s points) without building a [`BezierTriangle`].
 pub fn net_derivatives(points: &[Point3<f64>], weights: &SampleWeights) -> Derivatives {
     let mut acc = [Vector3::zeros(); 6];
-    for (b, w) in points.iter().zip(&weights.weights) {
+    for (i, w) in &weights.nonzero {
+        let Some(b) = points.get(*i) else {
+            continue;
+        };
         for (a, wk) in acc.iter_mut().zip(w) {
             *a += b.coords * *wk;
         }
