@@ -79,15 +79,14 @@ pub fn prepare(layout: &Layout, local: Bary) -> Prepared {
 }
 
 /// Position and partials of the patch with stored points `points` (one patch of `layout`) at
-/// a prepared point.
+/// a prepared point (prepared for the same layout; otherwise every component is NaN).
 pub fn eval(layout: &Layout, points: &[Point3<f64>], at: &Prepared) -> Derivatives {
     match (layout.form, at) {
         (_, Prepared::Bezier(w)) => net_derivatives(points, w),
         (Form::Sampled(s), Prepared::Sampled(p)) => s.eval(points, p),
-        (Form::Bezier, Prepared::Sampled(_)) => net_derivatives(
-            points,
-            &SampleWeights::new(layout.degree, 1.0 / 3.0, 1.0 / 3.0),
-        ),
+        // A point prepared for a sampled form, used with a Bézier layout: a caller's mix-up,
+        // made visible.
+        (Form::Bezier, Prepared::Sampled(_)) => Derivatives::nan(),
     }
 }
 

@@ -402,8 +402,9 @@ impl FaceData {
 }
 
 impl Derivatives {
-    /// Every component NaN (data that cannot be evaluated).
-    fn nan() -> Derivatives {
+    /// Every component NaN (data that cannot be evaluated, or a point prepared for another
+    /// layout): visible downstream rather than a plausible wrong number.
+    pub(crate) fn nan() -> Derivatives {
         let n = Vector3::repeat(f64::NAN);
         Derivatives {
             p: Point3::from(n),
