@@ -54,8 +54,7 @@ const NO_CURVES: &str = "none";
 /// True when `scheme` is a subdivision scheme (`subdiv::SCHEMES`), not a Bézier or sampled
 /// surface scheme.
 fn is_subdivision(scheme: &str) -> bool {
-    surface::scheme_by_name(scheme, &surface::SchemeOptions::default()).is_err()
-        && subdiv::scheme_by_name(scheme).is_ok()
+    !surface::scheme_names().contains(&scheme) && subdiv::scheme_by_name(scheme).is_ok()
 }
 
 /// The task list of a run with `scheme`: [`tasks`], or for a subdivision scheme one task per
@@ -341,24 +340,31 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         .filter(|p| p.file_name().and_then(|n| n.to_str()).is_some_and(is_shard))
         .collect();
     paths.sort();
+    let texts = paths
+        .iter()
+        .map(|p| {
+            std::fs::read_to_string(p)
+                .map(|t| (p, t))
+                .map_err(|source| ExperimentError::Read {
+                    path: p.clone(),
+                    source,
+                })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     // The task list follows the run's scheme (subdivision runs have one task per data set),
     // read from the first shard's options; the shards' options are compared below.
-    let scheme_of_run = paths
+    let scheme_of_run = texts
         .first()
-        .and_then(|p| std::fs::read_to_string(p).ok())
-        .and_then(|t| serde_json::from_str::<Value>(&t).ok())
+        .and_then(|(_, t)| serde_json::from_str::<Value>(t).ok())
         .and_then(|v| v["options"]["scheme"].as_str().map(str::to_string))
         .unwrap_or_else(|| surface::DEFAULT_SCHEME.to_string());
     let all = tasks_for(&scheme_of_run);
     let total = all.len();
     let mut results: Vec<Option<Value>> = vec![None; total];
     let mut options: Option<(PathBuf, Value)> = None;
-    for p in &paths {
-        let text = std::fs::read_to_string(p).map_err(|source| ExperimentError::Read {
-            path: p.clone(),
-            source,
-        })?;
-        let shard = experiments::shard::read_shard(&text, total).map_err(|source| {
+    for (p, text) in &texts {
+        let p = *p;
+        let shard = experiments::shard::read_shard(text, total).map_err(|source| {
             ExperimentError::Shard {
                 path: p.clone(),
                 source,

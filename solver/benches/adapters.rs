@@ -4,54 +4,17 @@
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use nalgebra::{SMatrix, SVector, Vector2};
-use solver::{solve, LeastSquaresProblem, SolveOptions, SolverKind};
+use nalgebra::Vector2;
+use solver::{solve, SolveOptions, SolverKind};
 use std::hint::black_box;
 
-struct EndCurvature {
-    c: f64,
-    d0: f64,
-    d1: f64,
-    k0: f64,
-    k1: f64,
-}
-
-impl LeastSquaresProblem<2, 4> for EndCurvature {
-    fn residuals(&self, a: &SVector<f64, 2>) -> SVector<f64, 4> {
-        let k0 = 2.0 * (3.0 * self.d0 - a[1] * self.c) / (a[0] * a[0]);
-        let k1 = 2.0 * (-3.0 * self.d1 - a[0] * self.c) / (a[1] * a[1]);
-        SVector::<f64, 4>::new(a[0] - 1.0, a[1] - 1.0, k0 - self.k0, k1 - self.k1)
-    }
-    fn jacobian(&self, a: &SVector<f64, 2>) -> SMatrix<f64, 4, 2> {
-        let (a0, a1) = (a[0], a[1]);
-        let n0 = 2.0 * (3.0 * self.d0 - a1 * self.c);
-        let n1 = 2.0 * (-3.0 * self.d1 - a0 * self.c);
-        SMatrix::<f64, 4, 2>::new(
-            1.0,
-            0.0,
-            0.0,
-            1.0,
-            -2.0 * n0 / (a0 * a0 * a0),
-            -2.0 * self.c / (a0 * a0),
-            -2.0 * self.c / (a1 * a1),
-            -2.0 * n1 / (a1 * a1 * a1),
-        )
-    }
-    fn lower_bounds(&self) -> SVector<f64, 2> {
-        SVector::from_element(0.05)
-    }
-}
+/// The representative end-curvature problem, shared with the tests.
+#[path = "../tests/common/mod.rs"]
+mod common;
+use common::EndCurvature;
 
 fn adapters(c: &mut Criterion) {
-    let t0 = (0.3f64.cos(), 0.3f64.sin());
-    let t1 = (0.2f64.cos(), -(0.2f64.sin()));
-    let p = EndCurvature {
-        c: t0.0 * t1.1 - t0.1 * t1.0,
-        d0: -t0.1,
-        d1: -t1.1,
-        k0: -0.5,
-        k1: -0.3,
-    };
+    let p = EndCurvature::representative();
     let options = SolveOptions {
         record_history: false,
         ..SolveOptions::default()

@@ -166,36 +166,41 @@ impl Tangents {
         Tangents { patch, how }
     }
 
-    /// The patch's position here (sampled forms; Bézier corners are read off the net).
-    fn point(&self, face: &[Point3<f64>], np: usize) -> Option<Point3<f64>> {
-        let net = face.get(self.patch * np..(self.patch + 1) * np)?;
-        match &self.how {
-            How::Sampled(form, p) => Some(form.eval(net, p).p),
-            How::Bezier(_) => None,
-        }
-    }
-
-    /// Unit normal `r_u × r_v` of the face's patch (no threshold: any non-zero cross product).
-    fn normal(&self, face: &[Point3<f64>], np: usize) -> Option<Vector3<f64>> {
-        let net = face.get(self.patch * np..(self.patch + 1) * np)?;
-        let (du, dv) = match &self.how {
+    /// The patch's position (sampled forms only: Bézier corners are read off the net) and unit
+    /// normal `r_u × r_v` here (no threshold: any non-zero cross product), from one evaluation.
+    fn point_and_normal(
+        &self,
+        face: &[Point3<f64>],
+        np: usize,
+    ) -> (Option<Point3<f64>>, Option<Vector3<f64>>) {
+        let Some(net) = face.get(self.patch * np..(self.patch + 1) * np) else {
+            return (None, None);
+        };
+        let (p, du, dv) = match &self.how {
             How::Bezier(w) => {
                 let (mut du, mut dv) = (Vector3::zeros(), Vector3::zeros());
                 for (i, w) in w {
-                    let p = net.get(*i)?;
+                    let Some(p) = net.get(*i) else {
+                        return (None, None);
+                    };
                     du += p.coords * w[0];
                     dv += p.coords * w[1];
                 }
-                (du, dv)
+                (None, du, dv)
             }
             How::Sampled(form, p) => {
                 let d = form.eval(net, p);
-                (d.du, d.dv)
+                (Some(d.p), d.du, d.dv)
             }
         };
         let c = du.cross(&dv);
         let len = c.norm();
-        (len > 0.0 && len.is_finite()).then(|| c / len)
+        (p, (len > 0.0 && len.is_finite()).then(|| c / len))
+    }
+
+    /// Unit normal `r_u × r_v` of the face's patch (see [`Tangents::point_and_normal`]).
+    fn normal(&self, face: &[Point3<f64>], np: usize) -> Option<Vector3<f64>> {
+        self.point_and_normal(face, np).1
     }
 }
 
@@ -358,12 +363,13 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
             let face = mesh.faces()[f];
             for (i, (point, tangents)) in plan.corners.iter().enumerate() {
                 let v = &mesh.vertices()[face[i]].data;
-                let at = tangents.point(pts, np).unwrap_or(pts[*point]);
+                let (at, normal) = tangents.point_and_normal(pts, np);
+                let at = at.unwrap_or(pts[*point]);
                 r.position_error = r.position_error.max((at - v.p).norm());
                 if fallback[f] {
                     continue;
                 }
-                match tangents.normal(pts, np) {
+                match normal {
                     Some(n) => r.normal_error = r.normal_error.max(angle(&n, &v.n.normalize())),
                     None => r.undefined_normals += 1,
                 }

@@ -112,12 +112,18 @@ pub fn curvature_near(
     points: &[Point3<f64>],
     local: Bary,
 ) -> Option<(Curvature, bool)> {
-    if let Some(c) = curvature_of(&eval_at(layout, points, local)) {
-        return Some((c, false));
+    match curvature_of(&eval_at(layout, points, local)) {
+        Some(c) => Some((c, false)),
+        None => nudged_curvature(layout, points, local).map(|c| (c, true)),
     }
+}
+
+/// The differential geometry [`SINGULAR_NUDGE`] of the way from `local` towards the patch's
+/// centre: for a sample already found singular there.
+pub fn nudged_curvature(layout: &Layout, points: &[Point3<f64>], local: Bary) -> Option<Curvature> {
     let third = 1.0 / 3.0;
     let nudged = local.map(|x| x + SINGULAR_NUDGE * (third - x));
-    curvature_of(&eval_at(layout, points, nudged)).map(|c| (c, true))
+    curvature_of(&eval_at(layout, points, nudged))
 }
 
 /// Local barycentric coordinates of the face point `x` in sub-triangle `sub`.

@@ -118,6 +118,25 @@ pub fn write_face(
     }
 }
 
+/// One face's data written by `form`'s scheme (`nielson`, `discrete-side-vertex`): the face is
+/// refused where a corner is folded ([`crate::scheme::folded_corner`]) or the transversal turns
+/// over an edge ([`folded_edge`]); otherwise its curves and normals are written.
+pub fn build_face(
+    form: &SideVertexForm,
+    input: &crate::scheme::FaceInput<'_>,
+    out: &mut [Point3<f64>],
+) -> Result<(), crate::fit::FaceFallbackReason> {
+    use crate::fit::FaceFallbackReason;
+    if let Some(corner) = crate::scheme::folded_corner(input) {
+        return Err(FaceFallbackReason::Folded { corner });
+    }
+    write_face(input.edges, input.vertices.map(|v| v.n), out);
+    match folded_edge(out, form.cross) {
+        Some(edge) => Err(FaceFallbackReason::FoldedEdge { edge }),
+        None => Ok(()),
+    }
+}
+
 /// Which cross-boundary data (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CrossBoundary {

@@ -229,18 +229,20 @@ pub(crate) fn nudged_geometry(patch: &BezierTriangle, u: f64, v: f64) -> Curvatu
         let n = patch.degree();
         let corner = |i, j, k| patch.point(i, j, k).unwrap_or_else(Point3::origin);
         let (a, b, c) = (corner(n, 0, 0), corner(0, n, 0), corner(0, 0, n));
-        let normal = (b - a)
-            .cross(&(c - a))
-            .try_normalize(0.0)
-            .unwrap_or_else(Vector3::z);
-        Curvature {
-            normal,
-            gaussian: 0.0,
-            mean: 0.0,
-            principal: [0.0, 0.0],
-            shape: Matrix3::zeros(),
-        }
+        flat_curvature((b - a).cross(&(c - a)))
     })
+}
+
+/// Zero curvature with the normal along `n` (`+z` where it has no direction): the geometry of
+/// a sample that is singular even a step inside.
+pub(crate) fn flat_curvature(n: Vector3<f64>) -> Curvature {
+    Curvature {
+        normal: n.try_normalize(0.0).unwrap_or_else(Vector3::z),
+        gaussian: 0.0,
+        mean: 0.0,
+        principal: [0.0, 0.0],
+        shape: Matrix3::zeros(),
+    }
 }
 
 /// Tessellates `patches` at `s` segments per patch edge into one welded mesh (module docs).

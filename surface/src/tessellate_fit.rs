@@ -36,7 +36,7 @@ use crate::fit::Fit;
 use crate::mesh::Mesh;
 use crate::patch::{self, Prepared};
 use crate::scheme::Layout;
-use crate::tessellate::{nudged_geometry, tessellate, TessError, Tessellation};
+use crate::tessellate::{flat_curvature, nudged_geometry, tessellate, TessError, Tessellation};
 
 /// Where a sample of a face goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -242,26 +242,13 @@ fn evaluate(
         });
         nudged_geometry(&bez, u, v)
     } else {
-        patch::curvature_near(layout, net, [u, v, w])
-            .map(|(c, _)| c)
+        patch::nudged_curvature(layout, net, [u, v, w])
             .unwrap_or_else(|| flat_curvature(d.du.cross(&d.dv)))
     };
     Sample {
         p: d.p,
         c,
         nudged: true,
-    }
-}
-
-/// Zero curvature with the normal `n` (`+z` where it has no direction): the geometry of a
-/// sample that is singular even a step inside.
-fn flat_curvature(n: nalgebra::Vector3<f64>) -> Curvature {
-    Curvature {
-        normal: n.try_normalize(0.0).unwrap_or_else(Vector3::z),
-        gaussian: 0.0,
-        mean: 0.0,
-        principal: [0.0, 0.0],
-        shape: nalgebra::Matrix3::zeros(),
     }
 }
 

@@ -63,10 +63,6 @@ fn is_ident(c: u8) -> bool {
     c.is_ascii_alphanumeric() || c == b'_' || c == b'-'
 }
 
-/// Lists with more pairs than this are checked for duplicate names with a hash set instead
-/// of a linear scan (records have about ten).
-const LINEAR_DUPLICATE_SCAN: usize = 16;
-
 impl Parser<'_, '_> {
     fn err<T>(&self, message: impl Into<String>) -> Result<T, SyntaxError> {
         Err(SyntaxError {
@@ -236,30 +232,7 @@ impl Parser<'_, '_> {
             self.i += 1;
             let k = self.name()?;
             let name = self.tape.bytes(k);
-            let dup = if n < LINEAR_DUPLICATE_SCAN {
-                let mut j = obj + 1;
-                let mut found = false;
-                for _ in 0..n {
-                    if let Some(Tok::Key(s)) = self.tape.toks.get(j) {
-                        found |= self.tape.bytes(*s) == name;
-                    }
-                    j += 1 + self.tape.toks.get(j + 1).map_or(1, Tok::width);
-                }
-                found
-            } else {
-                let set = many.get_or_insert_with(|| {
-                    let mut set = std::collections::HashSet::new();
-                    let mut j = obj + 1;
-                    for _ in 0..n {
-                        if let Some(Tok::Key(s)) = self.tape.toks.get(j) {
-                            set.insert(self.tape.bytes(*s).to_vec());
-                        }
-                        j += 1 + self.tape.toks.get(j + 1).map_or(1, Tok::width);
-                    }
-                    set
-                });
-                !set.insert(name.to_vec())
-            };
+            let dup = self.tape.duplicate_key(obj + 1, n, name, &mut many);
             if dup {
                 let name = String::from_utf8_lossy(name).into_owned();
                 self.i = at;

@@ -14,10 +14,6 @@ use crate::tape::{Tape, Tok};
 /// Deepest nesting accepted (`serde_json`'s limit): hostile input cannot exhaust the stack.
 pub const MAX_DEPTH: usize = 128;
 
-/// Objects with more fields than this are checked for duplicate names with a hash set
-/// instead of a linear scan (records have about ten).
-const LINEAR_DUPLICATE_SCAN: usize = 16;
-
 /// A syntax error: byte offset into the line and message.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct JsonError {
@@ -117,31 +113,8 @@ impl Parser<'_, '_> {
                 let key_at = self.i;
                 let k = self.string()?;
                 let name = self.tape.bytes(k);
-                let dup = if n < LINEAR_DUPLICATE_SCAN {
-                    // The keys read so far: every value before is complete, so skipping works.
-                    let mut j = at + 1;
-                    let mut found = false;
-                    for _ in 0..n {
-                        if let Some(Tok::Key(s)) = self.tape.toks.get(j) {
-                            found |= self.tape.bytes(*s) == name;
-                        }
-                        j += 1 + self.tape.toks.get(j + 1).map_or(1, Tok::width);
-                    }
-                    found
-                } else {
-                    let set = many.get_or_insert_with(|| {
-                        let mut set = std::collections::HashSet::new();
-                        let mut j = at + 1;
-                        for _ in 0..n {
-                            if let Some(Tok::Key(s)) = self.tape.toks.get(j) {
-                                set.insert(self.tape.bytes(*s).to_vec());
-                            }
-                            j += 1 + self.tape.toks.get(j + 1).map_or(1, Tok::width);
-                        }
-                        set
-                    });
-                    !set.insert(name.to_vec())
-                };
+                // The keys read so far: every value before is complete, so skipping works.
+                let dup = self.tape.duplicate_key(at + 1, n, name, &mut many);
                 if dup {
                     let name = String::from_utf8_lossy(name).into_owned();
                     self.i = key_at;

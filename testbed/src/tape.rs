@@ -85,7 +85,41 @@ const MAX_SET: usize = 4;
 /// Largest text a tape may hold (spans are 32-bit): 4 GiB, far beyond any record.
 const MAX_TEXT: usize = u32::MAX as usize;
 
+/// Objects with more keys than this are checked for duplicate names with a hash set instead
+/// of a linear scan (records have about ten).
+const LINEAR_DUPLICATE_SCAN: usize = 16;
+
 impl Tape {
+    /// True when `name` equals one of the `n` keys already read into the object whose first key
+    /// token is at `first` (every value before is complete, so the scan can skip them). Up to
+    /// [`LINEAR_DUPLICATE_SCAN`] keys a linear scan; past it a set, built once into `many` from
+    /// the keys so far and kept for the object's later keys (`name` is added to it). The one
+    /// check of both text readers.
+    pub fn duplicate_key(
+        &self,
+        first: usize,
+        n: usize,
+        name: &[u8],
+        many: &mut Option<std::collections::HashSet<Vec<u8>>>,
+    ) -> bool {
+        let keys = || {
+            let mut j = first;
+            (0..n).filter_map(move |_| {
+                let key = match self.toks.get(j) {
+                    Some(Tok::Key(s)) => Some(self.bytes(*s)),
+                    _ => None,
+                };
+                j += 1 + self.toks.get(j + 1).map_or(1, Tok::width);
+                key
+            })
+        };
+        if n < LINEAR_DUPLICATE_SCAN {
+            return keys().any(|k| k == name);
+        }
+        let set = many.get_or_insert_with(|| keys().map(<[u8]>::to_vec).collect());
+        !set.insert(name.to_vec())
+    }
+
     /// Empties the tape, keeping its storage.
     pub fn clear(&mut self) {
         self.toks.clear();

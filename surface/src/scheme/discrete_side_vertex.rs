@@ -17,7 +17,7 @@ use nalgebra::Point3;
 
 use super::{Continuity, FaceInput, Form, Layout, Scheme, WHOLE};
 use crate::fit::FaceFallbackReason;
-use crate::side_vertex::{write_face, DISCRETE};
+use crate::side_vertex::{build_face, write_face, DISCRETE};
 
 /// The discrete side-vertex scheme.
 #[derive(Clone, Copy, Debug, Default)]
@@ -49,14 +49,7 @@ impl Scheme for DiscreteSideVertex {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
-        if let Some(corner) = super::folded_corner(input) {
-            return Err(FaceFallbackReason::Folded { corner });
-        }
-        write_face(input.edges, input.vertices.map(|v| v.n), out);
-        match crate::side_vertex::folded_edge(out, DISCRETE.cross) {
-            Some(edge) => Err(FaceFallbackReason::FoldedEdge { edge }),
-            None => Ok(()),
-        }
+        build_face(&DISCRETE, input, out)
     }
 
     /// The same data: the discrete form never needs the normals.

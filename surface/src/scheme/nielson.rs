@@ -14,7 +14,7 @@ use nalgebra::Point3;
 
 use super::{Continuity, FaceInput, Form, Layout, Scheme, WHOLE};
 use crate::fit::FaceFallbackReason;
-use crate::side_vertex::{write_face, NIELSON};
+use crate::side_vertex::{build_face, write_face, NIELSON};
 
 /// The Nielson side-vertex scheme.
 #[derive(Clone, Copy, Debug, Default)]
@@ -46,14 +46,7 @@ impl Scheme for Nielson {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
-        if let Some(corner) = super::folded_corner(input) {
-            return Err(FaceFallbackReason::Folded { corner });
-        }
-        write_face(input.edges, input.vertices.map(|v| v.n), out);
-        match crate::side_vertex::folded_edge(out, NIELSON.cross) {
-            Some(edge) => Err(FaceFallbackReason::FoldedEdge { edge }),
-            None => Ok(()),
-        }
+        build_face(&NIELSON, input, out)
     }
 
     /// The same boundary curves with the discrete cross-boundary data (zero normals): C0 with
