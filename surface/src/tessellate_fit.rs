@@ -252,6 +252,19 @@ fn evaluate(
     }
 }
 
+/// Faces per parallel task: enough to amortize the task (a few microseconds of work at s = 1),
+/// few enough that two threads share the work evenly from 10⁴ faces on.
+const FACES_PER_TASK: usize = 512;
+
+/// `n` copies of `value`, written by all threads: the first touch of a large output (page
+/// faults, which dominate at 10⁶ faces) is shared instead of done by one thread before the
+/// parallel evaluation.
+fn par_filled<T: Copy + Send + Sync>(value: T, n: usize) -> Vec<T> {
+    let mut v = Vec::with_capacity(n);
+    v.par_extend(rayon::iter::repeat_n(value, n));
+    v
+}
+
 /// `v` cut into consecutive blocks `start[f]..start[f + 1]`.
 fn split_blocks<'a, T>(mut v: &'a mut [T], start: &[usize]) -> Vec<&'a mut [T]> {
     let mut out = Vec::with_capacity(start.len().saturating_sub(1));
@@ -342,53 +355,65 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
     };
 
     // Evaluate every face's owned samples straight into its block of the output arrays (no
-    // intermediate copy: at 10⁶ faces the output is gigabytes and page faults dominate).
-    let mut positions = vec![Point3::origin(); total];
-    let mut normals = vec![Vector3::zeros(); total];
+    // intermediate copy: at 10⁶ faces the output is hundreds of megabytes and page faults
+    // dominate). Faces go in chunks of `FACES_PER_TASK`, whose blocks are consecutive; the
+    // arrays are first touched in parallel ([`par_filled`]).
+    let mut positions = par_filled(Point3::origin(), total);
+    let mut normals = par_filled(Vector3::zeros(), total);
     let mut gaussian = vec![0.0; total];
     let mut mean = vec![0.0; total];
-    let mut shapes = vec![nalgebra::Matrix3::zeros(); total];
+    let mut shapes = par_filled(nalgebra::Matrix3::zeros(), total);
     let mut nudged = vec![false; total];
-    split_blocks(&mut positions, &start)
+    let chunk_start: Vec<usize> = (0..nf)
+        .step_by(FACES_PER_TASK)
+        .chain(std::iter::once(nf))
+        .map(|f| start[f])
+        .collect();
+    split_blocks(&mut positions, &chunk_start)
         .into_par_iter()
-        .zip(split_blocks(&mut normals, &start))
-        .zip(split_blocks(&mut gaussian, &start))
-        .zip(split_blocks(&mut mean, &start))
-        .zip(split_blocks(&mut shapes, &start))
-        .zip(split_blocks(&mut nudged, &start))
+        .zip(split_blocks(&mut normals, &chunk_start))
+        .zip(split_blocks(&mut gaussian, &chunk_start))
+        .zip(split_blocks(&mut mean, &chunk_start))
+        .zip(split_blocks(&mut shapes, &chunk_start))
+        .zip(split_blocks(&mut nudged, &chunk_start))
         .enumerate()
         .try_for_each(
-            |(f, (((((ps, ns), ks), hs), ss), nu))| -> Result<(), TessError> {
+            |(chunk, (((((ps, ns), ks), hs), ss), nu))| -> Result<(), TessError> {
                 let mut at = 0;
-                let mut put = |(p, li): (usize, usize)| {
-                    let patch = f * ppf + p;
-                    let net = &fit.points[patch * np..(patch + 1) * np];
-                    let x = evaluate(&layout, net, &plan.weights[li], plan.local[li]);
-                    ps[at] = x.p;
-                    ns[at] = x.c.normal;
-                    ks[at] = x.c.gaussian;
-                    hs[at] = x.c.mean;
-                    ss[at] = x.c.shape;
-                    nu[at] = x.nudged;
-                    at += 1;
-                };
-                for c in 0..3 {
-                    if owned_corners[f][c] {
-                        put(plan.corner_src[c]);
-                    }
-                }
-                for l in 0..3 {
-                    if owned_edges[f][l] {
-                        let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
-                        let forward = edges[ei].vertices[0] == faces[f][l];
-                        for k in 0..per_edge {
-                            let kk = if forward { k } else { per_edge - 1 - k };
-                            put(plan.edge_src[l][kk]);
+                let first = chunk * FACES_PER_TASK;
+                for f in first..(first + FACES_PER_TASK).min(nf) {
+                    let mut put = |(p, li): (usize, usize)| {
+                        let patch = f * ppf + p;
+                        let net = &fit.points[patch * np..(patch + 1) * np];
+                        let x = evaluate(&layout, net, &plan.weights[li], plan.local[li]);
+                        ps[at] = x.p;
+                        ns[at] = x.c.normal;
+                        ks[at] = x.c.gaussian;
+                        hs[at] = x.c.mean;
+                        ss[at] = x.c.shape;
+                        nu[at] = x.nudged;
+                        at += 1;
+                    };
+                    for c in 0..3 {
+                        if owned_corners[f][c] {
+                            put(plan.corner_src[c]);
                         }
                     }
-                }
-                for &src in &plan.inner_src {
-                    put(src);
+                    if per_edge > 0 {
+                        for l in 0..3 {
+                            if owned_edges[f][l] {
+                                let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
+                                let forward = edges[ei].vertices[0] == faces[f][l];
+                                for k in 0..per_edge {
+                                    let kk = if forward { k } else { per_edge - 1 - k };
+                                    put(plan.edge_src[l][kk]);
+                                }
+                            }
+                        }
+                    }
+                    for &src in &plan.inner_src {
+                        put(src);
+                    }
                 }
                 Ok(())
             },
@@ -412,7 +437,10 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
             Ok(())
         })?;
 
-    let patch_of_face = (0..tris.len()).map(|t| t / per_patch.max(1)).collect();
+    let patch_of_face = (0..tris.len())
+        .into_par_iter()
+        .map(|t| t / per_patch.max(1))
+        .collect();
     let out = Tessellation {
         positions,
         normals,
@@ -423,7 +451,7 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
         patch_of_face,
         welds: nf * ppf * plan.local.len() - total,
         max_weld_normal_angle: 0.0,
-        singular_samples: nudged.iter().filter(|x| **x).count(),
+        singular_samples: nudged.par_iter().filter(|x| **x).count(),
         collapsed_faces: 0,
     };
     Ok(out)

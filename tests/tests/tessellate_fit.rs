@@ -104,3 +104,30 @@ fn the_topological_weld_matches_the_positional_one_on_hostile_meshes() {
         compare(name, &mesh, false);
     }
 }
+
+/// Large enough that the faces go to the threads in several tasks (the tessellation evaluates
+/// 512 faces a task): an irregular noisy torus and an open torus patch, so a task boundary falls
+/// between faces that share vertices and edges owned across it.
+#[test]
+fn the_topological_weld_matches_the_positional_one_across_parallel_tasks() {
+    use fixtures::analytic::{torus, Irregular};
+    let opts = Irregular {
+        noise: 0.005,
+        seed: 7,
+        ..Irregular::default()
+    };
+    let open = Irregular { seed: 8, ..opts };
+    for (name, raw) in [
+        ("noisy torus", torus(48, 24, 1.0, 0.4, &opts)),
+        (
+            "open torus patch",
+            fixtures::open::torus_patch(40, 20, 0.8, 0.7, &open),
+        ),
+    ] {
+        assert!(raw.polygons.len() > 3 * 512, "{name}: several tasks");
+        let mesh = prepare(&raw, EstimateChoice::With(ESTIMATORS[0]), false)
+            .unwrap_or_else(|e| panic!("{name}: {e}"))
+            .mesh;
+        compare(name, &mesh, true);
+    }
+}
