@@ -1,0 +1,166 @@
+//! How the speed of each stage scales from 10³ to 10⁶ faces, and what a user gets per second at
+//! each: `cargo run --release -p estimate --example scaling [MAX_FACES]` (default 10⁶).
+//!
+//! The meshes are the irregular noisy tori of `fixtures --example big_mesh` (jittered, random
+//! diagonals, noise a tenth of an edge) with `2·nu·nv` triangles for `(nu, nv)` = (32, 16),
+//! (100, 50), (320, 160), (1000, 500). Each stage runs on the previous stage's output; its time
+//! is the best of several runs (more at the small sizes, where one run is short). Printed: the
+//! cost per face in nanoseconds at each size, the spread (largest over smallest) from 10⁴ up and
+//! from 10³ up, and the rate at the largest size. The README's `bench` note is this table.
+
+// A measurement driver on fixed valid data: a failed step should stop it loudly.
+#![allow(clippy::expect_used)]
+
+use std::time::Instant;
+
+use curves::{method_by_name, MethodOptions};
+use estimate::{estimator_by_name, prepare, EstimateChoice, DEFAULT_ESTIMATOR};
+use fixtures::analytic::{torus, Irregular};
+use surface::patch_io::{write_binary, write_jsonl};
+use surface::{fit_scheme, measure_g1, scheme_by_name, tessellate_fit, SchemeOptions};
+
+/// Runs of a stage at `faces` faces: about 2·10⁶ face-runs in all, at least 3, at most 200.
+fn runs(faces: usize) -> usize {
+    (2_000_000 / faces).clamp(3, 200)
+}
+
+/// Best wall time (seconds) of `runs` calls of `f`.
+fn best<T>(runs: usize, mut f: impl FnMut() -> T) -> f64 {
+    (0..runs)
+        .map(|_| {
+            let t = Instant::now();
+            std::hint::black_box(f());
+            t.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// One stage: its name, the unit its rate counts, and per size (faces, seconds, units).
+struct Stage {
+    name: &'static str,
+    unit: &'static str,
+    rows: Vec<(usize, f64, f64)>,
+}
+
+/// Largest over smallest of `xs`.
+fn spread(xs: &[f64]) -> f64 {
+    let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
+    hi / lo
+}
+
+fn main() {
+    let max_faces: usize = std::env::args()
+        .nth(1)
+        .map_or(1_000_000, |a| a.parse().expect("MAX_FACES, a number"));
+    // (nu, nv) of each torus; a size within 10 % of MAX_FACES counts as that size.
+    let grids: Vec<(usize, usize)> = [(32usize, 16usize), (100, 50), (320, 160), (1000, 500)]
+        .into_iter()
+        .filter(|(nu, nv)| 2 * nu * nv <= max_faces + max_faces / 10)
+        .collect();
+    let sizes: Vec<usize> = grids.iter().map(|(nu, nv)| 2 * nu * nv).collect();
+    let est = EstimateChoice::With(estimator_by_name(DEFAULT_ESTIMATOR).expect("registered"));
+    let chord = method_by_name("chord", &MethodOptions::default()).expect("registered");
+    let optimized = method_by_name("optimized", &MethodOptions::default()).expect("registered");
+    let scheme = scheme_by_name("shirman-sequin", &SchemeOptions::default()).expect("registered");
+    let identity = |p: &nalgebra::Point3<f64>| *p;
+    let mut stages: Vec<Stage> = [
+        ("repair + estimate (hybrid)", "faces"),
+        ("fit, chord curves", "faces"),
+        ("fit, optimized curves", "faces"),
+        ("G1 measurement (9 samples an edge)", "faces"),
+        ("tessellate s = 1", "output triangles"),
+        ("tessellate s = 4", "output triangles"),
+        ("patches as JSON Lines (to a sink)", "MB"),
+        ("patches as binary .bzp (to a sink)", "MB"),
+    ]
+    .into_iter()
+    .map(|(name, unit)| Stage {
+        name,
+        unit,
+        rows: Vec::new(),
+    })
+    .collect();
+    for &(nu, nv) in &grids {
+        let faces = 2 * nu * nv;
+        let edge = std::f64::consts::TAU * 0.4 / nv as f64;
+        let opts = Irregular {
+            noise: 0.1 * edge,
+            seed: 20261129,
+            ..Irregular::default()
+        };
+        let raw = torus(nu, nv, 1.0, 0.4, &opts);
+        let n = runs(faces);
+        eprintln!("{faces} faces, best of {n}");
+        let mut record = |stage: usize, seconds: f64, units: f64| {
+            stages[stage].rows.push((faces, seconds, units));
+        };
+        let t = best(n.min(20), || prepare(&raw, est, false).expect("prepares"));
+        record(0, t, faces as f64);
+        let mesh = prepare(&raw, est, false).expect("prepares").mesh;
+        let t = best(n, || {
+            fit_scheme(&mesh, scheme.as_ref(), chord.as_ref()).expect("fits")
+        });
+        record(1, t, faces as f64);
+        let t = best(n, || {
+            fit_scheme(&mesh, scheme.as_ref(), optimized.as_ref()).expect("fits")
+        });
+        record(2, t, faces as f64);
+        let fit = fit_scheme(&mesh, scheme.as_ref(), optimized.as_ref()).expect("fits");
+        let t = best(n, || measure_g1(&mesh, &fit, 9));
+        record(3, t, faces as f64);
+        let t = best(n, || tessellate_fit(&mesh, &fit, 1).expect("tessellates"));
+        record(4, t, (3 * faces) as f64);
+        if faces <= 200_000 {
+            let t = best(n, || tessellate_fit(&mesh, &fit, 4).expect("tessellates"));
+            record(5, t, (3 * 16 * faces) as f64);
+        }
+        let mut bytes = Vec::new();
+        write_jsonl(&fit, &identity, &mut bytes).expect("writes");
+        let t = best(n.min(20), || {
+            write_jsonl(&fit, &identity, &mut std::io::sink()).expect("writes")
+        });
+        record(6, t, bytes.len() as f64 / 1e6);
+        bytes = Vec::new();
+        write_binary(&fit, &identity, &mut bytes).expect("writes");
+        let t = best(n.min(20), || {
+            write_binary(&fit, &identity, &mut std::io::sink()).expect("writes")
+        });
+        record(7, t, bytes.len() as f64 / 1e6);
+    }
+    print!("| stage |");
+    for faces in &sizes {
+        print!(" ns a face at {faces} |");
+    }
+    println!(" spread from 10⁴ / from 10³ | per second at the largest size |");
+    print!("|---|");
+    for _ in &sizes {
+        print!("---:|");
+    }
+    println!("---:|---:|");
+    for s in &stages {
+        print!("| {} |", s.name);
+        let per_face: Vec<f64> = s.rows.iter().map(|r| r.1 / r.0 as f64 * 1e9).collect();
+        for &faces in &sizes {
+            match s.rows.iter().position(|r| r.0 == faces) {
+                Some(i) => print!(" {:.0} |", per_face[i]),
+                None => print!(" – |"),
+            }
+        }
+        let from_1e4: Vec<f64> = s
+            .rows
+            .iter()
+            .zip(&per_face)
+            .filter(|(r, _)| r.0 >= 10_000)
+            .map(|(_, x)| *x)
+            .collect();
+        let rate = s.rows.last().map_or(0.0, |r| r.2 / r.1);
+        println!(
+            " {:.2} / {:.2} | {:.3e} {} |",
+            spread(&from_1e4),
+            spread(&per_face),
+            rate,
+            s.unit
+        );
+    }
+}
