@@ -10,10 +10,18 @@
 //! streams, and each stage's median time run alone from a file to a file (what the pipes
 //! overlap).
 //!
+//! `TESTBED_BENCH_ONLY=binary:mesh,json:triangle,…` runs only the configurations listed and
+//! `TESTBED_BENCH_STAGES=0` runs each stage alone once, only for the stream sizes (for the
+//! large meshes).
+//!
 //! The one-process reference is run twice: filling the render mesh with every triangle's own
 //! three vertices (what `render` builds from `Triangle` records) and with each patch's
 //! vertices shared (what it builds from `TriangleMesh` records); each pipeline is compared
-//! with the reference building the same render mesh.
+//! with the reference building the same render mesh. The reference runs in a fresh process
+//! (this benchmark started again as a child, reading the OBJ file), as every stage of the
+//! pipes does; the same run repeated inside the benchmark's own process, where the heap's
+//! pages are already mapped from the previous run, is printed beside it (faster by the page
+//! faults of a first run).
 
 // A measurement, not an input path: a failed step should stop it loudly.
 #![allow(clippy::expect_used)]
@@ -180,7 +188,37 @@ fn in_process(obj_bytes: &[u8], shared: bool) -> f64 {
     t.elapsed().as_secs_f64()
 }
 
+/// Set in a child run of this benchmark: one one-process run on the OBJ file named, in a
+/// fresh process (`shared` or `own` vertices), its time printed.
+const CHILD: &str = "TESTBED_BENCH_ONE_PROCESS";
+
+/// The one-process run in a fresh process (this benchmark run again as a child): cold heap
+/// and caches, a process started, as each stage of the pipes has; wall time of the child.
+fn in_fresh_process(obj: &std::path::Path, shared: bool) -> f64 {
+    let t = Instant::now();
+    let out = Command::new(std::env::current_exe().expect("the benchmark"))
+        .env(
+            CHILD,
+            format!(
+                "{},{}",
+                if shared { "shared" } else { "own" },
+                obj.display()
+            ),
+        )
+        .stderr(Stdio::null())
+        .output()
+        .expect("runs");
+    assert!(out.status.success());
+    t.elapsed().as_secs_f64()
+}
+
 fn main() {
+    if let Ok(spec) = std::env::var(CHILD) {
+        let (kind, path) = spec.split_once(',').expect("KIND,PATH");
+        let bytes = std::fs::read(path).expect("the OBJ file");
+        in_process(&bytes, kind == "shared");
+        return;
+    }
     let bin = env!("CARGO_BIN_EXE_testbed");
     let (nu, nv) = std::env::var("TESTBED_BENCH_RING")
         .ok()
@@ -214,16 +252,39 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(RUNS);
-    let base = [false, true]
-        .map(|shared| median((0..runs).map(|_| in_process(&obj_bytes, shared)).collect()));
+    let only = std::env::var("TESTBED_BENCH_ONLY").ok();
+    let chosen = |format: &str, mesh: bool| {
+        let name = format!("{format}:{}", if mesh { "mesh" } else { "triangle" });
+        only.as_deref()
+            .is_none_or(|o| o.split(',').any(|c| c.trim() == name))
+    };
+    let stages = std::env::var("TESTBED_BENCH_STAGES").map_or(true, |s| s != "0");
+    let formats = ["json", "dstruct", "binary"];
+    let base = [false, true].map(|shared| {
+        if !formats.iter().any(|f| chosen(f, shared)) {
+            return f64::NAN;
+        }
+        median((0..runs).map(|_| in_process(&obj_bytes, shared)).collect())
+    });
+    let warm = base;
+    let base = [false, true].map(|shared| {
+        if warm[usize::from(shared)].is_nan() {
+            return f64::NAN;
+        }
+        median((0..runs).map(|_| in_fresh_process(&obj, shared)).collect())
+    });
     println!(
-        "in one process: {:.3} s (every triangle's own vertices), {:.3} s (each patch's shared)",
-        base[0], base[1]
+        "in one process: {:.3} s (every triangle's own vertices), {:.3} s (each patch's shared) \
+         in a fresh process (the reference); {:.3} s, {:.3} s repeated inside this one (warm heap)",
+        base[0], base[1], warm[0], warm[1]
     );
     let patches = faces * 3;
     let triangles = patches * 64;
-    for format in ["json", "dstruct", "binary"] {
+    for format in formats {
         for mesh in [false, true] {
+            if !chosen(format, mesh) {
+                continue;
+            }
             let kind = if mesh { "TriangleMesh" } else { "Triangle" };
             let reference = base[usize::from(mesh)];
             let t = median((0..runs).map(|_| piped(bin, &obj, format, mesh)).collect());
@@ -241,8 +302,9 @@ fn main() {
                 ("render", vec!["render"], f("coloured"), f("png")),
             ];
             let mut line = String::from("  stages alone:");
-            for (name, args, input, output) in &steps {
-                let t = median((0..runs).map(|_| stage(bin, args, input, output)).collect());
+            for (name, args, input, output) in &steps[..if stages { 4 } else { 3 }] {
+                let n = if stages { runs } else { 1 };
+                let t = median((0..n).map(|_| stage(bin, args, input, output)).collect());
                 line += &format!(" {name} {t:.3} s");
             }
             let size = |p: std::path::PathBuf| std::fs::metadata(p).expect("written").len() as f64;
