@@ -11,8 +11,8 @@
 //! overlap).
 //!
 //! `TESTBED_BENCH_ONLY=binary:mesh,json:triangle,…` runs only the configurations listed and
-//! `TESTBED_BENCH_STAGES=0` runs each stage alone once, only for the stream sizes (for the
-//! large meshes).
+//! `TESTBED_BENCH_STAGES=0` skips the stages alone and the stream sizes (for the large
+//! meshes: the bytes per record do not depend on the mesh's size).
 //!
 //! The one-process reference is run twice: filling the render mesh with every triangle's own
 //! three vertices (what `render` builds from `Triangle` records) and with each patch's
@@ -288,6 +288,13 @@ fn main() {
             let kind = if mesh { "TriangleMesh" } else { "Triangle" };
             let reference = base[usize::from(mesh)];
             let t = median((0..runs).map(|_| piped(bin, &obj, format, mesh)).collect());
+            if !stages {
+                println!(
+                    "pipes, {format:7} {kind:12}: {t:.3} s = {:.2}× one process",
+                    t / reference
+                );
+                continue;
+            }
             // Each stage alone, file to file.
             let f = |name: &str| dir.path().join(format!("{name}.{format}.{kind}"));
             let steps: [(&str, Vec<&str>, std::path::PathBuf, std::path::PathBuf); 4] = [
@@ -302,9 +309,8 @@ fn main() {
                 ("render", vec!["render"], f("coloured"), f("png")),
             ];
             let mut line = String::from("  stages alone:");
-            for (name, args, input, output) in &steps[..if stages { 4 } else { 3 }] {
-                let n = if stages { runs } else { 1 };
-                let t = median((0..n).map(|_| stage(bin, args, input, output)).collect());
+            for (name, args, input, output) in &steps {
+                let t = median((0..runs).map(|_| stage(bin, args, input, output)).collect());
                 line += &format!(" {name} {t:.3} s");
             }
             let size = |p: std::path::PathBuf| std::fs::metadata(p).expect("written").len() as f64;

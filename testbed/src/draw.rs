@@ -106,7 +106,7 @@ pub fn push_triangle_mesh(m: &mut RenderMesh, mesh: &TriangleMesh, default_color
     m.normals.extend_from_slice(&mesh.norm);
     if mesh.color.is_empty() {
         m.colors
-            .extend(std::iter::repeat(default_color).take(mesh.pos.len()));
+            .extend(std::iter::repeat_n(default_color, mesh.pos.len()));
     } else {
         m.colors.extend_from_slice(&mesh.color);
     }
