@@ -131,58 +131,57 @@ fn shape(v: &Tape) -> Schema {
     Schema::new(template, slots)
 }
 
-/// Writes the slots of `v` against `schema`; false when `v` does not have its shape.
+/// Writes the slots of `v` against `schema`; false when `v` does not have its shape (then
+/// `out` may hold part of it: the caller takes it back).
 fn encode(v: &Tape, schema: &Schema, out: &mut Vec<u8>) -> bool {
     let t = &schema.template;
     if v.toks.len() != t.toks.len() {
         return false;
     }
-    let keep = type_range(t);
     // A record whose text begins with the template's has its keys where the template has
     // them: equal spans are equal names (one comparison instead of one per key).
     let same_text = v.text.get(..t.text.len()) == Some(&t.text[..]);
     let mut k = 0;
+    // The template token the next slot fills (past the end when none is left).
+    let mut slot_at = schema.at.first().map_or(usize::MAX, |&a| a as usize);
     for (i, (a, b)) in v.toks.iter().zip(&t.toks).enumerate() {
-        let ok = match (a, b) {
-            (Tok::Key(x), Tok::Key(y)) => (same_text && x == y) || v.bytes(*x) == t.bytes(*y),
-            _ if keep.contains(&i) => match (a, b) {
+        let ok = if i == slot_at {
+            let ok = match (schema.slots.get(k), a) {
+                (Some(b'f'), Tok::Float(x) | Tok::Text(x, _)) => {
+                    out.extend_from_slice(&x.to_le_bytes());
+                    true
+                }
+                (Some(b'i'), Tok::Int(x)) => {
+                    out.extend_from_slice(&x.to_le_bytes());
+                    true
+                }
+                (Some(b'u'), Tok::UInt(x)) => {
+                    out.extend_from_slice(&x.to_le_bytes());
+                    true
+                }
+                (Some(b's'), Tok::Str(x)) => {
+                    let bytes = v.bytes(*x);
+                    match u32::try_from(bytes.len()) {
+                        Ok(len) => {
+                            out.extend_from_slice(&len.to_le_bytes());
+                            out.extend_from_slice(bytes);
+                            true
+                        }
+                        Err(_) => false,
+                    }
+                }
+                _ => false,
+            };
+            k += 1;
+            slot_at = schema.at.get(k).map_or(usize::MAX, |&a| a as usize);
+            ok
+        } else {
+            // Structure, keys and the `type` value: the template's own.
+            match (a, b) {
+                (Tok::Key(x), Tok::Key(y)) => (same_text && x == y) || v.bytes(*x) == t.bytes(*y),
                 (Tok::Str(x), Tok::Str(y)) => v.bytes(*x) == t.bytes(*y),
                 _ => a == b,
-            },
-            (Tok::Str(x), Tok::Str(_)) => {
-                let kind = schema.slots.get(k);
-                k += 1;
-                let bytes = v.bytes(*x);
-                match u32::try_from(bytes.len()) {
-                    Ok(len) if kind == Some(&b's') => {
-                        out.extend_from_slice(&len.to_le_bytes());
-                        out.extend_from_slice(bytes);
-                        true
-                    }
-                    _ => false,
-                }
             }
-            (Tok::Float(x) | Tok::Text(x, _), Tok::Int(_)) => {
-                let ok = schema.slots.get(k) == Some(&b'f');
-                k += 1;
-                out.extend_from_slice(&x.to_le_bytes());
-                ok
-            }
-            (Tok::Int(x), Tok::Int(_)) => {
-                let ok = schema.slots.get(k) == Some(&b'i');
-                k += 1;
-                out.extend_from_slice(&x.to_le_bytes());
-                ok
-            }
-            (Tok::UInt(x), Tok::Int(_)) => {
-                let ok = schema.slots.get(k) == Some(&b'u');
-                k += 1;
-                out.extend_from_slice(&x.to_le_bytes());
-                ok
-            }
-            (Tok::Obj { .. }, Tok::Obj { .. }) | (Tok::Arr { .. }, Tok::Arr { .. }) => a == b,
-            (Tok::Bool(_) | Tok::Null, _) => a == b,
-            _ => false,
         };
         if !ok {
             return false;
