@@ -873,6 +873,18 @@ mod tests {
                 let expected = tessellate_patch(patch, s).expect("tessellates");
                 assert_eq!(out, expected, "s = {s}");
             }
+            // Shared vertices: each sample once, s² triangles on the fast path (the quartic),
+            // fewer vertices where the general path welds (the collapsed edge).
+            let mut indexed = IndexedPatch::default();
+            t.tessellate_indexed(&quad, &mut indexed)
+                .expect("tessellates");
+            assert_eq!(indexed.samples.len(), (s + 1) * (s + 2) / 2);
+            assert_eq!(indexed.triangles.len(), s * s);
+            t.tessellate_indexed(&collapsed, &mut indexed)
+                .expect("tessellates");
+            assert!(indexed.samples.len() < (s + 1) * (s + 2) / 2, "s = {s}");
+            indexed.expand(&mut out);
+            assert_eq!(out, tessellate_patch(&collapsed, s).expect("tessellates"));
         }
         assert!(PatchTessellator::new(0).is_err());
     }
