@@ -279,7 +279,8 @@ impl PatchTessellator {
                 return general(patch, s, out);
             }
         }
-        // Sample indices fit u32: s is bounded by the samples' own memory long before.
+        // Sample indices fit u32 for any s whose samples fit in memory (and `tess` allows at
+        // most MAX_SEGMENTS).
         let at = |i: usize, j: usize| local(i, j) as u32;
         for j in 0..s {
             for i in 0..s - j {
@@ -455,6 +456,12 @@ impl TriangleTapes {
     }
 }
 
+/// Largest `tess -s`: a patch at s = 4096 is 8.4 M samples (about half a GB with their weights),
+/// far beyond any picture's need, while a larger `-s` would only exhaust memory (or overflow
+/// the sample table's size) instead of failing with a message; it also keeps every vertex
+/// index of a `TriangleMesh` within `u32`.
+pub const MAX_SEGMENTS: usize = 4096;
+
 /// What `tess` writes for each patch.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum TessRecords {
@@ -474,10 +481,10 @@ pub fn tess(
     fields: CurvatureFields,
     records: TessRecords,
 ) -> Result<(), FilterError> {
-    if s == 0 {
-        return Err(FilterError::Usage(
-            "tess: -s must be at least 1 segment per edge".into(),
-        ));
+    if s == 0 || s > MAX_SEGMENTS {
+        return Err(FilterError::Usage(format!(
+            "tess: -s {s}: from 1 to {MAX_SEGMENTS} segments per edge"
+        )));
     }
     let mut tessellator = PatchTessellator::new(s)?;
     let mut rec = Record::default();
@@ -652,10 +659,12 @@ impl Coloured {
 
 /// Binds a colour to every vertex of every `Triangle` and `TriangleMesh`. Without `range`
 /// and for a data-dependent colouring the first `block` triangles are held (`0`: the whole
-/// stream), the range is taken from their values at every triangle corner (so a
-/// `TriangleMesh` stream is coloured exactly as the `Triangle` stream of the same
-/// triangles), and the rest stream through with it. Records of other types keep their place
-/// in the stream (held with the triangles until the range is fixed).
+/// stream; a `TriangleMesh` is held whole, so the block may run on to the end of its
+/// patch), the range is taken from their values at every triangle corner (so a
+/// `TriangleMesh` stream is coloured exactly as the `Triangle` stream of the same triangles
+/// when the block ends at the end of a patch), and the rest stream through with it. Records
+/// of other types keep their place in the stream (held with the triangles until the range is
+/// fixed).
 pub fn colour(
     pipe: &mut Pipe,
     colouring: &dyn Colouring,

@@ -357,6 +357,14 @@ fn malformed_records_are_named_and_skipped_with_keep_going() {
         !out.status.success() && err.contains("kg") && err.contains("record 1"),
         "{err}"
     );
+    // A density no memory holds is a usage error, not a crash.
+    let patch = ok(&["fit", "--scheme", "flat"], &octa());
+    for s in ["0", "4097", "10000000000"] {
+        let out = testbed(&["tess", "-s", s], &patch);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "-s {s}: {err}");
+        assert!(err.contains("from 1 to 4096 segments per edge"), "{err}");
+    }
 }
 
 /// A TriangleMesh with an index out of range, one with a column too short, one with a
