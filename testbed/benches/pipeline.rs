@@ -1,12 +1,27 @@
-//! `fit | tess -s 8 --kg | kcolor | render` as four processes connected by pipes, in each
-//! stream format, against the same work in one process (library calls, no records).
+//! `fit | tess -s 8 --kg [--mesh] | kcolor | render` as four processes connected by pipes, in
+//! each stream format and with each record kind (`Triangle`, `TriangleMesh`), against the same
+//! work in one process (library calls, no records).
 //!
 //! The mesh: `surface::datasets::ring(nu, nv)` written as OBJ (so `fit` reads, repairs and
 //! estimates as for any file). `TESTBED_BENCH_RING=NU,NV` (default `16,16`: 512 faces, 1 536
 //! Shirman–Séquin patches, 98 304 triangles in the stream) chooses the size. Each
 //! configuration runs `RUNS` times (`TESTBED_BENCH_RUNS`); the median wall time is reported
-//! with the bytes per record of the tess → kcolor stream, and each stage's median time run
-//! alone from a file to a file (what the pipes overlap).
+//! with the bytes per record and per triangle of the tess → kcolor and kcolor → render
+//! streams, and each stage's median time run alone from a file to a file (what the pipes
+//! overlap).
+//!
+//! `TESTBED_BENCH_ONLY=binary:mesh,json:triangle,…` runs only the configurations listed and
+//! `TESTBED_BENCH_STAGES=0` skips the stages alone and the stream sizes (for the large
+//! meshes: the bytes per record do not depend on the mesh's size).
+//!
+//! The one-process reference is run twice: filling the render mesh with every triangle's own
+//! three vertices (what `render` builds from `Triangle` records) and with each patch's
+//! vertices shared (what it builds from `TriangleMesh` records); each pipeline is compared
+//! with the reference building the same render mesh. The reference runs in a fresh process
+//! (this benchmark started again as a child, reading the OBJ file), as every stage of the
+//! pipes does; the same run repeated inside the benchmark's own process, where the heap's
+//! pages are already mapped from the previous run, is printed beside it (faster by the page
+//! faults of a first run).
 
 // A measurement, not an input path: a failed step should stop it loudly.
 #![allow(clippy::expect_used)]
@@ -16,7 +31,7 @@ use std::process::{Command, Stdio};
 use std::time::Instant;
 
 use testbed::draw::{self, View};
-use testbed::filters::{Colouring, KColor, PatchTessellator};
+use testbed::filters::{Colouring, IndexedPatch, KColor, PatchTessellator};
 use testbed::record::Vertex;
 
 /// Runs per configuration (median reported): enough to steady a 2-core shared machine's noise.
@@ -27,7 +42,16 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-fn piped(bin: &str, obj: &std::path::Path, format: &str) -> f64 {
+/// `tess`'s arguments for a record kind.
+fn tess_args(mesh: bool) -> Vec<&'static str> {
+    let mut a = vec!["tess", "-s", "8", "--kg"];
+    if mesh {
+        a.push("--mesh");
+    }
+    a
+}
+
+fn piped(bin: &str, obj: &std::path::Path, format: &str, mesh: bool) -> f64 {
     let t = Instant::now();
     let mut fit = Command::new(bin)
         .args([
@@ -44,7 +68,7 @@ fn piped(bin: &str, obj: &std::path::Path, format: &str) -> f64 {
         .spawn()
         .expect("fit");
     let mut tess = Command::new(bin)
-        .args(["tess", "-s", "8", "--kg"])
+        .args(tess_args(mesh))
         .stdin(fit.stdout.take().expect("pipe"))
         .stdout(Stdio::piped())
         .spawn()
@@ -82,7 +106,7 @@ fn stage(bin: &str, args: &[&str], input: &std::path::Path, output: &std::path::
     t.elapsed().as_secs_f64()
 }
 
-fn in_process(obj_bytes: &[u8]) -> f64 {
+fn in_process(obj_bytes: &[u8], shared: bool) -> f64 {
     let t = Instant::now();
     let input =
         testbed::fit::prepare_bytes(std::path::Path::new("ring.obj"), obj_bytes, "hybrid", false)
@@ -91,7 +115,7 @@ fn in_process(obj_bytes: &[u8]) -> f64 {
     let method = curves::method_by_name("chord", &Default::default()).expect("method");
     let fitted = surface::fit_scheme(&input.mesh, scheme.as_ref(), method.as_ref()).expect("fit");
     // Straight into the render mesh, the Gaussian curvature beside it (the leanest one-process
-    // form of the same work).
+    // form of the same work): every triangle's own vertices, or each patch's shared.
     let mut mesh = render::RenderMesh {
         positions: Vec::new(),
         normals: Vec::new(),
@@ -99,11 +123,30 @@ fn in_process(obj_bytes: &[u8]) -> f64 {
         faces: Vec::new(),
     };
     let mut kg: Vec<f64> = Vec::new();
+    let mut corners: Vec<f64> = Vec::new();
     let mut tessellator = PatchTessellator::new(8).expect("tessellator");
     let mut samples = Vec::new();
+    let mut indexed = IndexedPatch::default();
     for net in fitted.nets() {
         let pts = net.iter().map(|p| input.frame.to_world(p)).collect();
         let patch = surface::BezierTriangle::new(fitted.layout.degree, pts).expect("patch");
+        if shared {
+            tessellator
+                .tessellate_indexed(&patch, &mut indexed)
+                .expect("tess");
+            let base = mesh.positions.len();
+            for s in &indexed.samples {
+                mesh.positions.push(s.pos);
+                mesh.normals.push(s.norm);
+                mesh.colors.push(render::colors::MATERIAL);
+                kg.push(s.kg);
+            }
+            for t in &indexed.triangles {
+                mesh.faces.push(t.map(|i| base + i as usize));
+                corners.extend(t.map(|i| indexed.samples[i as usize].kg));
+            }
+            continue;
+        }
         tessellator.tessellate(&patch, &mut samples).expect("tess");
         for t in &samples {
             let tri = t.map(|s| Vertex {
@@ -117,8 +160,11 @@ fn in_process(obj_bytes: &[u8]) -> f64 {
             kg.extend(t.iter().map(|s| s.kg));
         }
     }
+    if !shared {
+        corners.clone_from(&kg);
+    }
     // The range as kcolor's default takes it: from the first block of triangles.
-    let mut first: Vec<f64> = kg
+    let mut first: Vec<f64> = corners
         .iter()
         .take(3 * testbed::filters::DEFAULT_BLOCK)
         .copied()
@@ -142,7 +188,37 @@ fn in_process(obj_bytes: &[u8]) -> f64 {
     t.elapsed().as_secs_f64()
 }
 
+/// Set in a child run of this benchmark: one one-process run on the OBJ file named, in a
+/// fresh process (`shared` or `own` vertices), its time printed.
+const CHILD: &str = "TESTBED_BENCH_ONE_PROCESS";
+
+/// The one-process run in a fresh process (this benchmark run again as a child): cold heap
+/// and caches, a process started, as each stage of the pipes has; wall time of the child.
+fn in_fresh_process(obj: &std::path::Path, shared: bool) -> f64 {
+    let t = Instant::now();
+    let out = Command::new(std::env::current_exe().expect("the benchmark"))
+        .env(
+            CHILD,
+            format!(
+                "{},{}",
+                if shared { "shared" } else { "own" },
+                obj.display()
+            ),
+        )
+        .stderr(Stdio::null())
+        .output()
+        .expect("runs");
+    assert!(out.status.success());
+    t.elapsed().as_secs_f64()
+}
+
 fn main() {
+    if let Ok(spec) = std::env::var(CHILD) {
+        let (kind, path) = spec.split_once(',').expect("KIND,PATH");
+        let bytes = std::fs::read(path).expect("the OBJ file");
+        in_process(&bytes, kind == "shared");
+        return;
+    }
     let bin = env!("CARGO_BIN_EXE_testbed");
     let (nu, nv) = std::env::var("TESTBED_BENCH_RING")
         .ok()
@@ -176,66 +252,84 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(RUNS);
-    let base = median((0..runs).map(|_| in_process(&obj_bytes)).collect());
-    println!("in one process: {base:.3} s");
-    for format in ["json", "dstruct", "binary"] {
-        let t = median((0..runs).map(|_| piped(bin, &obj, format)).collect());
-        // Bytes per record of the tess → kcolor stream.
-        let fit = Command::new(bin)
-            .args([
-                "fit",
-                "--scheme",
-                "shirman-sequin",
-                "--format",
-                format,
-                "--input",
-            ])
-            .arg(&obj)
-            .stderr(Stdio::null())
-            .output()
-            .expect("fit");
-        let mut tess = Command::new(bin)
-            .args(["tess", "-s", "8", "--kg"])
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .spawn()
-            .expect("tess");
-        let mut stdin = tess.stdin.take().expect("stdin");
-        let patches = fit.stdout.clone();
-        let feeder = std::thread::spawn(move || stdin.write_all(&patches));
-        let tris = tess.wait_with_output().expect("tess").stdout;
-        let _ = feeder.join();
-        let n = faces * 3 * 64;
-        println!(
-            "pipes, {format:7}: {t:.3} s = {:.2}× one process; patches {:.0} B/record, triangles {:.0} B/record ({:.1} MB)",
-            t / base,
-            fit.stdout.len() as f64 / (faces * 3) as f64,
-            tris.len() as f64 / n as f64,
-            tris.len() as f64 / 1e6
-        );
-        // Each stage alone, file to file.
-        let f = |name: &str| dir.path().join(format!("{name}.{format}"));
-        let steps: [(&str, Vec<&str>, std::path::PathBuf, std::path::PathBuf); 4] = [
-            (
-                "fit",
-                vec!["fit", "--scheme", "shirman-sequin", "--format", format],
-                obj.clone(),
-                f("patches"),
-            ),
-            (
-                "tess",
-                vec!["tess", "-s", "8", "--kg"],
-                f("patches"),
-                f("tris"),
-            ),
-            ("kcolor", vec!["kcolor"], f("tris"), f("coloured")),
-            ("render", vec!["render"], f("coloured"), f("png")),
-        ];
-        let mut line = format!("  stages alone, {format:7}:");
-        for (name, args, input, output) in &steps {
-            let t = median((0..runs).map(|_| stage(bin, args, input, output)).collect());
-            line += &format!(" {name} {t:.3} s");
+    let only = std::env::var("TESTBED_BENCH_ONLY").ok();
+    let chosen = |format: &str, mesh: bool| {
+        let name = format!("{format}:{}", if mesh { "mesh" } else { "triangle" });
+        only.as_deref()
+            .is_none_or(|o| o.split(',').any(|c| c.trim() == name))
+    };
+    let stages = std::env::var("TESTBED_BENCH_STAGES").map_or(true, |s| s != "0");
+    let formats = ["json", "dstruct", "binary"];
+    let base = [false, true].map(|shared| {
+        if !formats.iter().any(|f| chosen(f, shared)) {
+            return f64::NAN;
         }
-        println!("{line}");
+        median((0..runs).map(|_| in_process(&obj_bytes, shared)).collect())
+    });
+    let warm = base;
+    let base = [false, true].map(|shared| {
+        if warm[usize::from(shared)].is_nan() {
+            return f64::NAN;
+        }
+        median((0..runs).map(|_| in_fresh_process(&obj, shared)).collect())
+    });
+    println!(
+        "in one process: {:.3} s (every triangle's own vertices), {:.3} s (each patch's shared) \
+         in a fresh process (the reference); {:.3} s, {:.3} s repeated inside this one (warm heap)",
+        base[0], base[1], warm[0], warm[1]
+    );
+    let patches = faces * 3;
+    let triangles = patches * 64;
+    for format in formats {
+        for mesh in [false, true] {
+            if !chosen(format, mesh) {
+                continue;
+            }
+            let kind = if mesh { "TriangleMesh" } else { "Triangle" };
+            let reference = base[usize::from(mesh)];
+            let t = median((0..runs).map(|_| piped(bin, &obj, format, mesh)).collect());
+            if !stages {
+                println!(
+                    "pipes, {format:7} {kind:12}: {t:.3} s = {:.2}× one process",
+                    t / reference
+                );
+                continue;
+            }
+            // Each stage alone, file to file.
+            let f = |name: &str| dir.path().join(format!("{name}.{format}.{kind}"));
+            let steps: [(&str, Vec<&str>, std::path::PathBuf, std::path::PathBuf); 4] = [
+                (
+                    "fit",
+                    vec!["fit", "--scheme", "shirman-sequin", "--format", format],
+                    obj.clone(),
+                    f("patches"),
+                ),
+                ("tess", tess_args(mesh), f("patches"), f("tris")),
+                ("kcolor", vec!["kcolor"], f("tris"), f("coloured")),
+                ("render", vec!["render"], f("coloured"), f("png")),
+            ];
+            let mut line = String::from("  stages alone:");
+            for (name, args, input, output) in &steps {
+                let t = median((0..runs).map(|_| stage(bin, args, input, output)).collect());
+                line += &format!(" {name} {t:.3} s");
+            }
+            let size = |p: std::path::PathBuf| std::fs::metadata(p).expect("written").len() as f64;
+            let records = if mesh { patches } else { triangles } as f64;
+            let (tris, coloured) = (size(f("tris")), size(f("coloured")));
+            println!(
+                "pipes, {format:7} {kind:12}: {t:.3} s = {:.2}× one process; patches {:.0} B/record; \
+                 tess → kcolor {:.0} B/record, {:.1} B/triangle ({:.1} MB); \
+                 kcolor → render {:.0} B/record, {:.1} B/triangle ({:.1} MB)",
+                t / reference,
+                size(f("patches")) / patches as f64,
+                tris / records,
+                tris / triangles as f64,
+                tris / 1e6,
+                coloured / records,
+                coloured / triangles as f64,
+                coloured / 1e6,
+            );
+            println!("{line}");
+        }
     }
 }

@@ -43,11 +43,38 @@ pub const MAX_STRING_BYTES: u32 = 1 << 24;
 /// need more (every record shaped differently) is better served by JSON.
 pub const MAX_SCHEMAS: usize = 1 << 16;
 
-/// One schema: the template (a record tape) and slot kinds.
+/// One schema: the template (a record tape), slot kinds, and the template token each slot
+/// fills.
 #[derive(Clone, Debug, PartialEq)]
 struct Schema {
     template: Tape,
     slots: Vec<u8>,
+    at: Vec<u32>,
+}
+
+impl Schema {
+    /// The schema of `template` with `slots` (already checked to match it).
+    fn new(template: Tape, slots: Vec<u8>) -> Self {
+        let keep = type_range(&template);
+        let at = template
+            .toks
+            .iter()
+            .enumerate()
+            .filter(|(i, t)| {
+                !keep.contains(i)
+                    && matches!(
+                        t,
+                        Tok::Str(_) | Tok::Float(_) | Tok::Text(..) | Tok::Int(_) | Tok::UInt(_)
+                    )
+            })
+            .map(|(i, _)| i as u32)
+            .collect();
+        Schema {
+            template,
+            slots,
+            at,
+        }
+    }
 }
 
 /// Encodes records, declaring schemas as new shapes appear.
@@ -101,61 +128,60 @@ fn shape(v: &Tape) -> Schema {
         };
         template.toks.push(out);
     }
-    Schema { template, slots }
+    Schema::new(template, slots)
 }
 
-/// Writes the slots of `v` against `schema`; false when `v` does not have its shape.
+/// Writes the slots of `v` against `schema`; false when `v` does not have its shape (then
+/// `out` may hold part of it: the caller takes it back).
 fn encode(v: &Tape, schema: &Schema, out: &mut Vec<u8>) -> bool {
     let t = &schema.template;
     if v.toks.len() != t.toks.len() {
         return false;
     }
-    let keep = type_range(t);
     // A record whose text begins with the template's has its keys where the template has
     // them: equal spans are equal names (one comparison instead of one per key).
     let same_text = v.text.get(..t.text.len()) == Some(&t.text[..]);
     let mut k = 0;
+    // The template token the next slot fills (past the end when none is left).
+    let mut slot_at = schema.at.first().map_or(usize::MAX, |&a| a as usize);
     for (i, (a, b)) in v.toks.iter().zip(&t.toks).enumerate() {
-        let ok = match (a, b) {
-            (Tok::Key(x), Tok::Key(y)) => (same_text && x == y) || v.bytes(*x) == t.bytes(*y),
-            _ if keep.contains(&i) => match (a, b) {
+        let ok = if i == slot_at {
+            let ok = match (schema.slots.get(k), a) {
+                (Some(b'f'), Tok::Float(x) | Tok::Text(x, _)) => {
+                    out.extend_from_slice(&x.to_le_bytes());
+                    true
+                }
+                (Some(b'i'), Tok::Int(x)) => {
+                    out.extend_from_slice(&x.to_le_bytes());
+                    true
+                }
+                (Some(b'u'), Tok::UInt(x)) => {
+                    out.extend_from_slice(&x.to_le_bytes());
+                    true
+                }
+                (Some(b's'), Tok::Str(x)) => {
+                    let bytes = v.bytes(*x);
+                    match u32::try_from(bytes.len()) {
+                        Ok(len) => {
+                            out.extend_from_slice(&len.to_le_bytes());
+                            out.extend_from_slice(bytes);
+                            true
+                        }
+                        Err(_) => false,
+                    }
+                }
+                _ => false,
+            };
+            k += 1;
+            slot_at = schema.at.get(k).map_or(usize::MAX, |&a| a as usize);
+            ok
+        } else {
+            // Structure, keys and the `type` value: the template's own.
+            match (a, b) {
+                (Tok::Key(x), Tok::Key(y)) => (same_text && x == y) || v.bytes(*x) == t.bytes(*y),
                 (Tok::Str(x), Tok::Str(y)) => v.bytes(*x) == t.bytes(*y),
                 _ => a == b,
-            },
-            (Tok::Str(x), Tok::Str(_)) => {
-                let kind = schema.slots.get(k);
-                k += 1;
-                let bytes = v.bytes(*x);
-                match u32::try_from(bytes.len()) {
-                    Ok(len) if kind == Some(&b's') => {
-                        out.extend_from_slice(&len.to_le_bytes());
-                        out.extend_from_slice(bytes);
-                        true
-                    }
-                    _ => false,
-                }
             }
-            (Tok::Float(x) | Tok::Text(x, _), Tok::Int(_)) => {
-                let ok = schema.slots.get(k) == Some(&b'f');
-                k += 1;
-                out.extend_from_slice(&x.to_le_bytes());
-                ok
-            }
-            (Tok::Int(x), Tok::Int(_)) => {
-                let ok = schema.slots.get(k) == Some(&b'i');
-                k += 1;
-                out.extend_from_slice(&x.to_le_bytes());
-                ok
-            }
-            (Tok::UInt(x), Tok::Int(_)) => {
-                let ok = schema.slots.get(k) == Some(&b'u');
-                k += 1;
-                out.extend_from_slice(&x.to_le_bytes());
-                ok
-            }
-            (Tok::Obj { .. }, Tok::Obj { .. }) | (Tok::Arr { .. }, Tok::Arr { .. }) => a == b,
-            (Tok::Bool(_) | Tok::Null, _) => a == b,
-            _ => false,
         };
         if !ok {
             return false;
@@ -177,14 +203,16 @@ impl Encoder {
             let Some(schema) = self.schemas.get(id) else {
                 continue;
             };
-            self.scratch.clear();
-            if encode(record, schema, &mut self.scratch) {
+            // Written in place; taken back if the record does not have the schema's shape.
+            let mark = out.len();
+            out.reserve(5 + 8 * schema.slots.len());
+            out.push(b'R');
+            out.extend_from_slice(&(id as u32).to_le_bytes());
+            if encode(record, schema, out) {
                 self.last = id;
-                out.push(b'R');
-                out.extend_from_slice(&(id as u32).to_le_bytes());
-                out.extend_from_slice(&self.scratch);
                 return Ok(());
             }
+            out.truncate(mark);
         }
         if self.schemas.len() >= MAX_SCHEMAS {
             return Err(format!(
@@ -280,6 +308,8 @@ fn check_template(t: &Tape, slots: &[u8]) -> bool {
 }
 
 impl Decoder {
+    /// Reads the slots of one record of `schema` into `out`: the template copied whole (keys,
+    /// structure and the `type` value are its own), then each slot's token set in place.
     fn fill<R: Read>(
         schema: &Schema,
         runs: &[usize],
@@ -288,68 +318,67 @@ impl Decoder {
         out: &mut Tape,
     ) -> Result<(), String> {
         let t = &schema.template;
-        let keep = type_range(t);
         // The record's text begins with the template's, so keys and the `type` value keep
         // their spans; strings read from slots follow.
         out.text.extend_from_slice(&t.text);
+        out.toks.extend_from_slice(&t.toks);
+        let n = schema.slots.len();
         let mut k = 0;
-        // Bytes of the current numeric run read ahead, and how many of them are used.
-        let mut used = 0;
-        scratch.clear();
-        for (i, tok) in t.toks.iter().enumerate() {
-            let v = match *tok {
-                Tok::Key(_) => *tok,
-                _ if keep.contains(&i) => *tok,
-                Tok::Str(_) | Tok::Float(_) | Tok::Text(..) | Tok::Int(_) | Tok::UInt(_) => {
-                    let kind = schema.slots.get(k).copied();
-                    k += 1;
-                    if kind == Some(b's') {
-                        let len = read_u32(r)?;
-                        if len > MAX_STRING_BYTES {
-                            return Err(format!(
-                                "string of {len} bytes (at most {MAX_STRING_BYTES})"
-                            ));
-                        }
-                        let start = out.text.len();
-                        out.text.resize(start + len as usize, 0);
-                        read_exact(r, &mut out.text[start..])?;
-                        if std::str::from_utf8(&out.text[start..]).is_err() {
-                            return Err("string is not UTF-8".into());
-                        }
-                        Tok::Str(crate::tape::Span {
-                            start: start as u32,
-                            len,
-                        })
-                    } else {
-                        if used == scratch.len() {
-                            let n = runs.get(k - 1).copied().unwrap_or(1).max(1);
-                            scratch.resize(8 * n, 0);
-                            read_exact(r, scratch)?;
-                            used = 0;
-                        }
-                        let mut b = [0u8; 8];
-                        b.copy_from_slice(&scratch[used..used + 8]);
-                        used += 8;
-                        match kind {
-                            Some(b'f') => {
-                                let f = f64::from_le_bytes(b);
-                                if !f.is_finite() {
-                                    return Err(format!("non-finite number {f}"));
-                                }
-                                Tok::Float(f)
-                            }
-                            Some(b'i') => Tok::Int(i64::from_le_bytes(b)),
-                            _ => {
-                                let u = u64::from_le_bytes(b);
-                                // A `u` slot holds what `i64` cannot; keep the tape canonical.
-                                i64::try_from(u).map_or(Tok::UInt(u), Tok::Int)
-                            }
-                        }
-                    }
-                }
-                other => other,
+        while k < n {
+            let (Some(&kind), Some(&at)) = (schema.slots.get(k), schema.at.get(k)) else {
+                return Err("schema without a slot's token".into());
             };
-            out.toks.push(v);
+            let Some(slot) = out.toks.get_mut(at as usize) else {
+                return Err("schema without a slot's token".into());
+            };
+            if kind == b's' {
+                let len = read_u32(r)?;
+                if len > MAX_STRING_BYTES {
+                    return Err(format!(
+                        "string of {len} bytes (at most {MAX_STRING_BYTES})"
+                    ));
+                }
+                let start = out.text.len();
+                out.text.resize(start + len as usize, 0);
+                read_exact(r, &mut out.text[start..])?;
+                if std::str::from_utf8(&out.text[start..]).is_err() {
+                    return Err("string is not UTF-8".into());
+                }
+                *slot = Tok::Str(crate::tape::Span {
+                    start: start as u32,
+                    len,
+                });
+                k += 1;
+                continue;
+            }
+            // A run of numeric slots, read in one call.
+            let run = runs.get(k).copied().unwrap_or(1).clamp(1, n - k);
+            scratch.resize(8 * run, 0);
+            read_exact(r, scratch)?;
+            for (j, b) in scratch.chunks_exact(8).enumerate() {
+                let mut bytes = [0u8; 8];
+                bytes.copy_from_slice(b);
+                let tok = match schema.slots.get(k + j) {
+                    Some(b'f') => {
+                        let f = f64::from_le_bytes(bytes);
+                        if !f.is_finite() {
+                            return Err(format!("non-finite number {f}"));
+                        }
+                        Tok::Float(f)
+                    }
+                    Some(b'i') => Tok::Int(i64::from_le_bytes(bytes)),
+                    _ => {
+                        let u = u64::from_le_bytes(bytes);
+                        // A `u` slot holds what `i64` cannot; keep the tape canonical.
+                        i64::try_from(u).map_or(Tok::UInt(u), Tok::Int)
+                    }
+                };
+                let at = schema.at.get(k + j).copied().unwrap_or(u32::MAX) as usize;
+                if let Some(slot) = out.toks.get_mut(at) {
+                    *slot = tok;
+                }
+            }
+            k += run;
         }
         Ok(())
     }
@@ -399,7 +428,7 @@ impl Decoder {
                         ));
                     }
                     self.runs.push(numeric_runs(&slots));
-                    self.schemas.push(Schema { template, slots });
+                    self.schemas.push(Schema::new(template, slots));
                 }
                 b'R' => {
                     let id = read_u32(r)? as usize;

@@ -1,10 +1,10 @@
 //! The ends of the pipeline: `render` (the seed's Sgp | Render), `wire` (Sgp | XRender) and
 //! `to-mesh` (a mesh file).
 //!
-//! The triangles are drawn as they come, unwelded (each record's three vertices), with their
-//! normals (the geometric normal where a vertex has none) and colours (the uniform material
-//! where a vertex has none). The camera frames the triangles' bounding box from the given
-//! azimuth and elevation.
+//! The triangles are drawn as they come, unwelded (each Triangle record's three vertices; a
+//! TriangleMesh's vertices shared as in the record), with their normals (the geometric normal
+//! where a vertex has none) and colours (the uniform material where a vertex has none). The
+//! camera frames the triangles' bounding box from the given azimuth and elevation.
 
 use std::collections::HashMap;
 use std::io::Write;
@@ -17,6 +17,7 @@ use crate::error::FilterError;
 use crate::filters::Pipe;
 use crate::record::{self, Vertex};
 use crate::stream::Record;
+use crate::triangle_mesh::{self, TriangleMesh};
 
 /// Default view: azimuth and elevation in degrees (the octahedron's three front faces).
 pub const DEFAULT_VIEW: (f64, f64) = (35.0, 25.0);
@@ -28,17 +29,23 @@ pub const DEFAULT_SIZE: (u32, u32) = (400, 300);
 /// should be asked for.
 pub const MAX_SIDE: u32 = 16_384;
 
-/// Reads every Triangle into a render mesh (unwelded); other records are ignored.
+/// Reads every Triangle, and every triangle of every TriangleMesh, as three vertices; other
+/// records are ignored.
 pub fn collect_triangles(pipe: &mut Pipe) -> Result<Vec<[Vertex; 3]>, FilterError> {
     let mut tris = Vec::new();
+    let mut mesh = TriangleMesh::default();
     let mut rec = Record::default();
     while pipe.next_good(&mut rec)? {
-        if rec.kind() != "Triangle" {
-            continue;
-        }
-        match record::triangle(&rec.tape) {
-            Ok(t) => tris.push(t),
-            Err(e) => pipe.bad_field(&rec, e)?,
+        match rec.kind() {
+            "Triangle" => match record::triangle(&rec.tape) {
+                Ok(t) => tris.push(t),
+                Err(e) => pipe.bad_field(&rec, e)?,
+            },
+            triangle_mesh::KIND => match mesh.read(&rec.tape) {
+                Ok(()) => tris.extend((0..mesh.triangles.len()).map(|k| mesh.triangle(k))),
+                Err(e) => pipe.bad_field(&rec, e)?,
+            },
+            _ => {}
         }
     }
     if pipe.skipped > 0 {
@@ -50,9 +57,9 @@ pub fn collect_triangles(pipe: &mut Pipe) -> Result<Vec<[Vertex; 3]>, FilterErro
     Ok(tris)
 }
 
-/// Reads every Triangle straight into a render mesh (unwelded, the uniform material where a
-/// vertex has no colour); other records are ignored. The pictures' reader: no triangle list
-/// is held beside the mesh.
+/// Reads every Triangle (unwelded) and every TriangleMesh (its vertices shared, as in the
+/// record) straight into a render mesh, the uniform material where a vertex has no colour;
+/// other records are ignored. The pictures' reader: no triangle list is held beside the mesh.
 pub fn collect_mesh(pipe: &mut Pipe) -> Result<RenderMesh, FilterError> {
     let mut m = RenderMesh {
         positions: Vec::new(),
@@ -60,14 +67,19 @@ pub fn collect_mesh(pipe: &mut Pipe) -> Result<RenderMesh, FilterError> {
         colors: Vec::new(),
         faces: Vec::new(),
     };
+    let mut mesh = TriangleMesh::default();
     let mut rec = Record::default();
     while pipe.next_good(&mut rec)? {
-        if rec.kind() != "Triangle" {
-            continue;
-        }
-        match record::triangle(&rec.tape) {
-            Ok(t) => push_triangle(&mut m, &t, render::colors::MATERIAL),
-            Err(e) => pipe.bad_field(&rec, e)?,
+        match rec.kind() {
+            "Triangle" => match record::triangle(&rec.tape) {
+                Ok(t) => push_triangle(&mut m, &t, render::colors::MATERIAL),
+                Err(e) => pipe.bad_field(&rec, e)?,
+            },
+            triangle_mesh::KIND => match mesh.read(&rec.tape) {
+                Ok(()) => push_triangle_mesh(&mut m, &mesh, render::colors::MATERIAL),
+                Err(e) => pipe.bad_field(&rec, e)?,
+            },
+            _ => {}
         }
     }
     if pipe.skipped > 0 {
@@ -77,6 +89,29 @@ pub fn collect_mesh(pipe: &mut Pipe) -> Result<RenderMesh, FilterError> {
         );
     }
     Ok(m)
+}
+
+/// Appends a TriangleMesh record's triangles to a render mesh: with its vertices shared when
+/// it has normals; without, each triangle on its own with its geometric normal (as a
+/// Triangle without normals is drawn). Colours: `default_color` where the record has none.
+pub fn push_triangle_mesh(m: &mut RenderMesh, mesh: &TriangleMesh, default_color: [f32; 3]) {
+    if mesh.norm.is_empty() && !mesh.pos.is_empty() {
+        for k in 0..mesh.triangles.len() {
+            push_triangle(m, &mesh.triangle(k), default_color);
+        }
+        return;
+    }
+    let base = m.positions.len();
+    m.positions.extend_from_slice(&mesh.pos);
+    m.normals.extend_from_slice(&mesh.norm);
+    if mesh.color.is_empty() {
+        m.colors
+            .extend(std::iter::repeat_n(default_color, mesh.pos.len()));
+    } else {
+        m.colors.extend_from_slice(&mesh.color);
+    }
+    m.faces
+        .extend(mesh.triangles.iter().map(|t| t.map(|i| base + i as usize)));
 }
 
 /// Appends one triangle to a render mesh: its normals (the geometric normal where a vertex

@@ -8,8 +8,11 @@
 //!   vertex fields first, then **every field of its patch except `type`, `degree` and
 //!   `points`** (the fields tess consumes), in the patch's order: `face`, `subpatch`,
 //!   `scheme` and anything added upstream (a `provenance`) reach the triangles;
+//! * `tess --mesh` writes one `TriangleMesh` per patch instead (`crate::triangle_mesh`): its
+//!   vertex columns and `triangles` first, then the same carried fields;
 //! * `mat0`, `kcolor`, `radial` set `color` (and `radial` also `dist`) in each vertex object
-//!   of a `Triangle`, in place when present, appended otherwise;
+//!   of a `Triangle`, and the `color` (and `dist`) column of a `TriangleMesh`, in place when
+//!   present, appended otherwise;
 //! * `g1` writes every record unchanged.
 //!
 //! Records of other types pass through all of them. Malformed records are errors naming the
@@ -28,6 +31,7 @@ use crate::error::{FieldError, FilterError, StreamError};
 use crate::record::{self, Vertex, VERTEX_FIELDS};
 use crate::stream::{Format, Record, RecordReader, RecordWriter};
 use crate::tape::{Span, Tape, Tok};
+use crate::triangle_mesh::{self, MeshTapes, TriangleMesh};
 
 /// How many skipped records are described one by one on standard error (the rest are only
 /// counted).
@@ -152,6 +156,28 @@ pub struct Sample {
     pub km: f64,
 }
 
+/// One patch's tessellation with shared vertices: its samples, and its triangles as indices
+/// into them (counter-clockwise, in the order of `surface::tessellate`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct IndexedPatch {
+    /// The samples (vertices), each once.
+    pub samples: Vec<Sample>,
+    /// The triangles: indices into `samples`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl IndexedPatch {
+    /// The triangles with their vertices, appended to `out` after clearing it.
+    pub fn expand(&self, out: &mut Vec<[Sample; 3]>) {
+        out.clear();
+        out.extend(
+            self.triangles
+                .iter()
+                .map(|t| t.map(|i| self.samples[i as usize])),
+        );
+    }
+}
+
 /// Tessellates patches one at a time at `s` segments per edge, exactly as
 /// `surface::tessellate` does for the patch alone, with the Bernstein weights of the samples
 /// computed once per degree and shared by every patch (`surface::tessellate` computes them
@@ -161,7 +187,7 @@ pub struct Sample {
 pub struct PatchTessellator {
     s: usize,
     tables: HashMap<usize, Vec<SampleWeights>>,
-    samples: Vec<Sample>,
+    indexed: IndexedPatch,
 }
 
 /// Boundary samples closer than this many weld tolerances (`surface::tessellate`'s
@@ -178,18 +204,35 @@ impl PatchTessellator {
         Ok(PatchTessellator {
             s,
             tables: HashMap::new(),
-            samples: Vec::new(),
+            indexed: IndexedPatch::default(),
         })
     }
 
     /// The `s²` triangles of `patch` (fewer where the general path collapses some), appended
-    /// to `out` after clearing it.
+    /// to `out` after clearing it: [`PatchTessellator::tessellate_indexed`] with each
+    /// triangle's vertices copied out.
     pub fn tessellate(
         &mut self,
         patch: &BezierTriangle,
         out: &mut Vec<[Sample; 3]>,
     ) -> Result<(), surface::TessError> {
-        out.clear();
+        let mut indexed = std::mem::take(&mut self.indexed);
+        let result = self.tessellate_indexed(patch, &mut indexed);
+        indexed.expand(out);
+        self.indexed = indexed;
+        result
+    }
+
+    /// The tessellation of `patch` with shared vertices: `(s + 1)(s + 2)/2` samples and `s²`
+    /// triangles on the fast path; on the general path the welded vertices and triangles of
+    /// `surface::tessellate` for the patch alone. `out` is cleared first.
+    pub fn tessellate_indexed(
+        &mut self,
+        patch: &BezierTriangle,
+        out: &mut IndexedPatch,
+    ) -> Result<(), surface::TessError> {
+        out.samples.clear();
+        out.triangles.clear();
         let s = self.s;
         let table = self.tables.entry(patch.degree()).or_insert_with(|| {
             let mut t = Vec::with_capacity((s + 1) * (s + 2) / 2);
@@ -204,7 +247,6 @@ impl PatchTessellator {
             }
             t
         });
-        self.samples.clear();
         for w in table.iter() {
             let Some((d, c)) = patch
                 .derivatives_with(w)
@@ -212,7 +254,7 @@ impl PatchTessellator {
             else {
                 return general(patch, s, out);
             };
-            self.samples.push(Sample {
+            out.samples.push(Sample {
                 pos: d.p,
                 norm: c.normal,
                 kg: c.gaussian,
@@ -228,7 +270,7 @@ impl PatchTessellator {
         for j in 0..=s {
             for i in 0..=s - j {
                 if i == 0 || j == 0 || i + j == s {
-                    boundary.push(self.samples[local(i, j)].pos);
+                    boundary.push(out.samples[local(i, j)].pos);
                 }
             }
         }
@@ -237,18 +279,17 @@ impl PatchTessellator {
                 return general(patch, s, out);
             }
         }
-        let smp = &self.samples;
+        // Sample indices fit u32 for any s whose samples fit in memory (and `tess` allows at
+        // most MAX_SEGMENTS).
+        let at = |i: usize, j: usize| local(i, j) as u32;
         for j in 0..s {
             for i in 0..s - j {
                 // Upward triangle: corners towards u, v, w; then the downward one (the order
                 // of `surface::tessellate`).
-                out.push([smp[local(i + 1, j)], smp[local(i, j + 1)], smp[local(i, j)]]);
+                out.triangles.push([at(i + 1, j), at(i, j + 1), at(i, j)]);
                 if i + j + 2 <= s {
-                    out.push([
-                        smp[local(i + 1, j)],
-                        smp[local(i + 1, j + 1)],
-                        smp[local(i, j + 1)],
-                    ]);
+                    out.triangles
+                        .push([at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
                 }
             }
         }
@@ -260,21 +301,19 @@ impl PatchTessellator {
 fn general(
     patch: &BezierTriangle,
     s: usize,
-    out: &mut Vec<[Sample; 3]>,
+    out: &mut IndexedPatch,
 ) -> Result<(), surface::TessError> {
-    out.clear();
+    out.samples.clear();
+    out.triangles.clear();
     let t = surface::tessellate(std::slice::from_ref(patch), s)?;
-    let sample = |i: usize| Sample {
+    out.samples.extend((0..t.positions.len()).map(|i| Sample {
         pos: t.positions[i],
         norm: t.normals[i],
         kg: t.gaussian[i],
         km: t.mean[i],
-    };
-    out.extend(
-        t.faces
-            .iter()
-            .map(|f| [sample(f[0]), sample(f[1]), sample(f[2])]),
-    );
+    }));
+    out.triangles
+        .extend(t.faces.iter().map(|f| f.map(|i| i as u32)));
     Ok(())
 }
 
@@ -285,8 +324,10 @@ pub fn tessellate_patch(
     patch: &BezierTriangle,
     s: usize,
 ) -> Result<Vec<[Sample; 3]>, surface::TessError> {
+    let mut indexed = IndexedPatch::default();
+    general(patch, s, &mut indexed)?;
     let mut out = Vec::new();
-    general(patch, s, &mut out)?;
+    indexed.expand(&mut out);
     Ok(out)
 }
 
@@ -324,6 +365,18 @@ pub fn triangle_value<'v>(
 /// Fields of a patch record that tess consumes (the rest are carried to its triangles).
 pub const TESS_CONSUMES: [&str; 3] = ["type", "degree", "points"];
 
+/// The token ranges (key and value) of the fields of a patch record that tess carries to its
+/// triangles: every field but [`TESS_CONSUMES`], in order. `out` is cleared first.
+pub fn carried_fields(patch: &Tape, out: &mut Vec<std::ops::Range<usize>>) {
+    out.clear();
+    for (key, v) in patch.fields(0) {
+        if !TESS_CONSUMES.iter().any(|c| c.as_bytes() == key) {
+            let w = patch.toks.get(v).map_or(1, Tok::width);
+            out.push(v - 1..v + w);
+        }
+    }
+}
+
 /// Builds Triangle tapes over one patch record's text (so carried fields are copied as
 /// tokens, their strings not at all).
 struct TriangleTapes {
@@ -355,13 +408,7 @@ impl TriangleTapes {
         {
             self.names[k] = self.tape.push_text(n.as_bytes());
         }
-        self.carried.clear();
-        for (key, v) in patch.fields(0) {
-            if !TESS_CONSUMES.iter().any(|c| c.as_bytes() == key) {
-                let w = patch.toks.get(v).map_or(1, Tok::width);
-                self.carried.push(v - 1..v + w);
-            }
-        }
+        carried_fields(patch, &mut self.carried);
     }
 
     /// The tape of one triangle.
@@ -409,17 +456,43 @@ impl TriangleTapes {
     }
 }
 
-/// `tess -s N [--kg] [--km]`: BezierTriangles to Triangles (module docs for what is carried).
-pub fn tess(pipe: &mut Pipe, s: usize, fields: CurvatureFields) -> Result<(), FilterError> {
-    if s == 0 {
-        return Err(FilterError::Usage(
-            "tess: -s must be at least 1 segment per edge".into(),
-        ));
+/// Largest `tess -s`: a patch at s = 4096 is 8.4 M samples (about half a GB with their weights),
+/// far beyond any picture's need, while a larger `-s` would only exhaust memory (or overflow
+/// the sample table's size) instead of failing with a message; it also keeps every vertex
+/// index of a `TriangleMesh` within `u32`.
+pub const MAX_SEGMENTS: usize = 4096;
+
+/// What `tess` writes for each patch.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TessRecords {
+    /// `s²` `Triangle` records (the seed's record, the default).
+    #[default]
+    Triangles,
+    /// One `TriangleMesh` record: the patch's vertices once, its triangles as indices
+    /// (`crate::triangle_mesh`).
+    Mesh,
+}
+
+/// `tess -s N [--kg] [--km] [--mesh]`: BezierTriangles to Triangles, or to one TriangleMesh
+/// each (module docs for what is carried).
+pub fn tess(
+    pipe: &mut Pipe,
+    s: usize,
+    fields: CurvatureFields,
+    records: TessRecords,
+) -> Result<(), FilterError> {
+    if s == 0 || s > MAX_SEGMENTS {
+        return Err(FilterError::Usage(format!(
+            "tess: -s {s}: from 1 to {MAX_SEGMENTS} segments per edge"
+        )));
     }
     let mut tessellator = PatchTessellator::new(s)?;
     let mut rec = Record::default();
+    let mut indexed = IndexedPatch::default();
     let mut tris = Vec::new();
     let mut tapes = TriangleTapes::new();
+    let mut meshes = MeshTapes::default();
+    let mut carried = Vec::new();
     while pipe.next_good(&mut rec)? {
         if rec.kind() != "BezierTriangle" {
             pipe.write(&rec)?;
@@ -432,13 +505,26 @@ pub fn tess(pipe: &mut Pipe, s: usize, fields: CurvatureFields) -> Result<(), Fi
                 continue;
             }
         };
-        tessellator.tessellate(&patch, &mut tris)?;
-        tapes.start(&rec.tape);
-        for tri in &tris {
-            let t = tapes.build(&rec.tape, tri, fields);
-            match pipe.writer.write_tape(t, rec.at) {
-                Err(e) if e.is_record_error() => pipe.bad(e)?,
-                other => other?,
+        match records {
+            TessRecords::Mesh => {
+                tessellator.tessellate_indexed(&patch, &mut indexed)?;
+                carried_fields(&rec.tape, &mut carried);
+                let t = meshes.build(&rec.tape, &indexed, fields, &carried);
+                match pipe.writer.write_tape(t, rec.at) {
+                    Err(e) if e.is_record_error() => pipe.bad(e)?,
+                    other => other?,
+                }
+            }
+            TessRecords::Triangles => {
+                tessellator.tessellate(&patch, &mut tris)?;
+                tapes.start(&rec.tape);
+                for tri in &tris {
+                    let t = tapes.build(&rec.tape, tri, fields);
+                    match pipe.writer.write_tape(t, rec.at) {
+                        Err(e) if e.is_record_error() => pipe.bad(e)?,
+                        other => other?,
+                    }
+                }
             }
         }
     }
@@ -552,10 +638,33 @@ impl Colouring for Radial {
     }
 }
 
-/// Binds a colour to every vertex of every Triangle. Without `range` and for a data-dependent
-/// colouring the first `block` triangles are held (`0`: the whole stream), the range is taken
-/// from their values, and the rest stream through with it. Records of other types keep their
-/// place in the stream (held with the triangles until the range is fixed).
+/// The records a colouring filter colours.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Coloured {
+    /// A `Triangle`: three vertex objects.
+    Triangle,
+    /// A `TriangleMesh`: vertex columns.
+    Mesh,
+}
+
+impl Coloured {
+    fn of(rec: &Record) -> Option<Self> {
+        match rec.kind() {
+            "Triangle" => Some(Coloured::Triangle),
+            triangle_mesh::KIND => Some(Coloured::Mesh),
+            _ => None,
+        }
+    }
+}
+
+/// Binds a colour to every vertex of every `Triangle` and `TriangleMesh`. Without `range`
+/// and for a data-dependent colouring the first `block` triangles are held (`0`: the whole
+/// stream; a `TriangleMesh` is held whole, so the block may run on to the end of its
+/// patch), the range is taken from their values at every triangle corner (so a
+/// `TriangleMesh` stream is coloured exactly as the `Triangle` stream of the same triangles
+/// when the block ends at the end of a patch), and the rest stream through with it. Records
+/// of other types keep their place in the stream (held with the triangles until the range is
+/// fixed).
 pub fn colour(
     pipe: &mut Pipe,
     colouring: &dyn Colouring,
@@ -569,69 +678,92 @@ pub fn colour(
         None if !colouring.data_dependent() => Some((0.0, 1.0)),
         None => None,
     };
-    let mut held: Vec<(Record, [f64; 3])> = Vec::new();
-    let mut held_triangles = 0usize;
+    // Held records with their vertex values, and the values at the held triangles' corners.
+    let mut held: Vec<(Record, Vec<f64>)> = Vec::new();
+    let mut corners: Vec<f64> = Vec::new();
     let mut binder = Binder::default();
+    let mut mesh = TriangleMesh::default();
+    let mut values: Vec<f64> = Vec::new();
     let mut rec = Record::default();
     while pipe.next_good(&mut rec)? {
-        if rec.kind() != "Triangle" {
+        let Some(kind) = Coloured::of(&rec) else {
             if range.is_none() {
-                held.push((std::mem::take(&mut rec), [0.0; 3]));
+                held.push((std::mem::take(&mut rec), Vec::new()));
             } else {
                 pipe.write(&rec)?;
             }
             continue;
-        }
-        let values = record::triangle(&rec.tape).and_then(|t| {
-            let mut out = [0.0; 3];
-            for (o, v) in out.iter_mut().zip(&t) {
-                *o = colouring.value(v, field)?.unwrap_or(0.0);
-            }
-            Ok(out)
-        });
-        let values = match values {
-            Ok(v) => v,
-            Err(e) => {
-                pipe.bad_field(&rec, e)?;
-                continue;
-            }
         };
+        values.clear();
+        let read = match kind {
+            Coloured::Triangle => record::triangle(&rec.tape).and_then(|t| {
+                for v in &t {
+                    values.push(colouring.value(v, field)?.unwrap_or(0.0));
+                }
+                Ok(())
+            }),
+            Coloured::Mesh => mesh.read(&rec.tape).and_then(|()| {
+                for i in 0..mesh.pos.len() {
+                    let x = colouring.value(&mesh.vertex(i), field).map_err(|e| {
+                        // A vertex field of a Triangle is a column of a TriangleMesh.
+                        let column = e.field.trim_start_matches("vertex.").to_string();
+                        FieldError::new(column, e.message)
+                    })?;
+                    values.push(x.unwrap_or(0.0));
+                }
+                Ok(())
+            }),
+        };
+        if let Err(e) = read {
+            pipe.bad_field(&rec, e)?;
+            continue;
+        }
         match range {
             Some(r) => {
-                binder.bind(colouring, &mut rec, values, r);
+                binder.bind(colouring, &mut rec, kind, &values, r);
                 pipe.write(&rec)?;
             }
             None => {
-                held.push((std::mem::take(&mut rec), values));
-                held_triangles += 1;
-                if held_triangles >= block {
-                    range = Some(release(pipe, colouring, &mut held, &mut binder, block)?);
+                match kind {
+                    Coloured::Triangle => corners.extend_from_slice(&values),
+                    Coloured::Mesh => {
+                        corners.extend(mesh.triangles.iter().flatten().map(|&i| values[i as usize]))
+                    }
+                }
+                held.push((std::mem::take(&mut rec), values.clone()));
+                if corners.len() / 3 >= block {
+                    range = Some(release(
+                        pipe,
+                        colouring,
+                        &mut held,
+                        &mut corners,
+                        &mut binder,
+                        block,
+                    )?);
                 }
             }
         }
     }
     if !held.is_empty() {
-        release(pipe, colouring, &mut held, &mut binder, block)?;
+        release(pipe, colouring, &mut held, &mut corners, &mut binder, block)?;
     }
     pipe.finish()?;
     Ok(())
 }
 
-/// Fixes the range from the held triangles' values, then colours and writes them in order.
+/// Fixes the range from the held triangles' corner values, then colours and writes the held
+/// records in order.
 fn release(
     pipe: &mut Pipe,
     colouring: &dyn Colouring,
-    held: &mut Vec<(Record, [f64; 3])>,
+    held: &mut Vec<(Record, Vec<f64>)>,
+    corners: &mut Vec<f64>,
     binder: &mut Binder,
     block: usize,
 ) -> Result<(f64, f64), StreamError> {
-    let mut all: Vec<f64> = held
-        .iter()
-        .filter(|(r, _)| r.kind() == "Triangle")
-        .flat_map(|(_, v)| v.iter().copied())
-        .collect();
-    let n = all.len() / 3;
-    let r = colouring.default_range(&mut all);
+    let n = corners.len() / 3;
+    let r = colouring.default_range(corners);
+    corners.clear();
     let whole = if n < block {
         "the whole stream".to_string()
     } else {
@@ -645,48 +777,75 @@ fn release(
         ROBUST_QUANTILE
     );
     for (mut rec, values) in held.drain(..) {
-        if rec.kind() == "Triangle" {
-            binder.bind(colouring, &mut rec, values, r);
+        if let Some(kind) = Coloured::of(&rec) {
+            binder.bind(colouring, &mut rec, kind, &values, r);
         }
         pipe.write(&rec)?;
     }
     Ok(r)
 }
 
-/// Sets colours in a triangle's tape (reused scratch storage).
+/// Sets colours in a record's tape (reused scratch storage).
 #[derive(Default)]
 struct Binder {
     scratch: Vec<Tok>,
+    colors: Vec<[f32; 3]>,
 }
 
 impl Binder {
+    /// Sets `color` (and the colouring's extra field) of every vertex: the vertex objects of
+    /// a Triangle, the columns of a TriangleMesh (both checked when `values` were read).
     fn bind(
         &mut self,
         colouring: &dyn Colouring,
         rec: &mut Record,
-        values: [f64; 3],
+        kind: Coloured,
+        values: &[f64],
         range: (f64, f64),
     ) {
-        let colors = values.map(|v| colouring.color(v, range));
+        self.colors.clear();
+        self.colors
+            .extend(values.iter().map(|&v| colouring.color(v, range)));
+        let colors = &self.colors;
         let extra = colouring.extra_field();
         let names: &[&str] = match extra {
             Some(e) => &["color", e][..],
             None => &["color"][..],
         };
-        // The vertex objects were checked when the values were read.
-        rec.tape
-            .set_vertex_fields(names, &mut self.scratch, &mut |vi, ni, out| {
-                if ni == 0 {
-                    out.push(Tok::Arr { items: 3, len: 3 });
-                    out.extend(
-                        colors[vi]
-                            .iter()
-                            .map(|&c| Tok::Float(record::color_component(c))),
-                    );
-                } else {
-                    out.push(Tok::Float(values[vi]));
-                }
-            });
+        let color_toks = |c: &[f32; 3], out: &mut Vec<Tok>| {
+            out.push(Tok::Arr { items: 3, len: 3 });
+            out.extend(c.iter().map(|&c| Tok::Float(record::color_component(c))));
+        };
+        match kind {
+            Coloured::Triangle => {
+                rec.tape
+                    .set_vertex_fields(names, &mut self.scratch, &mut |vi, ni, out| {
+                        if ni == 0 {
+                            color_toks(&colors[vi], out);
+                        } else {
+                            out.push(Tok::Float(values[vi]));
+                        }
+                    });
+            }
+            Coloured::Mesh => {
+                let n = values.len() as u32;
+                rec.tape
+                    .set_fields(names, &mut self.scratch, &mut |ni, out| {
+                        if ni == 0 {
+                            out.push(Tok::Arr {
+                                items: n,
+                                len: 4 * n,
+                            });
+                            for c in colors {
+                                color_toks(c, out);
+                            }
+                        } else {
+                            out.push(Tok::Arr { items: n, len: n });
+                            out.extend(values.iter().map(|&v| Tok::Float(v)));
+                        }
+                    });
+            }
+        }
     }
 }
 
@@ -723,6 +882,18 @@ mod tests {
                 let expected = tessellate_patch(patch, s).expect("tessellates");
                 assert_eq!(out, expected, "s = {s}");
             }
+            // Shared vertices: each sample once, s² triangles on the fast path (the quartic),
+            // fewer vertices where the general path welds (the collapsed edge).
+            let mut indexed = IndexedPatch::default();
+            t.tessellate_indexed(&quad, &mut indexed)
+                .expect("tessellates");
+            assert_eq!(indexed.samples.len(), (s + 1) * (s + 2) / 2);
+            assert_eq!(indexed.triangles.len(), s * s);
+            t.tessellate_indexed(&collapsed, &mut indexed)
+                .expect("tessellates");
+            assert!(indexed.samples.len() < (s + 1) * (s + 2) / 2, "s = {s}");
+            indexed.expand(&mut out);
+            assert_eq!(out, tessellate_patch(&collapsed, s).expect("tessellates"));
         }
         assert!(PatchTessellator::new(0).is_err());
     }

@@ -10,6 +10,8 @@
 //!   [`dstruct`], [`binary`]);
 //! * [`record`] — the record schemas (`BezierTriangle`, `Triangle`) read from a tape straight
 //!   into typed structs;
+//! * [`triangle_mesh`] — the shared-vertex record `TriangleMesh` (a patch's vertices once,
+//!   its triangles as indices): `tess --mesh` writes it, every filter reads it;
 //! * [`fit`](mod@fit) — the head: a mesh file to patches (Fitter0, Piper, … by the
 //!   workbench's schemes), or sampled straight to triangles (Example 5);
 //! * [`filters`] — Tess, Mat0, KColor, Radial, and the pass-through rules;
@@ -31,6 +33,7 @@ pub mod json;
 pub mod record;
 pub mod stream;
 pub mod tape;
+pub mod triangle_mesh;
 
 pub use error::{FieldError, FilterError, Position, StreamError};
 pub use stream::{Format, Record, RecordReader, RecordWriter};

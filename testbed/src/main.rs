@@ -74,7 +74,8 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-    /// BezierTriangles to Triangles (s² per patch); a patch's other fields go to its triangles.
+    /// BezierTriangles to Triangles (s² per patch) or, with --mesh, one TriangleMesh per
+    /// patch; a patch's other fields go to its records.
     Tess {
         /// Segments per patch edge.
         #[arg(short = 's', default_value_t = 8)]
@@ -85,6 +86,10 @@ enum Command {
         /// Write mean curvature `km` at the vertices.
         #[arg(long)]
         km: bool,
+        /// Write one TriangleMesh record per patch (its vertices once, its triangles as
+        /// indices) instead of s² Triangle records.
+        #[arg(long)]
+        mesh: bool,
         #[command(flatten)]
         common: Common,
     },
@@ -347,9 +352,22 @@ fn run(cli: Cli) -> Result<(), FilterError> {
                 fit::fit(&input, &options, &mut w)
             })
         }
-        Command::Tess { s, kg, km, common } => filter("tess", &common, &mut |p| {
-            filters::tess(p, s, CurvatureFields { kg, km })
-        }),
+        Command::Tess {
+            s,
+            kg,
+            km,
+            mesh,
+            common,
+        } => {
+            let records = if mesh {
+                filters::TessRecords::Mesh
+            } else {
+                filters::TessRecords::Triangles
+            };
+            filter("tess", &common, &mut |p| {
+                filters::tess(p, s, CurvatureFields { kg, km }, records)
+            })
+        }
         Command::G1 {
             strict,
             samples,

@@ -13,7 +13,8 @@
 //! Gaussian and `km` the mean curvature (signs of `docs/conventions.md`: the unit sphere with
 //! outward normals has `kg = 1`, `km = −1`). `color` is linear RGB in `[0, 1]`. Triangles
 //! are counter-clockwise seen from the side the normals point to. Readers ignore and keep
-//! every other field.
+//! every other field. The shared-vertex `TriangleMesh` (a patch's vertices once, its triangles
+//! as indices) has its own module, [`crate::triangle_mesh`].
 
 use nalgebra::{Point3, Vector3};
 use serde_json::{Number, Value};

@@ -519,7 +519,9 @@ mod tests {
             serde_json::json!({"type":"Triangle","vertex1":{"pos":[1.5,0.1,-3.0e-7],"kg":2.5},"vertex2":{"pos":[0,1,2]},"vertex3":{"pos":[1,1,1],"color":[0.5,0.25,1.0]},"face":3,"scheme":"s\"q","provenance":"x"}),
             serde_json::json!({"type":"BezierTriangle","degree":1,"points":[[0.0,0.0,0.0],[1.0,0.0,0.0],[0.0,1.0,0.0]],"face":2,"n":null,"b":[true,false],"o":{}}),
             serde_json::json!({"type":"Note","big":18446744073709551615u64,"neg":-7,"e":[],"deep":[[[1]]]}),
+            serde_json::json!({"type":"TriangleMesh","pos":[[0.5,0,0],[1,0,0],[0,1.5,0],[1,1,-2e-3]],"norm":[[0,0,1],[0,0,1],[0,0,1],[0,0.6,0.8]],"kg":[1,-2,3,0.25],"uv":[[0,0],[1,0],[0,1],[1,1]],"triangles":[[0,1,2],[1,3,2]],"face":1}),
         ];
+        let mut mesh = crate::triangle_mesh::TriangleMesh::default();
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut next = move || {
             seed ^= seed << 13;
@@ -554,6 +556,17 @@ mod tests {
                 while let Some(r) = reader.next_record() {
                     let Ok(r) = r else { continue };
                     let value = r.value();
+                    // The typed readers on whatever survived: an error or a value, and every
+                    // index of a mesh read is in range.
+                    if mesh.read(&r.tape).is_ok() {
+                        let n = mesh.pos.len() as u32;
+                        assert!(mesh.triangles.iter().flatten().all(|&i| i < n));
+                        assert!([mesh.norm.len(), mesh.kg.len()]
+                            .iter()
+                            .all(|&l| l == 0 || l == mesh.pos.len()));
+                    }
+                    let _ = crate::record::triangle(&r.tape);
+                    let _ = crate::record::bezier_triangle(&r.tape);
                     for out in [Format::Json, Format::Dstruct, Format::Binary] {
                         let mut again = Vec::new();
                         let mut w = RecordWriter::new(&mut again, Some(out));

@@ -4,7 +4,8 @@
 //! writes one, so a record costs no allocation per field (the tape's two vectors are reused
 //! from record to record) and every field a filter does not use passes through in order,
 //! untouched, whatever the formats. Filters read the fields they need into typed structs
-//! ([`crate::record`]) and set fields by rewriting the tape ([`Tape::set_vertex_fields`]).
+//! ([`crate::record`]) and set fields by rewriting the tape ([`Tape::set_vertex_fields`],
+//! [`Tape::set_fields`]).
 //!
 //! Layout: a value is one token (`Float`, `Int`, `UInt`, `Str`, `Bool`, `Null`) or a
 //! container token followed by its contents: an object is `Obj { fields, len }` followed by
@@ -340,6 +341,57 @@ impl Tape {
         true
     }
 
+    /// Sets the record's top-level fields `names` to the values built by `value(i, out)` (`i`
+    /// the name's index): in place when present, appended after the last field otherwise;
+    /// every other token is kept in order. `scratch` is reused storage. False when the tape
+    /// is not an object or more than four names are given (the tape is then unchanged). The
+    /// colour filters' way to set a `TriangleMesh`'s `color` and `dist` columns.
+    pub fn set_fields(
+        &mut self,
+        names: &[&str],
+        scratch: &mut Vec<Tok>,
+        value: &mut dyn FnMut(usize, &mut Vec<Tok>),
+    ) -> bool {
+        if names.len() > MAX_SET || !matches!(self.toks.first(), Some(Tok::Obj { .. })) {
+            return false;
+        }
+        scratch.clear();
+        scratch.push(Tok::Obj { fields: 0, len: 0 });
+        let mut set = [false; MAX_SET];
+        let mut count = 0u32;
+        for (key, v) in self.fields(0) {
+            let Some(Tok::Key(span)) = v.checked_sub(1).and_then(|k| self.toks.get(k)) else {
+                continue;
+            };
+            count += 1;
+            scratch.push(Tok::Key(*span));
+            match names.iter().position(|n| n.as_bytes() == key) {
+                Some(ni) if !set[ni] => {
+                    set[ni] = true;
+                    value(ni, scratch);
+                }
+                _ => {
+                    let w = self.toks[v].width();
+                    scratch.extend_from_slice(&self.toks[v..v + w]);
+                }
+            }
+        }
+        for (ni, n) in names.iter().enumerate() {
+            if !set[ni] {
+                count += 1;
+                let span = self.push_text(n.as_bytes());
+                scratch.push(Tok::Key(span));
+                value(ni, scratch);
+            }
+        }
+        scratch[0] = Tok::Obj {
+            fields: count,
+            len: (scratch.len() - 1) as u32,
+        };
+        std::mem::swap(&mut self.toks, scratch);
+        true
+    }
+
     /// The tape as a JSON value (for tests and the slow paths).
     pub fn to_value(&self) -> Value {
         self.value_at(0).0
@@ -521,5 +573,35 @@ mod tests {
         assert_eq!(back["provenance"], "p");
         // Lengths stay consistent: the last field is found by skipping.
         assert!(t.get(0, "provenance").is_some());
+    }
+
+    #[test]
+    fn record_fields_are_set_in_place_or_appended() {
+        let v: Value = serde_json::from_str(
+            r#"{"type":"TriangleMesh","color":[[0,0,0]],"pos":[[1,2,3]],"x":{"y":[1,[2]]}}"#,
+        )
+        .expect("json");
+        let mut t = Tape::from_value(&v);
+        let mut scratch = Vec::new();
+        assert!(
+            t.set_fields(&["color", "dist"], &mut scratch, &mut |ni, out| {
+                out.push(Tok::Arr { items: 2, len: 2 });
+                out.push(Tok::Int(ni as i64));
+                out.push(Tok::Float(0.5));
+            })
+        );
+        let back = t.to_value();
+        let keys: Vec<&String> = back.as_object().expect("obj").keys().collect();
+        assert_eq!(keys, ["type", "color", "pos", "x", "dist"]);
+        assert_eq!(back["color"], serde_json::json!([0, 0.5]));
+        assert_eq!(back["dist"], serde_json::json!([1, 0.5]));
+        assert_eq!(back["x"], v["x"]);
+        assert_eq!(back["pos"], v["pos"]);
+        // The tokens are consistent: a round trip through a value gives the same tape.
+        assert_eq!(Tape::from_value(&back).to_value(), back);
+        assert!(t.get(0, "dist").is_some());
+        let five = ["a", "b", "c", "d", "e"];
+        assert!(!t.set_fields(&five, &mut scratch, &mut |_, out| out.push(Tok::Null)));
+        assert_eq!(t.to_value(), back);
     }
 }

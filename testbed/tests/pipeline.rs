@@ -66,6 +66,48 @@ fn patches_with_provenance() -> Vec<u8> {
 fn a_field_added_at_the_head_arrives_at_the_end_in_every_format() {
     let patches = patches_with_provenance();
     for format in ["json", "dstruct", "binary"] {
+        // Shared-vertex records: the columns first, the carried fields, the colours appended.
+        let s1 = ok(&["g1", "--format", format], &patches);
+        let s2 = ok(&["tess", "-s", "2", "--kg", "--mesh"], &s1);
+        let s3 = ok(&["mat0"], &s2);
+        let s4 = ok(&["kcolor"], &s3);
+        let s5 = ok(&["radial", "--surface", "sphere", "--format", "json"], &s4);
+        let recs = json_records(&s5);
+        assert_eq!(recs.len(), 24, "{format}");
+        for r in &recs {
+            let keys: Vec<&str> = r
+                .as_object()
+                .expect("object")
+                .keys()
+                .map(String::as_str)
+                .collect();
+            assert_eq!(
+                keys,
+                [
+                    "type",
+                    "pos",
+                    "norm",
+                    "kg",
+                    "triangles",
+                    "face",
+                    "subpatch",
+                    "scheme",
+                    "provenance",
+                    "color",
+                    "dist"
+                ],
+                "{format}"
+            );
+            assert_eq!(r["type"], "TriangleMesh");
+            assert_eq!(r["provenance"], "octa.m via test");
+            // s = 2: 6 vertices, 4 triangles; one colour and one distance per vertex.
+            assert_eq!(r["pos"].as_array().map(Vec::len), Some(6), "{format}");
+            assert_eq!(r["triangles"].as_array().map(Vec::len), Some(4), "{format}");
+            assert_eq!(r["color"].as_array().map(Vec::len), Some(6), "{format}");
+            assert_eq!(r["dist"].as_array().map(Vec::len), Some(6), "{format}");
+        }
+    }
+    for format in ["json", "dstruct", "binary"] {
         let s1 = ok(&["g1", "--format", format], &patches);
         let s2 = ok(&["tess", "-s", "2", "--kg"], &s1);
         let s3 = ok(&["mat0"], &s2);
@@ -113,13 +155,16 @@ fn unknown_records_and_fields_pass_every_filter_in_every_format() {
     let note = r#"{"type":"Note","text":"a \"quoted\" note","n":[1,-2,18446744073709551615],"o":{"deep":[[],{}]},"b":true,"z":null}"#;
     let tri = r#"{"type":"Triangle","name":"t0","vertex1":{"label":"a","pos":[0,0,0],"kg":0.5,"norm":[0,0,1]},"vertex2":{"pos":[1,0,0],"kg":-0.25,"extra":{"k":[1.5]}},"vertex3":{"pos":[0,1,0],"kg":0.0},"provenance":"head"}"#;
     let patch = r#"{"type":"BezierTriangle","note":"first","degree":1,"points":[[0,0,0],[1,0,0],[0,1,0]],"provenance":"head"}"#;
-    let input = format!("{note}\n{tri}\n{patch}\n{note}\n");
+    let mesh = r#"{"type":"TriangleMesh","name":"m0","pos":[[0,0,0],[1,0,0],[0,1,0],[1,1,0]],"uv":[[0,0],[1,0],[0,1],[1,1]],"kg":[0.5,-0.25,0.0,1e-3],"triangles":[[0,1,2],[1,3,2]],"provenance":"head"}"#;
+    let input = format!("{note}\n{tri}\n{mesh}\n{patch}\n{note}\n");
+    let expected_mesh: Value = serde_json::from_str(mesh).expect("json");
     let expected_note: Value = serde_json::from_str(note).expect("json");
     for format in ["json", "dstruct", "binary"] {
         let start = ok(&["g1", "--format", format], input.as_bytes());
         for args in [
             &["g1"][..],
             &["tess", "-s", "1", "--kg"],
+            &["tess", "-s", "1", "--kg", "--mesh"],
             &["mat0"],
             &["kcolor"],
             &["kcolor", "--range", "-1:1"],
@@ -128,14 +173,33 @@ fn unknown_records_and_fields_pass_every_filter_in_every_format() {
             let out = ok(args, &start);
             let recs = json_records(&ok(&["g1", "--format", "json"], &out));
             let kinds: Vec<&str> = recs.iter().map(|r| r["type"].as_str().unwrap()).collect();
-            let expect_kinds = if args[0] == "tess" {
-                ["Note", "Triangle", "Triangle", "Note"]
-            } else {
-                ["Note", "Triangle", "BezierTriangle", "Note"]
+            let mesh_out = args.contains(&"--mesh");
+            let expect_kinds = match args[0] {
+                "tess" if mesh_out => ["Note", "Triangle", "TriangleMesh", "TriangleMesh", "Note"],
+                "tess" => ["Note", "Triangle", "TriangleMesh", "Triangle", "Note"],
+                _ => ["Note", "Triangle", "TriangleMesh", "BezierTriangle", "Note"],
             };
             assert_eq!(kinds, expect_kinds, "{format} {args:?}");
             assert_eq!(recs[0], expected_note, "{format} {args:?}");
-            assert_eq!(recs[3], expected_note, "{format} {args:?}");
+            assert_eq!(recs[4], expected_note, "{format} {args:?}");
+            // The TriangleMesh: its fields in order, unknown ones (a column `uv` too)
+            // unchanged; the colour filters set `color` (and `dist`) after the last field.
+            let m = &recs[2];
+            let keys: Vec<&str> = m.as_object().unwrap().keys().map(String::as_str).collect();
+            let known = ["type", "name", "pos", "uv", "kg", "triangles", "provenance"];
+            assert_eq!(&keys[..7], known, "{format} {args:?}");
+            for k in known {
+                assert_eq!(m[k], expected_mesh[k], "{format} {args:?} {k}");
+            }
+            let extra: &[&str] = match args[0] {
+                "g1" | "tess" => &[],
+                "radial" => &["color", "dist"],
+                _ => &["color"],
+            };
+            assert_eq!(&keys[7..], extra, "{format} {args:?}");
+            if !extra.is_empty() {
+                assert_eq!(m["color"].as_array().map(Vec::len), Some(4));
+            }
             let t = &recs[1];
             let keys: Vec<&str> = t.as_object().unwrap().keys().map(String::as_str).collect();
             assert_eq!(
@@ -163,9 +227,30 @@ fn unknown_records_and_fields_pass_every_filter_in_every_format() {
                 ["label", "pos", "kg", "norm"],
                 "{format} {args:?}"
             );
-            if args[0] == "tess" {
+            if mesh_out {
+                // The patch's mesh: columns and triangles first, then the patch's other fields.
+                let keys: Vec<&str> = recs[3]
+                    .as_object()
+                    .unwrap()
+                    .keys()
+                    .map(String::as_str)
+                    .collect();
+                assert_eq!(
+                    keys,
+                    [
+                        "type",
+                        "pos",
+                        "norm",
+                        "kg",
+                        "triangles",
+                        "note",
+                        "provenance"
+                    ]
+                );
+                assert_eq!(recs[3]["triangles"], serde_json::json!([[1, 2, 0]]));
+            } else if args[0] == "tess" {
                 // The patch's triangle: vertices first, then the patch's other fields.
-                let keys: Vec<&str> = recs[2]
+                let keys: Vec<&str> = recs[3]
                     .as_object()
                     .unwrap()
                     .keys()
@@ -183,8 +268,8 @@ fn unknown_records_and_fields_pass_every_filter_in_every_format() {
                     ]
                 );
             } else {
-                assert_eq!(recs[2]["note"], "first");
-                assert_eq!(recs[2]["provenance"], "head");
+                assert_eq!(recs[3]["note"], "first");
+                assert_eq!(recs[3]["provenance"], "head");
             }
         }
     }
@@ -272,6 +357,136 @@ fn malformed_records_are_named_and_skipped_with_keep_going() {
         !out.status.success() && err.contains("kg") && err.contains("record 1"),
         "{err}"
     );
+    // A density no memory holds is a usage error, not a crash.
+    let patch = ok(&["fit", "--scheme", "flat"], &octa());
+    for s in ["0", "4097", "10000000000"] {
+        let out = testbed(&["tess", "-s", s], &patch);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "-s {s}: {err}");
+        assert!(err.contains("from 1 to 4096 segments per edge"), "{err}");
+    }
+}
+
+/// A TriangleMesh with an index out of range, one with a column too short, one with a
+/// non-integer index: errors naming the record and the field, skipped with `--keep-going`
+/// by every filter that reads them.
+#[test]
+fn malformed_mesh_records_are_named_and_skipped_with_keep_going() {
+    let good = r#"{"type":"TriangleMesh","pos":[[0,0,0],[1,0,0],[0,1,0]],"norm":[[0,0,1],[0,0,1],[0,0,1]],"kg":[1,2,3],"triangles":[[0,1,2]]}"#;
+    let out_of_range = good.replace("[[0,1,2]]", "[[0,1,2],[2,1,3]]");
+    let short = good.replace("\"kg\":[1,2,3]", "\"kg\":[1,2]");
+    let float_index = good.replace("[[0,1,2]]", "[[0,1.0,2]]");
+    let input = format!("{good}\n{out_of_range}\n{short}\n{float_index}\n{good}\n");
+    let cases = [
+        (
+            "record 2 (line 2)",
+            "triangles[1][2]",
+            "index 3 out of range (3 vertices)",
+        ),
+        ("record 3 (line 3)", "kg", "2 entries for 3 vertices"),
+        (
+            "record 4 (line 4)",
+            "triangles[0][1]",
+            "expected a vertex index",
+        ),
+    ];
+    for (k, (_, field, message)) in cases.iter().enumerate() {
+        // Each bad record alone after a good one: the error names it (record 2, line 2).
+        let one = format!("{good}\n{}\n", input.lines().nth(k + 1).unwrap());
+        for args in [&["mat0"][..], &["kcolor"], &["render", "--size", "40x30"]] {
+            let out = testbed(args, one.as_bytes());
+            assert!(!out.status.success(), "{args:?} {field}");
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert!(
+                err.contains("record 2 (line 2)")
+                    && err.contains("TriangleMesh")
+                    && err.contains(&format!("field `{field}`"))
+                    && err.contains(message),
+                "{args:?}: {err}"
+            );
+        }
+    }
+    for args in [&["mat0", "--keep-going"][..], &["kcolor", "--keep-going"]] {
+        let out = testbed(args, input.as_bytes());
+        assert!(out.status.success(), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        for (at, field, _) in cases {
+            assert!(err.contains(at) && err.contains(field), "{args:?}: {err}");
+        }
+        assert!(err.contains("3 bad record(s) skipped"), "{err}");
+        let recs = json_records(&out.stdout);
+        assert_eq!(recs.len(), 2);
+        assert!(recs
+            .iter()
+            .all(|r| r["color"].as_array().map(Vec::len) == Some(3)));
+    }
+    let out = testbed(
+        &["render", "--size", "40x30", "--keep-going"],
+        input.as_bytes(),
+    );
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("3 bad record(s) skipped"));
+    // kcolor needs the curvature column.
+    let no_kg = good.replace(",\"kg\":[1,2,3]", "");
+    let out = testbed(&["kcolor"], no_kg.as_bytes());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("field `kg`") && err.contains("record 1"),
+        "{err}"
+    );
+}
+
+/// The same surface through `Triangle` and `TriangleMesh` records, in every format: the
+/// same colour range, the same pictures byte for byte, the same welded mesh file.
+#[test]
+fn mesh_records_give_the_pictures_and_meshes_of_triangle_records() {
+    let patches = ok(&["fit", "--scheme", "shirman-sequin"], &octa());
+    let dir = tempfile::tempdir().expect("dir");
+    let mut outputs = Vec::new();
+    for format in ["json", "dstruct", "binary"] {
+        for mesh in [false, true] {
+            let mut tess = vec!["tess", "-s", "4", "--kg", "--format", format];
+            if mesh {
+                tess.push("--mesh");
+            }
+            let tris = ok(&tess, &patches);
+            // The whole stream (384 triangles), then a block of 4 patches' triangles: a
+            // mesh record is held whole, so the ranges agree when the block ends between
+            // patches.
+            let mut ranges = Vec::new();
+            let mut coloured = Vec::new();
+            for block in ["8192", "64"] {
+                let out = testbed(&["kcolor", "--block", block], &tris);
+                assert!(out.status.success());
+                ranges.push(String::from_utf8_lossy(&out.stderr).into_owned());
+                coloured = out.stdout;
+            }
+            let shaded = ok(&["render"], &coloured);
+            let wire = ok(&["wire"], &coloured);
+            let file = dir.path().join(format!("octa-{format}-{mesh}.obj"));
+            ok(&["to-mesh", "--out", file.to_str().unwrap()], &coloured);
+            let welded = std::fs::read(&file).expect("written");
+            assert!(shaded.len() > 1000 && wire.len() > 1000);
+            outputs.push((format, mesh, ranges, shaded, wire, welded));
+        }
+    }
+    let first = &outputs[0];
+    assert!(
+        first.2[0].contains("over the whole stream"),
+        "{}",
+        first.2[0]
+    );
+    assert!(
+        first.2[1].contains("over the first 64 triangles"),
+        "{}",
+        first.2[1]
+    );
+    for o in &outputs[1..] {
+        assert_eq!(o.2, first.2, "{} mesh: {}", o.0, o.1);
+        assert!(o.3 == first.3, "shaded picture, {} mesh: {}", o.0, o.1);
+        assert!(o.4 == first.4, "wire frame, {} mesh: {}", o.0, o.1);
+        assert!(o.5 == first.5, "mesh file, {} mesh: {}", o.0, o.1);
+    }
 }
 
 /// Deterministic pseudo-random numbers (xorshift), so failures reproduce.
@@ -319,6 +534,81 @@ fn truncated_and_mutated_streams_never_panic() {
                     String::from_utf8_lossy(&out.stderr)
                 );
             }
+        }
+    }
+}
+
+/// Every filter, in process, on 2000 damaged copies per format of a stream holding every
+/// record kind (patches, Triangles, TriangleMeshes, an unknown record): no panic; whatever is
+/// written reads back.
+#[test]
+fn damaged_streams_with_mesh_records_never_panic_in_any_filter() {
+    use testbed::filters::{self, CurvatureFields, Pipe, TessRecords};
+    /// Damaged copies per format: every reader branch and the mesh checks many times over,
+    /// fast in a debug build.
+    const CASES: usize = 2000;
+    let patches = ok(&["fit", "--scheme", "shirman-sequin"], &octa());
+    let patches: Vec<u8> = patches
+        .split_inclusive(|&c| c == b'\n')
+        .take(2)
+        .flatten()
+        .copied()
+        .collect();
+    let note = b"{\"type\":\"Note\",\"x\":[1,2]}\n";
+    let mut seed = 0x5851_f42d_4c95_7f2du64;
+    let fields = CurvatureFields { kg: true, km: true };
+    for format in ["json", "dstruct", "binary"] {
+        let tris = ok(
+            &["tess", "-s", "1", "--kg", "--km", "--format", format],
+            &patches,
+        );
+        let meshes = ok(
+            &["tess", "-s", "2", "--kg", "--mesh", "--format", format],
+            &patches,
+        );
+        // Every part through JSON, then the whole in the format (binary parts cannot be
+        // concatenated).
+        let stream = ok(&["g1", "--format", format], &{
+            let mut j = ok(&["g1", "--format", "json"], &tris);
+            j.extend(ok(&["g1", "--format", "json"], &meshes));
+            j.extend_from_slice(note);
+            j.extend_from_slice(&patches);
+            j
+        });
+        for _ in 0..CASES {
+            let mut m = stream.clone();
+            for _ in 0..1 + xorshift(&mut seed) % 4 {
+                let at = (xorshift(&mut seed) as usize) % m.len();
+                match xorshift(&mut seed) % 3 {
+                    0 => m[at] = xorshift(&mut seed) as u8,
+                    1 => {
+                        m.remove(at);
+                    }
+                    _ => {
+                        let bytes = b"{}[]()\",.;%:-0e9\n";
+                        m.insert(at, bytes[(xorshift(&mut seed) as usize) % bytes.len()])
+                    }
+                }
+            }
+            let run = |f: &mut dyn FnMut(&mut Pipe) -> Result<(), testbed::FilterError>| {
+                let mut input = &m[..];
+                let mut out = Vec::new();
+                {
+                    let mut pipe = Pipe::new("test", &mut input, &mut out, None, true);
+                    let _ = f(&mut pipe);
+                }
+                // What a filter wrote is a stream again (possibly cut short by an error).
+                let mut input = &out[..];
+                let mut sink = std::io::sink();
+                let mut pipe = Pipe::new("test", &mut input, &mut sink, None, true);
+                let _ = testbed::draw::collect_triangles(&mut pipe);
+            };
+            run(&mut |p| filters::tess(p, 2, fields, TessRecords::Mesh));
+            run(&mut |p| filters::tess(p, 1, fields, TessRecords::Triangles));
+            run(&mut |p| filters::colour(p, &filters::KColor, "kg", None, 5));
+            run(&mut |p| filters::colour(p, &filters::Mat0, "", None, 0));
+            run(&mut |p| testbed::g1::g1(p, false, 3).map(|_| ()));
+            run(&mut |p| testbed::draw::collect_mesh(p).map(|_| ()));
         }
     }
 }
