@@ -820,7 +820,21 @@ fn assemble(
 ) -> Result<RawMesh, ReadError> {
     let n = points.len();
     let mut polys = Polygons::with_capacity(mesh_faces.len(), 3 * mesh_faces.len());
-    let mut face_names = Vec::with_capacity(mesh_faces.len());
+    // Names that are what the writer emits for a mesh without names (`v<i>`, `f<k>`, by
+    // position) are implied rather than stored ([`RawMesh::implied_vertex_names`]).
+    let implied_vertex_names = points
+        .iter()
+        .enumerate()
+        .all(|(i, pt)| is_positional_name(pt.name, b'v', i));
+    let implied_face_names = mesh_faces
+        .iter()
+        .enumerate()
+        .all(|(k, (name, _))| is_positional_name(name, b'f', k));
+    let mut face_names = Vec::with_capacity(if implied_face_names {
+        0
+    } else {
+        mesh_faces.len()
+    });
     let mut face_corners = Vec::new();
     // Faces listed, flagged at the start of their corners (each face's range is its own).
     let mut listed = vec![false; corners.index.len()];
@@ -860,7 +874,9 @@ fn assemble(
             face_corners.push(i);
         }
         polys.push(&face_corners);
-        face_names.push(text(fname).into_owned());
+        if !implied_face_names {
+            face_names.push(text(fname).into_owned());
+        }
         if let Some(flag) = listed.get_mut(start) {
             listed_count += usize::from(!*flag);
             *flag = true;
@@ -950,13 +966,26 @@ fn assemble(
         shapes: has_shape.then_some(given.shapes),
         properties,
         polygons: polys,
-        face_names: Some(face_names),
+        face_names: (!implied_face_names).then_some(face_names),
+        implied_face_names,
+        implied_vertex_names,
         mesh_fields,
         notes,
         ..RawMesh::default()
     };
-    mesh.vertex_names = Some(points.iter().map(|pt| text(pt.name).into_owned()).collect());
+    if !implied_vertex_names {
+        mesh.vertex_names = Some(points.iter().map(|pt| text(pt.name).into_owned()).collect());
+    }
     Ok(mesh)
+}
+
+/// Whether `name` is `letter` followed by the decimal `i` (no leading zeros): the name the
+/// writer gives the `i`-th point (`v`) or face (`f`) of a mesh without names.
+fn is_positional_name(name: &[u8], letter: u8, i: usize) -> bool {
+    name.len() >= 2
+        && name[0] == letter
+        && name[1..].iter().all(u8::is_ascii_digit)
+        && trailing_index(name) == Some(i)
 }
 
 fn is_identifier(s: &str) -> bool {
