@@ -358,8 +358,12 @@ struct Point<'a> {
     norm: bool,
     /// Whether the point has `shape` (likewise).
     shape: bool,
-    fields: Vec<(String, Vec<f64>)>,
+    /// Its other fields, boxed (most points have none: a point then costs 8 bytes for them).
+    fields: Option<Box<Fields>>,
 }
+
+/// A point's fields other than `pos`, `norm` and `shape`: key and values.
+type Fields = Vec<(String, Vec<f64>)>;
 
 /// The normals and shape tensors of the points that have them, in point order.
 #[derive(Default)]
@@ -462,7 +466,7 @@ fn parse_point<'a>(
         pos,
         norm: norm.is_some(),
         shape: shape.is_some(),
-        fields,
+        fields: (!fields.is_empty()).then(|| Box::new(fields)),
     })
 }
 
@@ -545,7 +549,7 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
     let mut corner_names: Vec<NameAt<'_>> = Vec::new();
     let mut n_faces = 0usize;
     let mut mesh_fields: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-    let mut mesh_stmt: Option<(usize, Vec<NameAt<'_>>)> = None;
+    let mut mesh_stmt: Option<(usize, MeshList<'_>)> = None;
     let mut scratch: Vec<f64> = Vec::new();
     // A point and a face named `mesh` (not in `defined`, as `mesh` may be redefined).
     let mut mesh_named: (Option<usize>, Option<usize>) = (None, None);
@@ -667,8 +671,31 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                     ));
                 }
                 p.bump()?;
-                let mut list = Vec::new();
-                p.name_list(b'}', "face", &mut list)?;
+                // Faces already defined under their own number (`f3` as face 3) are resolved
+                // as read (a name is defined once, so this is what the end would find); the
+                // rest wait for the end of the file, with their names.
+                let mut list = MeshList::default();
+                if !p.eat(b'}')? {
+                    loop {
+                        let (fname, fline) = p.ident_or(|| "a face name".to_string())?;
+                        match trailing_index(fname) {
+                            Some(k)
+                                if fname != b"mesh"
+                                    && face_defs.get(k).is_some_and(|f| f.name == fname) =>
+                            {
+                                list.faces.push(k);
+                            }
+                            _ => {
+                                list.late.push((list.faces.len(), (fname, fline)));
+                                list.faces.push(UNRESOLVED);
+                            }
+                        }
+                        if p.eat(b'}')? {
+                            break;
+                        }
+                        p.punct_or(b',', || "`,` or `}` in the list of faces".to_string())?;
+                    }
+                }
                 mesh_stmt = Some((line, list));
             }
             _ => {
@@ -707,6 +734,14 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
         mesh_faces,
         mesh_fields,
     )
+}
+
+/// The faces of the `mesh` statement: a face index each, or [`UNRESOLVED`] with the name and
+/// line in `late` (by position, increasing).
+#[derive(Default)]
+struct MeshList<'a> {
+    faces: Vec<usize>,
+    late: Vec<(usize, NameAt<'a>)>,
 }
 
 /// A face corner whose point is found only once the whole file is read.
@@ -815,11 +850,25 @@ fn assemble(
     names: &Lookup<'_, '_>,
     corners: &Corners<'_, '_>,
     n_faces: usize,
-    mesh_faces: Vec<(&[u8], usize)>,
+    mesh_faces: MeshList<'_>,
     mesh_fields: BTreeMap<String, Vec<f64>>,
 ) -> Result<RawMesh, ReadError> {
     let n = points.len();
-    let mut polys = Polygons::with_capacity(mesh_faces.len(), 3 * mesh_faces.len());
+    let listed_faces = mesh_faces.faces.len();
+    let mut polys = Polygons::with_capacity(listed_faces, 3 * listed_faces);
+    // Each listed face's name and line (of the `mesh` statement for a late one, of its own
+    // statement otherwise: only messages use it).
+    let mut late = mesh_faces.late.iter().peekable();
+    let mut entries = mesh_faces.faces.iter().enumerate().map(|(j, &k)| {
+        if k != UNRESOLVED {
+            let f = &names.faces[k];
+            return (f.name, f.line);
+        }
+        match late.next_if(|(at, _)| *at == j) {
+            Some((_, at)) => *at,
+            None => (&b"?"[..], 0),
+        }
+    });
     // Names that are what the writer emits for a mesh without names (`v<i>`, `f<k>`, by
     // position) are implied rather than stored ([`RawMesh::implied_vertex_names`]).
     let implied_vertex_names = points
@@ -827,20 +876,25 @@ fn assemble(
         .enumerate()
         .all(|(i, pt)| is_positional_name(pt.name, b'v', i));
     let implied_face_names = mesh_faces
+        .faces
         .iter()
         .enumerate()
-        .all(|(k, (name, _))| is_positional_name(name, b'f', k));
-    let mut face_names = Vec::with_capacity(if implied_face_names {
-        0
-    } else {
-        mesh_faces.len()
-    });
+        .all(|(j, &k)| k != UNRESOLVED && is_positional_name(names.faces[k].name, b'f', j));
+    let mut face_names = Vec::with_capacity(if implied_face_names { 0 } else { listed_faces });
     let mut face_corners = Vec::new();
     // Faces listed, flagged at the start of their corners (each face's range is its own).
     let mut listed = vec![false; corners.index.len()];
     let mut listed_count = 0usize;
-    for &(fname, fline) in &mesh_faces {
-        let Some((start, len)) = names.face(fname) else {
+    for &k in &mesh_faces.faces {
+        let Some((fname, fline)) = entries.next() else {
+            break;
+        };
+        let resolved = if k == UNRESOLVED {
+            names.face(fname)
+        } else {
+            names.faces.get(k).map(|f| (f.start, f.len))
+        };
+        let Some((start, len)) = resolved else {
             let what = if names.point(fname).is_some() {
                 "a point, not a face"
             } else {
@@ -909,7 +963,7 @@ fn assemble(
     let has_shape = all_or_none("shape", &|pt| pt.shape)?;
     let mut keys: Vec<String> = Vec::new();
     for pt in points {
-        for (k, _) in &pt.fields {
+        for (k, _) in pt.fields.iter().flat_map(|f| f.iter()) {
             if !keys.contains(k) {
                 keys.push(k.clone());
             }
@@ -922,13 +976,19 @@ fn assemble(
             .find_map(|pt| {
                 pt.fields
                     .iter()
+                    .flat_map(|f| f.iter())
                     .find(|(k, _)| k == key)
                     .map(|(_, v)| v.len())
             })
             .unwrap_or(0);
         let mut cols: Vec<Vec<f64>> = vec![Vec::with_capacity(n); len];
         for pt in points {
-            let Some((_, v)) = pt.fields.iter().find(|(k, _)| k == key) else {
+            let Some((_, v)) = pt
+                .fields
+                .iter()
+                .flat_map(|f| f.iter())
+                .find(|(k, _)| k == key)
+            else {
                 return Err(err(
                     pt.line,
                     format!(
