@@ -625,12 +625,7 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                         define(Def::Face(k));
                         n_faces += 1;
                     }
-                    face_defs.push(FaceDef {
-                        name,
-                        line,
-                        start,
-                        len,
-                    });
+                    face_defs.push(FaceDef { name, line, start });
                 } else {
                     // A mesh field: re-read the array from its first element.
                     let mut v = Vec::new();
@@ -720,6 +715,7 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
         points: &points,
         faces: &face_defs,
         mesh_named,
+        corners: corners.len(),
     };
     let corners = Corners {
         index: &corners,
@@ -755,12 +751,12 @@ struct Corners<'m, 'a> {
     deferred: &'m [(usize, NameAt<'a>)],
 }
 
-/// A face statement: its name, line and corners (`corners[start..start + len]`).
+/// A face statement: its name, line and the start of its corners (they run to the next face
+/// statement's, or to the end: [`Lookup::range`]).
 struct FaceDef<'a> {
     name: &'a [u8],
     line: usize,
     start: usize,
-    len: usize,
 }
 
 /// The number a name ends in (`v17` → 17; `v017`, `v` and `17` end in none): a name that is
@@ -809,6 +805,8 @@ struct Lookup<'m, 'a> {
     points: &'m [Point<'a>],
     faces: &'m [FaceDef<'a>],
     mesh_named: (Option<usize>, Option<usize>),
+    /// The number of corners of all face statements.
+    corners: usize,
 }
 
 impl Lookup<'_, '_> {
@@ -840,7 +838,14 @@ impl Lookup<'_, '_> {
                 },
             }
         };
-        self.faces.get(k).map(|f| (f.start, f.len))
+        self.range(k)
+    }
+
+    /// Face statement `k`'s corner range `(start, len)`.
+    fn range(&self, k: usize) -> Option<(usize, usize)> {
+        let f = self.faces.get(k)?;
+        let end = self.faces.get(k + 1).map_or(self.corners, |g| g.start);
+        Some((f.start, end - f.start))
     }
 }
 
@@ -892,7 +897,7 @@ fn assemble(
         let resolved = if k == UNRESOLVED {
             names.face(fname)
         } else {
-            names.faces.get(k).map(|f| (f.start, f.len))
+            names.range(k)
         };
         let Some((start, len)) = resolved else {
             let what = if names.point(fname).is_some() {
