@@ -42,7 +42,9 @@ pub struct FitArgs {
     #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_C)]
     c: f64,
     /// Where to write the patches: JSON Lines, or the compact binary form when the name ends in
-    /// `.bzp` (`surface::patch_io`); none are written when absent.
+    /// `.bzp` (`surface::patch_io`); none are written when absent. Without `--mesh-out` and
+    /// `--interior`, the patches are streamed: built, measured and written a window of faces at
+    /// a time, never all held (`surface::stream`; the same report and file).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Tessellate the patches at this many segments per patch edge (the testbed's `Tess -s`)
