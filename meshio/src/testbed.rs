@@ -88,7 +88,7 @@ impl MeshFormat for Testbed {
     }
 
     fn read(&self, bytes: &[u8]) -> Result<RawMesh, ReadError> {
-        read_testbed(bytes)
+        read_testbed(bytes).map_err(|e| *e)
     }
 
     fn write(&self, mesh: &RawMesh, _: &WriteOptions) -> Result<Vec<u8>, WriteError> {
@@ -117,8 +117,12 @@ impl Tok<'_> {
     }
 }
 
-fn err(line: usize, m: impl Into<String>) -> ReadError {
-    ReadError::line(NAME, line, m)
+/// The reader's error, boxed while parsing: results stay two words wide, which every token
+/// passes through (the unboxed error is 64 bytes).
+type Failure = Box<ReadError>;
+
+fn err(line: usize, m: impl Into<String>) -> Failure {
+    Box::new(ReadError::line(NAME, line, m))
 }
 
 /// A streaming lexer (no token list: memory stays proportional to what the mesh keeps).
@@ -142,7 +146,7 @@ impl<'a> Lexer<'a> {
     }
 
     /// The next token and its line.
-    fn next(&mut self) -> Result<(Tok<'a>, usize), ReadError> {
+    fn next(&mut self) -> Result<(Tok<'a>, usize), Failure> {
         loop {
             match self.at(self.i) {
                 None => return Ok((Tok::Eof, self.line)),
@@ -218,31 +222,31 @@ struct Parser<'a> {
 }
 
 impl<'a> Parser<'a> {
-    fn new(b: &'a [u8]) -> Result<Self, ReadError> {
+    fn new(b: &'a [u8]) -> Result<Self, Failure> {
         let mut lx = Lexer::new(b);
         let (tok, line) = lx.next()?;
         Ok(Parser { lx, tok, line })
     }
 
-    fn bump(&mut self) -> Result<Tok<'a>, ReadError> {
+    fn bump(&mut self) -> Result<Tok<'a>, Failure> {
         let (t, l) = self.lx.next()?;
         self.line = l;
         Ok(std::mem::replace(&mut self.tok, t))
     }
 
-    fn fail<T>(&self, expected: &str) -> Result<T, ReadError> {
+    fn fail<T>(&self, expected: &str) -> Result<T, Failure> {
         Err(err(
             self.line,
             format!("expected {expected}, found {}", self.tok.describe()),
         ))
     }
 
-    fn punct(&mut self, c: u8, expected: &str) -> Result<(), ReadError> {
+    fn punct(&mut self, c: u8, expected: &str) -> Result<(), Failure> {
         self.punct_or(c, || expected.to_string())
     }
 
     /// [`Parser::punct`] with the message built only on failure (no allocation per token).
-    fn punct_or(&mut self, c: u8, expected: impl FnOnce() -> String) -> Result<(), ReadError> {
+    fn punct_or(&mut self, c: u8, expected: impl FnOnce() -> String) -> Result<(), Failure> {
         if self.tok == Tok::Punct(c) {
             self.bump()?;
             Ok(())
@@ -251,7 +255,7 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn eat(&mut self, c: u8) -> Result<bool, ReadError> {
+    fn eat(&mut self, c: u8) -> Result<bool, Failure> {
         let hit = self.tok == Tok::Punct(c);
         if hit {
             self.bump()?;
@@ -260,14 +264,14 @@ impl<'a> Parser<'a> {
     }
 
     /// An identifier, borrowed from the input, and its line.
-    fn ident(&mut self, expected: &str) -> Result<(&'a [u8], usize), ReadError> {
+    fn ident(&mut self, expected: &str) -> Result<(&'a [u8], usize), Failure> {
         self.ident_or(|| expected.to_string())
     }
 
     fn ident_or(
         &mut self,
         expected: impl FnOnce() -> String,
-    ) -> Result<(&'a [u8], usize), ReadError> {
+    ) -> Result<(&'a [u8], usize), Failure> {
         match self.tok {
             Tok::Ident(s) => {
                 let out = (s, self.line);
@@ -279,7 +283,7 @@ impl<'a> Parser<'a> {
     }
 
     /// A number or a (nested) array of numbers, flattened into `out`.
-    fn numbers(&mut self, key: &[u8], out: &mut Vec<f64>, depth: usize) -> Result<(), ReadError> {
+    fn numbers(&mut self, key: &[u8], out: &mut Vec<f64>, depth: usize) -> Result<(), Failure> {
         match self.tok {
             Tok::Num(x) => {
                 out.push(x);
@@ -327,7 +331,7 @@ impl<'a> Parser<'a> {
         close: u8,
         what: &str,
         out: &mut Vec<(&'a [u8], usize)>,
-    ) -> Result<(), ReadError> {
+    ) -> Result<(), Failure> {
         if self.eat(close)? {
             return Ok(());
         }
@@ -378,7 +382,7 @@ fn parse_point<'a>(
     line: usize,
     v: &mut Vec<f64>,
     given: &mut Given,
-) -> Result<Point<'a>, ReadError> {
+) -> Result<Point<'a>, Failure> {
     p.punct(b'(', "`(`")?;
     let (head, hl) = p.ident("`Point`")?;
     if head != b"Point" {
@@ -535,7 +539,7 @@ type Names<'a> = HashMap<&'a [u8], (Def, usize), NameHash>;
 /// A name in the input and the line it is on.
 type NameAt<'a> = (&'a [u8], usize);
 
-fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
+fn read_testbed(bytes: &[u8]) -> Result<RawMesh, Failure> {
     use std::hash::BuildHasher as _;
     let seed = std::collections::hash_map::RandomState::new().hash_one(0x07e5_7bed_u64);
     let mut p = Parser::new(bytes)?;
@@ -857,7 +861,7 @@ fn assemble(
     n_faces: usize,
     mesh_faces: MeshList<'_>,
     mesh_fields: BTreeMap<String, Vec<f64>>,
-) -> Result<RawMesh, ReadError> {
+) -> Result<RawMesh, Failure> {
     let n = points.len();
     let listed_faces = mesh_faces.faces.len();
     let mut polys = Polygons::with_capacity(listed_faces, 3 * listed_faces);
@@ -949,7 +953,7 @@ fn assemble(
         ));
     }
     // All or none: `norm`, `shape`, and each other field.
-    let all_or_none = |what: &str, has: &dyn Fn(&Point) -> bool| -> Result<bool, ReadError> {
+    let all_or_none = |what: &str, has: &dyn Fn(&Point) -> bool| -> Result<bool, Failure> {
         let k = points.iter().filter(|pt| has(pt)).count();
         if k == 0 || k == n {
             return Ok(k > 0);
