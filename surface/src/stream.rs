@@ -62,6 +62,8 @@ pub struct Output<'a> {
 struct Task {
     faces: G1Report,
     edges: G1Report,
+    /// How many exterior edges it measured (all of them are, once: checked at the end).
+    measured: usize,
     bytes: Vec<u8>,
 }
 
@@ -112,6 +114,7 @@ pub fn fit_streamed_with(
     let format = output.as_ref().map(|o| (o.format, o.to_world));
     let mut g1 = StreamingG1::new(&layout, samples);
     let mut fallbacks: Vec<FaceFallback> = Vec::new();
+    let mut measured_edges = 0usize;
     let curves = &fit.curves;
 
     // The windows are computed on one thread (with rayon inside) while the caller's thread
@@ -122,6 +125,7 @@ pub fn fit_streamed_with(
     let result = std::thread::scope(|s| -> Result<(), StreamError> {
         let g1 = &mut g1;
         let fallbacks = &mut fallbacks;
+        let measured_edges = &mut measured_edges;
         let compute = s.spawn(move || -> Result<(), FitError> {
             let mut nets = vec![Point3::origin(); per_face * window.min(faces.max(1))];
             let mut reasons: Vec<Option<FaceFallbackReason>> = vec![None; window];
@@ -150,6 +154,7 @@ pub fn fit_streamed_with(
                         let pts = &nets[lo * per_face..hi * per_face];
                         let faces_part = g1.faces(mesh, first + lo, pts, &mask[lo..hi]);
                         let mut edges_part = StreamingG1::empty_part();
+                        let mut measured = 0;
                         let mut other = vec![Point3::origin(); per_face];
                         for i in lo..hi {
                             let f = first + i;
@@ -177,6 +182,7 @@ pub fn fit_streamed_with(
                                     &mut part,
                                 );
                                 edges_part = StreamingG1::merge_edges(edges_part, part);
+                                measured += 1;
                             }
                         }
                         bytes.clear();
@@ -192,12 +198,14 @@ pub fn fit_streamed_with(
                         Ok(Task {
                             faces: faces_part,
                             edges: edges_part,
+                            measured,
                             bytes,
                         })
                     })
                     .collect::<Result<_, _>>()?;
                 let mut out = Vec::with_capacity(tasks.len());
                 for task in tasks {
+                    *measured_edges += task.measured;
                     g1.add_faces(task.faces);
                     g1.add_edges(task.edges);
                     out.push(task.bytes);
@@ -239,6 +247,14 @@ pub fn fit_streamed_with(
         Ok(())
     });
     result?;
+    // Every edge between two faces was measured exactly once (by the window of its first
+    // face), or the report would not be the whole fit's.
+    let shared = mesh.edges().iter().filter(|e| e.second.is_some()).count();
+    if measured_edges != shared {
+        return Err(StreamError::Fit(FitError::Mesh(format!(
+            "the streamed G1 measured {measured_edges} of {shared} shared edges"
+        ))));
+    }
     fit.face_fallbacks = fallbacks;
     Ok(Streamed {
         fit,
