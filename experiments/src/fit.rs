@@ -42,7 +42,9 @@ pub struct FitArgs {
     #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_C)]
     c: f64,
     /// Where to write the patches: JSON Lines, or the compact binary form when the name ends in
-    /// `.bzp` (`surface::patch_io`); none are written when absent.
+    /// `.bzp` (`surface::patch_io`); none are written when absent. Without `--mesh-out` and
+    /// `--interior`, the patches are streamed: built, measured and written a window of faces at
+    /// a time, never all held (`surface::stream`; the same report and file).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Tessellate the patches at this many segments per patch edge (the testbed's `Tess -s`)
@@ -136,16 +138,124 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         source,
     };
     let scheme = args.fit.scheme.build(params)?;
-    let (fitted, stats) = surface::fairing::fit_surface(
-        &mesh,
-        scheme.as_ref(),
-        method.as_ref(),
-        args.fit.interior.choice,
-        args.fit.curve.solver,
-    )
-    .map_err(fit_error)?;
-    let t_fit = t1.elapsed().as_secs_f64();
-    peak_after("fit");
+    // Streamed when nothing needs the whole fit's nets afterwards (no tessellation, no interior
+    // optimization, which refits from a first fit): the same report and file, bit for bit,
+    // without the nets in memory (`surface::stream`).
+    let stream = args.mesh_out.is_none() && args.fit.interior.choice == InteriorChoice::Default;
+    let (fitted, g1, stats, t_fit, t_g1) = if stream {
+        if let Some(out) = &args.out {
+            crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
+        }
+        let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
+        let mut streamed: Option<Result<surface::stream::Streamed, surface::stream::StreamError>> =
+            None;
+        let run = |output: Option<surface::stream::Output<'_>>| {
+            surface::stream::fit_streamed(&mesh, scheme.as_ref(), method.as_ref(), 9, output)
+        };
+        match &args.out {
+            Some(out) => {
+                let format = surface::patch_io::PatchFormat::for_path(out);
+                let written = crate::output::write_result_with(Some(out), &mut |w| {
+                    let r = run(Some(surface::stream::Output {
+                        format,
+                        to_world: &to_world,
+                        out: w,
+                    }));
+                    let io = match &r {
+                        Err(surface::stream::StreamError::Io(e)) => {
+                            Err(std::io::Error::new(e.kind(), e.to_string()))
+                        }
+                        Err(surface::stream::StreamError::Fit(_)) => {
+                            Err(std::io::Error::other("the fit failed"))
+                        }
+                        Ok(_) => Ok(()),
+                    };
+                    streamed = Some(r);
+                    io
+                });
+                // A failed fit is reported as such, not as the write it interrupted.
+                if let Some(Err(surface::stream::StreamError::Fit(source))) = streamed {
+                    return Err(fit_error(source));
+                }
+                written?;
+            }
+            None => streamed = Some(run(None)),
+        }
+        let s = match streamed {
+            Some(Ok(s)) => s,
+            Some(Err(surface::stream::StreamError::Fit(source))) => return Err(fit_error(source)),
+            Some(Err(surface::stream::StreamError::Io(source))) => {
+                return Err(ExperimentError::Write {
+                    path: args.out.clone().unwrap_or_default(),
+                    source,
+                })
+            }
+            None => {
+                return Err(ExperimentError::Write {
+                    path: args.out.clone().unwrap_or_default(),
+                    source: std::io::Error::other("the fit did not run"),
+                })
+            }
+        };
+        let total = t1.elapsed().as_secs_f64();
+        say!(
+            "  streamed: curves {:.3} s, then patches, G1{} a window of faces at a time {:.3} s",
+            s.curves_seconds,
+            if args.out.is_some() {
+                " and writing"
+            } else {
+                ""
+            },
+            total - s.curves_seconds
+        );
+        peak_after(if args.out.is_some() {
+            "fit, G1 and write"
+        } else {
+            "fit and G1"
+        });
+        let stats = surface::fairing::InteriorStats {
+            faces: mesh.num_faces(),
+            ..Default::default()
+        };
+        (
+            s.fit,
+            s.g1,
+            stats,
+            s.curves_seconds,
+            total - s.curves_seconds,
+        )
+    } else {
+        let (fitted, stats) = surface::fairing::fit_surface(
+            &mesh,
+            scheme.as_ref(),
+            method.as_ref(),
+            args.fit.interior.choice,
+            args.fit.curve.solver,
+        )
+        .map_err(fit_error)?;
+        let t_fit = t1.elapsed().as_secs_f64();
+        peak_after("fit");
+        let t2 = Instant::now();
+        let g1 = measure_g1(&mesh, &fitted, 9);
+        let t_g1 = t2.elapsed().as_secs_f64();
+        peak_after("G1");
+        if let Some(out) = &args.out {
+            crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
+            let t_out = Instant::now();
+            let format = surface::patch_io::PatchFormat::for_path(out);
+            let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
+            crate::output::write_result_with(Some(out), &mut |w| {
+                surface::patch_io::write_patches(&fitted, format, &to_world, w)
+            })?;
+            say!(
+                "  patches written to {} in {:.3} s",
+                out.display(),
+                t_out.elapsed().as_secs_f64()
+            );
+            peak_after("write");
+        }
+        (fitted, g1, stats, t_fit, t_g1)
+    };
     if args.fit.interior.choice != InteriorChoice::Default {
         say!(
             "  interior {}: {} faces, {} converged, {} kept at defaults, energy {:.4e} → {:.4e}",
@@ -156,30 +266,6 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             stats.energy_default,
             stats.energy_chosen
         );
-    }
-    let t2 = Instant::now();
-    let g1 = measure_g1(&mesh, &fitted, 9);
-    let t_g1 = t2.elapsed().as_secs_f64();
-    peak_after("G1");
-
-    if let Some(out) = &args.out {
-        crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
-        let t_out = Instant::now();
-        let binary = out.extension().is_some_and(|e| e == "bzp");
-        let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
-        crate::output::write_result_with(Some(out), &mut |w| {
-            if binary {
-                surface::patch_io::write_binary(&fitted, &to_world, w)
-            } else {
-                surface::patch_io::write_jsonl(&fitted, &to_world, w)
-            }
-        })?;
-        say!(
-            "  patches written to {} in {:.3} s",
-            out.display(),
-            t_out.elapsed().as_secs_f64()
-        );
-        peak_after("write");
     }
     if let Some(path) = &args.mesh_out {
         check_memory(
@@ -296,13 +382,28 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             fitted.flipped_tangents
         );
     }
-    say!(
-        "  time: read {:.3} s, fit {:.3} s ({:.0} triangles/s), G1 {:.3} s",
-        t_read,
-        t_fit,
-        faces as f64 / t_fit.max(1e-12),
-        t_g1
-    );
+    if stream {
+        say!(
+            "  time: read {:.3} s, curves {:.3} s, patches, G1{} {:.3} s ({:.0} triangles/s)",
+            t_read,
+            t_fit,
+            if args.out.is_some() {
+                " and writing"
+            } else {
+                ""
+            },
+            t_g1,
+            faces as f64 / (t_fit + t_g1).max(1e-12),
+        );
+    } else {
+        say!(
+            "  time: read {:.3} s, fit {:.3} s ({:.0} triangles/s), G1 {:.3} s",
+            t_read,
+            t_fit,
+            faces as f64 / t_fit.max(1e-12),
+            t_g1
+        );
+    }
     say!(
         "  peak memory: {}",
         peaks

@@ -257,3 +257,61 @@ fn coordinates_from_1e_minus_100_to_1e154_fit_the_same() {
     assert_eq!(summaries[0], summaries[1]);
     assert_eq!(summaries[0], summaries[2]);
 }
+
+/// `fit --out` streams its patches unless something needs the whole fit (`--mesh-out` here):
+/// both paths print the same report — G1 figures, fallback faces by name, curve counts — and
+/// write the same bytes, in both patch forms, on a real mesh with fallback faces.
+#[test]
+fn streamed_and_whole_fit_print_and_write_the_same() {
+    let dir = tempfile::tempdir().unwrap();
+    // What depends on the run, not the fit: times, memory, where things were written.
+    let report = |err: &str| -> Vec<String> {
+        err.lines()
+            .filter(|l| {
+                ![
+                    "time",
+                    "peak memory",
+                    "written to",
+                    "streamed",
+                    "tessellation",
+                ]
+                .iter()
+                .any(|k| l.contains(k))
+            })
+            .map(str::to_string)
+            .collect()
+    };
+    for ext in ["bzp", "jsonl"] {
+        let streamed = dir.path().join(format!("streamed.{ext}"));
+        let whole = dir.path().join(format!("whole.{ext}"));
+        let mesh = dir.path().join("tess.obj");
+        let base = [
+            "fit",
+            "--data",
+            "data/meshes/teapot.ply",
+            "--curves",
+            "optimized",
+        ];
+        let (code, err_s) = run(&[&base[..], &["--out", streamed.to_str().unwrap()]].concat());
+        assert_eq!(code, 0, "{err_s}");
+        assert!(err_s.contains("streamed:"), "{err_s}");
+        let (code, err_w) = run(&[
+            &base[..],
+            &[
+                "--out",
+                whole.to_str().unwrap(),
+                "--mesh-out",
+                mesh.to_str().unwrap(),
+            ],
+        ]
+        .concat());
+        assert_eq!(code, 0, "{err_w}");
+        assert!(!err_w.contains("streamed:"), "{err_w}");
+        assert!(err_s.contains("fallback: 13 faces"), "{err_s}");
+        assert_eq!(report(&err_s), report(&err_w));
+        assert!(
+            std::fs::read(&streamed).unwrap() == std::fs::read(&whole).unwrap(),
+            "{ext}: the files differ"
+        );
+    }
+}

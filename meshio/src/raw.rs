@@ -3,6 +3,7 @@
 //! Readers fill it and writers read it; turning it into a validated triangle mesh (and repairing
 //! what a file got wrong) is the `surface` crate's job, so every reader stays a pure parser.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 
 use nalgebra::{Matrix3, Point3, Vector3};
@@ -117,14 +118,26 @@ pub struct RawMesh {
     pub shapes: Option<Vec<Matrix3<f64>>>,
     /// Per-vertex colours, linear 0–1 RGB, if the file had them.
     pub colors: Option<Vec<[f32; 3]>>,
-    /// Per-vertex names (the testbed format names its points), if the file had them.
+    /// Per-vertex names (the testbed format names its points), if the file had them and they
+    /// are not all implied ([`RawMesh::implied_vertex_names`]); read them through
+    /// [`RawMesh::vertex_name`].
     pub vertex_names: Option<Vec<String>>,
+    /// The file named every vertex `v<i>` by its position `i` (what the testbed writer emits
+    /// for a mesh without names): the names are implied, not stored (`vertex_names` is `None`),
+    /// and [`RawMesh::vertex_name`] gives them. A million points then cost no million strings;
+    /// writing the mesh back gives the same names.
+    pub implied_vertex_names: bool,
     /// Other per-vertex properties, kept.
     pub properties: VertexProperties,
     /// The faces.
     pub polygons: Polygons,
-    /// Per-face names (the testbed format names its faces), if the file had them.
+    /// Per-face names (the testbed format names its faces), if the file had them and they are
+    /// not all implied ([`RawMesh::implied_face_names`]); read them through
+    /// [`RawMesh::face_name`].
     pub face_names: Option<Vec<String>>,
+    /// The file named every face `f<k>` by its position `k` in the mesh (as the testbed writer
+    /// does): implied, not stored (`face_names` is `None`); [`RawMesh::face_name`] gives them.
+    pub implied_face_names: bool,
     /// Per-mesh numeric fields a reader kept (the testbed format's extra top-level fields).
     pub mesh_fields: BTreeMap<String, Vec<f64>>,
     /// What the reader did that a user should know (one line each).
@@ -149,5 +162,37 @@ impl RawMesh {
     /// Number of polygons.
     pub fn num_faces(&self) -> usize {
         self.polygons.len()
+    }
+
+    /// The name of vertex `i`: stored, implied (`v<i>`), or none.
+    pub fn vertex_name(&self, i: usize) -> Option<Cow<'_, str>> {
+        match &self.vertex_names {
+            Some(names) => names.get(i).map(|n| Cow::Borrowed(n.as_str())),
+            None if self.implied_vertex_names && i < self.positions.len() => {
+                Some(Cow::Owned(format!("v{i}")))
+            }
+            None => None,
+        }
+    }
+
+    /// The name of face `k`: stored, implied (`f<k>`), or none.
+    pub fn face_name(&self, k: usize) -> Option<Cow<'_, str>> {
+        match &self.face_names {
+            Some(names) => names.get(k).map(|n| Cow::Borrowed(n.as_str())),
+            None if self.implied_face_names && k < self.polygons.len() => {
+                Some(Cow::Owned(format!("f{k}")))
+            }
+            None => None,
+        }
+    }
+
+    /// Whether the vertices have names, stored or implied.
+    pub fn has_vertex_names(&self) -> bool {
+        self.vertex_names.is_some() || self.implied_vertex_names
+    }
+
+    /// Whether the faces have names, stored or implied.
+    pub fn has_face_names(&self) -> bool {
+        self.face_names.is_some() || self.implied_face_names
     }
 }

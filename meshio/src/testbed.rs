@@ -88,7 +88,7 @@ impl MeshFormat for Testbed {
     }
 
     fn read(&self, bytes: &[u8]) -> Result<RawMesh, ReadError> {
-        read_testbed(bytes)
+        read_testbed(bytes).map_err(|e| *e)
     }
 
     fn write(&self, mesh: &RawMesh, _: &WriteOptions) -> Result<Vec<u8>, WriteError> {
@@ -117,8 +117,12 @@ impl Tok<'_> {
     }
 }
 
-fn err(line: usize, m: impl Into<String>) -> ReadError {
-    ReadError::line(NAME, line, m)
+/// The reader's error, boxed while parsing: results stay two words wide, which every token
+/// passes through (the unboxed error is 64 bytes).
+type Failure = Box<ReadError>;
+
+fn err(line: usize, m: impl Into<String>) -> Failure {
+    Box::new(ReadError::line(NAME, line, m))
 }
 
 /// A streaming lexer (no token list: memory stays proportional to what the mesh keeps).
@@ -142,7 +146,7 @@ impl<'a> Lexer<'a> {
     }
 
     /// The next token and its line.
-    fn next(&mut self) -> Result<(Tok<'a>, usize), ReadError> {
+    fn next(&mut self) -> Result<(Tok<'a>, usize), Failure> {
         loop {
             match self.at(self.i) {
                 None => return Ok((Tok::Eof, self.line)),
@@ -218,31 +222,31 @@ struct Parser<'a> {
 }
 
 impl<'a> Parser<'a> {
-    fn new(b: &'a [u8]) -> Result<Self, ReadError> {
+    fn new(b: &'a [u8]) -> Result<Self, Failure> {
         let mut lx = Lexer::new(b);
         let (tok, line) = lx.next()?;
         Ok(Parser { lx, tok, line })
     }
 
-    fn bump(&mut self) -> Result<Tok<'a>, ReadError> {
+    fn bump(&mut self) -> Result<Tok<'a>, Failure> {
         let (t, l) = self.lx.next()?;
         self.line = l;
         Ok(std::mem::replace(&mut self.tok, t))
     }
 
-    fn fail<T>(&self, expected: &str) -> Result<T, ReadError> {
+    fn fail<T>(&self, expected: &str) -> Result<T, Failure> {
         Err(err(
             self.line,
             format!("expected {expected}, found {}", self.tok.describe()),
         ))
     }
 
-    fn punct(&mut self, c: u8, expected: &str) -> Result<(), ReadError> {
+    fn punct(&mut self, c: u8, expected: &str) -> Result<(), Failure> {
         self.punct_or(c, || expected.to_string())
     }
 
     /// [`Parser::punct`] with the message built only on failure (no allocation per token).
-    fn punct_or(&mut self, c: u8, expected: impl FnOnce() -> String) -> Result<(), ReadError> {
+    fn punct_or(&mut self, c: u8, expected: impl FnOnce() -> String) -> Result<(), Failure> {
         if self.tok == Tok::Punct(c) {
             self.bump()?;
             Ok(())
@@ -251,7 +255,7 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn eat(&mut self, c: u8) -> Result<bool, ReadError> {
+    fn eat(&mut self, c: u8) -> Result<bool, Failure> {
         let hit = self.tok == Tok::Punct(c);
         if hit {
             self.bump()?;
@@ -260,14 +264,14 @@ impl<'a> Parser<'a> {
     }
 
     /// An identifier, borrowed from the input, and its line.
-    fn ident(&mut self, expected: &str) -> Result<(&'a [u8], usize), ReadError> {
+    fn ident(&mut self, expected: &str) -> Result<(&'a [u8], usize), Failure> {
         self.ident_or(|| expected.to_string())
     }
 
     fn ident_or(
         &mut self,
         expected: impl FnOnce() -> String,
-    ) -> Result<(&'a [u8], usize), ReadError> {
+    ) -> Result<(&'a [u8], usize), Failure> {
         match self.tok {
             Tok::Ident(s) => {
                 let out = (s, self.line);
@@ -279,7 +283,7 @@ impl<'a> Parser<'a> {
     }
 
     /// A number or a (nested) array of numbers, flattened into `out`.
-    fn numbers(&mut self, key: &[u8], out: &mut Vec<f64>, depth: usize) -> Result<(), ReadError> {
+    fn numbers(&mut self, key: &[u8], out: &mut Vec<f64>, depth: usize) -> Result<(), Failure> {
         match self.tok {
             Tok::Num(x) => {
                 out.push(x);
@@ -327,7 +331,7 @@ impl<'a> Parser<'a> {
         close: u8,
         what: &str,
         out: &mut Vec<(&'a [u8], usize)>,
-    ) -> Result<(), ReadError> {
+    ) -> Result<(), Failure> {
         if self.eat(close)? {
             return Ok(());
         }
@@ -358,8 +362,12 @@ struct Point<'a> {
     norm: bool,
     /// Whether the point has `shape` (likewise).
     shape: bool,
-    fields: Vec<(String, Vec<f64>)>,
+    /// Its other fields, boxed (most points have none: a point then costs 8 bytes for them).
+    fields: Option<Box<Fields>>,
 }
+
+/// A point's fields other than `pos`, `norm` and `shape`: key and values.
+type Fields = Vec<(String, Vec<f64>)>;
 
 /// The normals and shape tensors of the points that have them, in point order.
 #[derive(Default)]
@@ -374,7 +382,7 @@ fn parse_point<'a>(
     line: usize,
     v: &mut Vec<f64>,
     given: &mut Given,
-) -> Result<Point<'a>, ReadError> {
+) -> Result<Point<'a>, Failure> {
     p.punct(b'(', "`(`")?;
     let (head, hl) = p.ident("`Point`")?;
     if head != b"Point" {
@@ -462,7 +470,7 @@ fn parse_point<'a>(
         pos,
         norm: norm.is_some(),
         shape: shape.is_some(),
-        fields,
+        fields: (!fields.is_empty()).then(|| Box::new(fields)),
     })
 }
 
@@ -531,7 +539,7 @@ type Names<'a> = HashMap<&'a [u8], (Def, usize), NameHash>;
 /// A name in the input and the line it is on.
 type NameAt<'a> = (&'a [u8], usize);
 
-fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
+fn read_testbed(bytes: &[u8]) -> Result<RawMesh, Failure> {
     use std::hash::BuildHasher as _;
     let seed = std::collections::hash_map::RandomState::new().hash_one(0x07e5_7bed_u64);
     let mut p = Parser::new(bytes)?;
@@ -545,7 +553,7 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
     let mut corner_names: Vec<NameAt<'_>> = Vec::new();
     let mut n_faces = 0usize;
     let mut mesh_fields: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-    let mut mesh_stmt: Option<(usize, Vec<NameAt<'_>>)> = None;
+    let mut mesh_stmt: Option<(usize, MeshList<'_>)> = None;
     let mut scratch: Vec<f64> = Vec::new();
     // A point and a face named `mesh` (not in `defined`, as `mesh` may be redefined).
     let mut mesh_named: (Option<usize>, Option<usize>) = (None, None);
@@ -621,12 +629,7 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                         define(Def::Face(k));
                         n_faces += 1;
                     }
-                    face_defs.push(FaceDef {
-                        name,
-                        line,
-                        start,
-                        len,
-                    });
+                    face_defs.push(FaceDef { name, line, start });
                 } else {
                     // A mesh field: re-read the array from its first element.
                     let mut v = Vec::new();
@@ -667,8 +670,31 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                     ));
                 }
                 p.bump()?;
-                let mut list = Vec::new();
-                p.name_list(b'}', "face", &mut list)?;
+                // Faces already defined under their own number (`f3` as face 3) are resolved
+                // as read (a name is defined once, so this is what the end would find); the
+                // rest wait for the end of the file, with their names.
+                let mut list = MeshList::default();
+                if !p.eat(b'}')? {
+                    loop {
+                        let (fname, fline) = p.ident_or(|| "a face name".to_string())?;
+                        match trailing_index(fname) {
+                            Some(k)
+                                if fname != b"mesh"
+                                    && face_defs.get(k).is_some_and(|f| f.name == fname) =>
+                            {
+                                list.faces.push(k);
+                            }
+                            _ => {
+                                list.late.push((list.faces.len(), (fname, fline)));
+                                list.faces.push(UNRESOLVED);
+                            }
+                        }
+                        if p.eat(b'}')? {
+                            break;
+                        }
+                        p.punct_or(b',', || "`,` or `}` in the list of faces".to_string())?;
+                    }
+                }
                 mesh_stmt = Some((line, list));
             }
             _ => {
@@ -693,6 +719,7 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
         points: &points,
         faces: &face_defs,
         mesh_named,
+        corners: corners.len(),
     };
     let corners = Corners {
         index: &corners,
@@ -709,6 +736,14 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, ReadError> {
     )
 }
 
+/// The faces of the `mesh` statement: a face index each, or [`UNRESOLVED`] with the name and
+/// line in `late` (by position, increasing).
+#[derive(Default)]
+struct MeshList<'a> {
+    faces: Vec<usize>,
+    late: Vec<(usize, NameAt<'a>)>,
+}
+
 /// A face corner whose point is found only once the whole file is read.
 const UNRESOLVED: usize = usize::MAX;
 
@@ -720,12 +755,12 @@ struct Corners<'m, 'a> {
     deferred: &'m [(usize, NameAt<'a>)],
 }
 
-/// A face statement: its name, line and corners (`corners[start..start + len]`).
+/// A face statement: its name, line and the start of its corners (they run to the next face
+/// statement's, or to the end: [`Lookup::range`]).
 struct FaceDef<'a> {
     name: &'a [u8],
     line: usize,
     start: usize,
-    len: usize,
 }
 
 /// The number a name ends in (`v17` → 17; `v017`, `v` and `17` end in none): a name that is
@@ -774,6 +809,8 @@ struct Lookup<'m, 'a> {
     points: &'m [Point<'a>],
     faces: &'m [FaceDef<'a>],
     mesh_named: (Option<usize>, Option<usize>),
+    /// The number of corners of all face statements.
+    corners: usize,
 }
 
 impl Lookup<'_, '_> {
@@ -805,7 +842,14 @@ impl Lookup<'_, '_> {
                 },
             }
         };
-        self.faces.get(k).map(|f| (f.start, f.len))
+        self.range(k)
+    }
+
+    /// Face statement `k`'s corner range `(start, len)`.
+    fn range(&self, k: usize) -> Option<(usize, usize)> {
+        let f = self.faces.get(k)?;
+        let end = self.faces.get(k + 1).map_or(self.corners, |g| g.start);
+        Some((f.start, end - f.start))
     }
 }
 
@@ -815,18 +859,51 @@ fn assemble(
     names: &Lookup<'_, '_>,
     corners: &Corners<'_, '_>,
     n_faces: usize,
-    mesh_faces: Vec<(&[u8], usize)>,
+    mesh_faces: MeshList<'_>,
     mesh_fields: BTreeMap<String, Vec<f64>>,
-) -> Result<RawMesh, ReadError> {
+) -> Result<RawMesh, Failure> {
     let n = points.len();
-    let mut polys = Polygons::with_capacity(mesh_faces.len(), 3 * mesh_faces.len());
-    let mut face_names = Vec::with_capacity(mesh_faces.len());
+    let listed_faces = mesh_faces.faces.len();
+    let mut polys = Polygons::with_capacity(listed_faces, 3 * listed_faces);
+    // Each listed face's name and line (of the `mesh` statement for a late one, of its own
+    // statement otherwise: only messages use it).
+    let mut late = mesh_faces.late.iter().peekable();
+    let mut entries = mesh_faces.faces.iter().enumerate().map(|(j, &k)| {
+        if k != UNRESOLVED {
+            let f = &names.faces[k];
+            return (f.name, f.line);
+        }
+        match late.next_if(|(at, _)| *at == j) {
+            Some((_, at)) => *at,
+            None => (&b"?"[..], 0),
+        }
+    });
+    // Names that are what the writer emits for a mesh without names (`v<i>`, `f<k>`, by
+    // position) are implied rather than stored ([`RawMesh::implied_vertex_names`]).
+    let implied_vertex_names = points
+        .iter()
+        .enumerate()
+        .all(|(i, pt)| is_positional_name(pt.name, b'v', i));
+    let implied_face_names = mesh_faces
+        .faces
+        .iter()
+        .enumerate()
+        .all(|(j, &k)| k != UNRESOLVED && is_positional_name(names.faces[k].name, b'f', j));
+    let mut face_names = Vec::with_capacity(if implied_face_names { 0 } else { listed_faces });
     let mut face_corners = Vec::new();
     // Faces listed, flagged at the start of their corners (each face's range is its own).
     let mut listed = vec![false; corners.index.len()];
     let mut listed_count = 0usize;
-    for &(fname, fline) in &mesh_faces {
-        let Some((start, len)) = names.face(fname) else {
+    for &k in &mesh_faces.faces {
+        let Some((fname, fline)) = entries.next() else {
+            break;
+        };
+        let resolved = if k == UNRESOLVED {
+            names.face(fname)
+        } else {
+            names.range(k)
+        };
+        let Some((start, len)) = resolved else {
             let what = if names.point(fname).is_some() {
                 "a point, not a face"
             } else {
@@ -860,7 +937,9 @@ fn assemble(
             face_corners.push(i);
         }
         polys.push(&face_corners);
-        face_names.push(text(fname).into_owned());
+        if !implied_face_names {
+            face_names.push(text(fname).into_owned());
+        }
         if let Some(flag) = listed.get_mut(start) {
             listed_count += usize::from(!*flag);
             *flag = true;
@@ -874,7 +953,7 @@ fn assemble(
         ));
     }
     // All or none: `norm`, `shape`, and each other field.
-    let all_or_none = |what: &str, has: &dyn Fn(&Point) -> bool| -> Result<bool, ReadError> {
+    let all_or_none = |what: &str, has: &dyn Fn(&Point) -> bool| -> Result<bool, Failure> {
         let k = points.iter().filter(|pt| has(pt)).count();
         if k == 0 || k == n {
             return Ok(k > 0);
@@ -893,7 +972,7 @@ fn assemble(
     let has_shape = all_or_none("shape", &|pt| pt.shape)?;
     let mut keys: Vec<String> = Vec::new();
     for pt in points {
-        for (k, _) in &pt.fields {
+        for (k, _) in pt.fields.iter().flat_map(|f| f.iter()) {
             if !keys.contains(k) {
                 keys.push(k.clone());
             }
@@ -906,13 +985,19 @@ fn assemble(
             .find_map(|pt| {
                 pt.fields
                     .iter()
+                    .flat_map(|f| f.iter())
                     .find(|(k, _)| k == key)
                     .map(|(_, v)| v.len())
             })
             .unwrap_or(0);
         let mut cols: Vec<Vec<f64>> = vec![Vec::with_capacity(n); len];
         for pt in points {
-            let Some((_, v)) = pt.fields.iter().find(|(k, _)| k == key) else {
+            let Some((_, v)) = pt
+                .fields
+                .iter()
+                .flat_map(|f| f.iter())
+                .find(|(k, _)| k == key)
+            else {
                 return Err(err(
                     pt.line,
                     format!(
@@ -950,13 +1035,26 @@ fn assemble(
         shapes: has_shape.then_some(given.shapes),
         properties,
         polygons: polys,
-        face_names: Some(face_names),
+        face_names: (!implied_face_names).then_some(face_names),
+        implied_face_names,
+        implied_vertex_names,
         mesh_fields,
         notes,
         ..RawMesh::default()
     };
-    mesh.vertex_names = Some(points.iter().map(|pt| text(pt.name).into_owned()).collect());
+    if !implied_vertex_names {
+        mesh.vertex_names = Some(points.iter().map(|pt| text(pt.name).into_owned()).collect());
+    }
     Ok(mesh)
+}
+
+/// Whether `name` is `letter` followed by the decimal `i` (no leading zeros): the name the
+/// writer gives the `i`-th point (`v`) or face (`f`) of a mesh without names.
+fn is_positional_name(name: &[u8], letter: u8, i: usize) -> bool {
+    name.len() >= 2
+        && name[0] == letter
+        && name[1..].iter().all(u8::is_ascii_digit)
+        && trailing_index(name) == Some(i)
 }
 
 fn is_identifier(s: &str) -> bool {

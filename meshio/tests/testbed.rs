@@ -90,12 +90,63 @@ fn roundtrip_is_exact() {
     assert_eq!(back.positions, cube.positions);
     assert_eq!(back.normals, cube.normals);
     assert_eq!(back.properties, cube.properties);
-    assert_eq!(
-        back.vertex_names.as_ref().map(|v| v[7].as_str()),
-        Some("v7")
-    );
-    assert_eq!(back.face_names.as_ref().map(|v| v[5].as_str()), Some("f5"));
+    assert_eq!(back.vertex_name(7).as_deref(), Some("v7"));
+    assert_eq!(back.face_name(5).as_deref(), Some("f5"));
     assert_eq!(common::polys(&back), common::polys(&cube));
+}
+
+/// Names the writer would generate (`v<i>`, `f<k>` by position) are implied, not stored — a
+/// million points cost no million strings — and the round trip is still exact: the same
+/// names through the accessors, the same bytes written back. One name off the pattern (or
+/// out of place, or with a leading zero) and every name of that kind is stored as read.
+#[test]
+fn positional_names_are_implied_and_round_trip_exactly() {
+    let mut cube = common::cube();
+    cube.colors = None;
+    cube.normals = None;
+    let text = testbed().write(&cube, &WriteOptions::new()).expect("w");
+    let back = testbed().read(&text).expect("r");
+    assert!(back.vertex_names.is_none() && back.implied_vertex_names);
+    assert!(back.face_names.is_none() && back.implied_face_names);
+    assert!(back.has_vertex_names() && back.has_face_names());
+    assert_eq!(back.vertex_name(0).as_deref(), Some("v0"));
+    assert_eq!(back.vertex_name(8), None, "the cube has 8 vertices");
+    assert_eq!(back.face_name(5).as_deref(), Some("f5"));
+    assert_eq!(
+        testbed().write(&back, &WriteOptions::new()).expect("w"),
+        text,
+        "written back byte for byte"
+    );
+    let text = String::from_utf8(text).expect("utf8");
+    for (from, to, vertex) in [
+        ("v7 =", "w7 =", true),
+        ("v3 =", "v03 =", true),
+        ("f2 =", "g2 =", false),
+    ] {
+        let from_ref = from.trim_end_matches(" =");
+        let to_ref = to.trim_end_matches(" =");
+        let renamed = text
+            .replace(from, to)
+            .replace(&format!("{from_ref},"), &format!("{to_ref},"));
+        let renamed = renamed
+            .replace(&format!("{from_ref}]"), &format!("{to_ref}]"))
+            .replace(&format!("{from_ref}}}"), &format!("{to_ref}}}"));
+        let m = read(&renamed).unwrap_or_else(|e| panic!("{to}: {e}"));
+        if vertex {
+            assert!(!m.implied_vertex_names && m.implied_face_names, "{to}");
+            let names = m.vertex_names.as_ref().expect("stored");
+            assert_eq!(names.len(), 8);
+            assert!(names.iter().any(|n| n == to_ref));
+        } else {
+            assert!(m.implied_vertex_names && !m.implied_face_names, "{to}");
+            assert_eq!(m.face_name(2).as_deref(), Some(to_ref));
+        }
+        assert_eq!(
+            testbed().write(&m, &WriteOptions::new()).expect("w"),
+            renamed.as_bytes(),
+            "{to}: written back byte for byte"
+        );
+    }
 }
 
 #[test]

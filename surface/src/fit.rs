@@ -322,6 +322,50 @@ pub fn fit_scheme_into(
     method: &dyn CurveMethod,
     out: &mut Fit,
 ) -> Result<(), FitError> {
+    fit_curves_into(mesh, scheme, method, out)?;
+    // Each face writes its patches straight into the output (no intermediate copies: at a
+    // million faces the nets are a gigabyte, and memory traffic dominates the arithmetic).
+    let per_face = out.layout.points_per_face();
+    let Fit {
+        curves,
+        points,
+        face_fallbacks,
+        ..
+    } = &mut *out;
+    points.clear();
+    points.resize(per_face * mesh.num_faces(), nalgebra::Point3::origin());
+    let mut reasons: Vec<Option<FaceFallbackReason>> = vec![None; mesh.num_faces()];
+    let curves: &[CubicBez3] = curves;
+    points
+        .par_chunks_mut(per_face.max(1))
+        .zip(reasons.par_iter_mut())
+        .enumerate()
+        .try_for_each(|(f, (out, reason))| -> Result<(), FitError> {
+            *reason = build_face(mesh, scheme, curves, f, out)?;
+            Ok(())
+        })?;
+    *face_fallbacks = reasons
+        .into_iter()
+        .enumerate()
+        .filter_map(|(face, r)| r.map(|reason| FaceFallback { face, reason }))
+        .collect();
+    Ok(())
+}
+
+/// The first stage of [`fit_scheme_into`]: everything but the patches. Sets `out`'s scheme,
+/// layout and continuity, builds one boundary curve per mesh edge (when the scheme uses
+/// curves) with its α, and counts the fallbacks, unconverged optimizations, flipped tangents
+/// and degenerate edges; leaves `out.points` and `out.face_fallbacks` empty. The patches of
+/// face `f` then come from [`build_face`] with `out.curves`, alone: a face's patches depend
+/// only on its own corners' vertex data, its three edge curves and the scheme (its interior
+/// rule), never on another face's patches, so they can be built in any order, or again
+/// ([`crate::stream`]).
+pub fn fit_curves_into(
+    mesh: &Mesh,
+    scheme: &dyn Scheme,
+    method: &dyn CurveMethod,
+    out: &mut Fit,
+) -> Result<(), FitError> {
     let verts = mesh.vertices();
     let uses_curves = scheme.uses_curves();
     if uses_curves && method.name() != "chord" {
@@ -344,9 +388,10 @@ pub fn fit_scheme_into(
         points,
         degenerate_edges,
         face_fallbacks,
-        layout,
         ..
     } = &mut *out;
+    points.clear();
+    face_fallbacks.clear();
     curves.clear();
     curves.resize(n_edges, CubicBez3::new([nalgebra::Point3::origin(); 4]));
     alphas.clear();
@@ -384,62 +429,58 @@ pub fn fit_scheme_into(
         .enumerate()
         .filter_map(|(edge, e)| e.map(|error| DegenerateEdge { edge, error }))
         .collect();
-
-    // Each face writes its patches straight into the output (no intermediate copies: at a
-    // million faces the nets are a gigabyte, and memory traffic dominates the arithmetic).
-    let per_face = layout.points_per_face();
-    points.clear();
-    points.resize(per_face * mesh.num_faces(), nalgebra::Point3::origin());
-    let mut reasons: Vec<Option<FaceFallbackReason>> = vec![None; mesh.num_faces()];
-    let curves: &[CubicBez3] = curves;
-    points
-        .par_chunks_mut(per_face.max(1))
-        .zip(reasons.par_iter_mut())
-        .enumerate()
-        .try_for_each(|(f, (out, reason))| -> Result<(), FitError> {
-            let face = mesh.face(f).map_err(|e| FitError::Mesh(e.to_string()))?;
-            let edges = if uses_curves {
-                face_curves(mesh, curves, f).map_err(|e| FitError::Mesh(e.to_string()))?
-            } else {
-                std::array::from_fn(|l| {
-                    straight(verts[face[l]].data.p, verts[face[(l + 1) % 3]].data.p)
-                })
-            };
-            let input = FaceInput {
-                face: f,
-                vertices: [
-                    &verts[face[0]].data,
-                    &verts[face[1]].data,
-                    &verts[face[2]].data,
-                ],
-                edges: &edges,
-            };
-            let built = if mesh.is_degenerate_face(f) {
-                Err(FaceFallbackReason::ZeroArea)
-            } else {
-                match scheme.build(&input, out) {
-                    Ok(()) if out.iter().all(|p| p.iter().all(|c| c.is_finite())) => Ok(()),
-                    Ok(()) => Err(FaceFallbackReason::NonFinite),
-                    Err(FaceFallbackReason::Scheme(source @ SchemeError::BadParameter { .. })) => {
-                        return Err(FitError::Face { face: f, source })
-                    }
-                    Err(e) => Err(e),
-                }
-            };
-            if let Err(why) = built {
-                *reason = Some(why);
-                scheme.fallback(&input, out);
-            }
-            Ok(())
-        })?;
-    *face_fallbacks = reasons
-        .into_iter()
-        .enumerate()
-        .filter_map(|(face, r)| r.map(|reason| FaceFallback { face, reason }))
-        .collect();
-
     out.fallbacks = flags.iter().filter(|f| *f & 1 != 0).count();
     out.unconverged = flags.iter().filter(|f| *f & 2 != 0).count();
     out.flipped_tangents = flags.iter().map(|f| usize::from(f >> 2)).sum();
     Ok(())
+}
+
+/// Builds the patches of face `f` into `out` (`scheme.layout().points_per_face()` points) from
+/// the mesh's vertex data and `curves` (one per mesh edge, as [`fit_curves_into`] leaves them in
+/// [`Fit::curves`]; empty for a scheme that does not use curves: then the face's straight
+/// cubics). Returns why the face got the scheme's fallback patch, if it did; errors only for a
+/// bad parameter (which stops a whole fit) or an inconsistent mesh. The same inputs give the
+/// same bits, whichever thread and whenever.
+pub fn build_face(
+    mesh: &Mesh,
+    scheme: &dyn Scheme,
+    curves: &[CubicBez3],
+    f: usize,
+    out: &mut [nalgebra::Point3<f64>],
+) -> Result<Option<FaceFallbackReason>, FitError> {
+    let verts = mesh.vertices();
+    let face = mesh.face(f).map_err(|e| FitError::Mesh(e.to_string()))?;
+    let edges = if scheme.uses_curves() {
+        face_curves(mesh, curves, f).map_err(|e| FitError::Mesh(e.to_string()))?
+    } else {
+        std::array::from_fn(|l| straight(verts[face[l]].data.p, verts[face[(l + 1) % 3]].data.p))
+    };
+    let input = FaceInput {
+        face: f,
+        vertices: [
+            &verts[face[0]].data,
+            &verts[face[1]].data,
+            &verts[face[2]].data,
+        ],
+        edges: &edges,
+    };
+    let built = if mesh.is_degenerate_face(f) {
+        Err(FaceFallbackReason::ZeroArea)
+    } else {
+        match scheme.build(&input, out) {
+            Ok(()) if out.iter().all(|p| p.iter().all(|c| c.is_finite())) => Ok(()),
+            Ok(()) => Err(FaceFallbackReason::NonFinite),
+            Err(FaceFallbackReason::Scheme(source @ SchemeError::BadParameter { .. })) => {
+                return Err(FitError::Face { face: f, source })
+            }
+            Err(e) => Err(e),
+        }
+    };
+    Ok(match built {
+        Ok(()) => None,
+        Err(why) => {
+            scheme.fallback(&input, out);
+            Some(why)
+        }
+    })
 }

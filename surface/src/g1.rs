@@ -326,53 +326,17 @@ impl Plan {
 /// boundary. Sample weights are computed once per layout; faces and edges are measured in
 /// parallel, with the same result as a sequential scan.
 pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
-    let samples = samples.max(2);
-    let Some(plan) = Plan::new(&fit.layout, samples) else {
+    let Some(plan) = Plan::new(&fit.layout, samples.max(2)) else {
         return G1Report::empty();
     };
     let per_face = fit.layout.points_per_face();
-    let np = plan.np;
     let fallback = fit.fallback_mask(mesh.num_faces());
     let face_points = |f: usize| fit.points.get(f * per_face..(f + 1) * per_face);
     let faces = (0..mesh.num_faces())
         .into_par_iter()
         .fold(G1Report::empty, |mut r, f| {
-            let Some(pts) = face_points(f) else {
-                return r;
-            };
-            for (bi, row) in plan.interior.iter().enumerate() {
-                for (t, a, b) in row {
-                    match (a.normal(pts, np), b.normal(pts, np)) {
-                        (Some(x), Some(y)) if fallback[f] => {
-                            r.fallback_interior_max = r.fallback_interior_max.max(chord2(&x, &y));
-                        }
-                        (Some(x), Some(y)) => r.interior(
-                            chord2(&x, &y),
-                            (
-                                Boundary::Interior {
-                                    face: f,
-                                    boundary: bi,
-                                },
-                                *t,
-                            ),
-                        ),
-                        _ => r.undefined_normals += 1,
-                    }
-                }
-            }
-            let face = mesh.faces()[f];
-            for (i, (point, tangents)) in plan.corners.iter().enumerate() {
-                let v = &mesh.vertices()[face[i]].data;
-                let (at, normal) = tangents.point_and_normal(pts, np);
-                let at = at.unwrap_or(pts[*point]);
-                r.position_error = r.position_error.max((at - v.p).norm());
-                if fallback[f] {
-                    continue;
-                }
-                match normal {
-                    Some(n) => r.normal_error = r.normal_error.max(angle(&n, &v.n.normalize())),
-                    None => r.undefined_normals += 1,
-                }
+            if let Some(pts) = face_points(f) {
+                plan.face(mesh, f, pts, fallback[f], &mut r);
             }
             r
         })
@@ -382,40 +346,269 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
         .par_iter()
         .enumerate()
         .fold(G1Report::empty, |mut r, (ei, e)| {
-            let (Some((g, lg)), (f, lf)) = (e.second, e.first) else {
+            let (Some((g, _)), (f, _)) = (e.second, e.first) else {
                 return r;
             };
-            let (Some(pf), Some(pg)) = (face_points(f), face_points(g)) else {
-                return r;
-            };
-            let touches_fallback = fallback[f] || fallback[g];
-            r.fallback_edges += usize::from(touches_fallback);
-            let (sf, sg) = (&plan.exterior[lf], &plan.exterior[lg]);
-            for (k, (t, tf)) in sf.iter().enumerate() {
-                // Face f's edge runs from its corner lf to lf + 1; g's runs backwards.
-                let tg = &sg[sg.len() - 1 - k].1;
-                match (tf.normal(pf, np), tg.normal(pg, np)) {
-                    (Some(a), Some(b)) if touches_fallback => {
-                        r.fallback_exterior_max = r.fallback_exterior_max.max(chord2(&a, &b));
-                    }
-                    (Some(a), Some(b)) => {
-                        r.exterior(chord2(&a, &b), (Boundary::Exterior { edge: ei }, *t))
-                    }
-                    _ => r.undefined_normals += 1,
-                }
+            if let (Some(pf), Some(pg)) = (face_points(f), face_points(g)) {
+                plan.edge(mesh, ei, [pf, pg], [fallback[f], fallback[g]], &mut r);
             }
             r
         })
         .reduce(G1Report::empty, G1Report::merge);
-    // The scans compared squared chords of the normals; report angles.
-    let mut r = faces.merge(edges);
-    for x in [
-        &mut r.interior_max,
-        &mut r.exterior_max,
-        &mut r.fallback_interior_max,
-        &mut r.fallback_exterior_max,
-    ] {
-        *x = from_chord2(*x);
+    faces.merge(edges).into_angles()
+}
+
+impl G1Report {
+    /// The scans compare squared chords of the normals; this reports angles.
+    fn into_angles(mut self) -> G1Report {
+        for x in [
+            &mut self.interior_max,
+            &mut self.exterior_max,
+            &mut self.fallback_interior_max,
+            &mut self.fallback_exterior_max,
+        ] {
+            *x = from_chord2(*x);
+        }
+        self
     }
-    r
+
+    /// Merges a part of the exterior scan measured out of edge order: where maxima tie, the
+    /// location earlier in the sequential scan (smaller edge, then smaller parameter) wins, as
+    /// [`G1Report::merge`] gives for parts in order. Only the exterior figures may differ
+    /// from a merge in order, so the rest is [`G1Report::merge`].
+    fn merge_unordered(self, other: G1Report) -> G1Report {
+        let key = |r: &G1Report| match r.exterior_at {
+            Some((Boundary::Exterior { edge }, t)) => Some((edge, t)),
+            _ => None,
+        };
+        let (mine, theirs) = (key(&self), key(&other));
+        let exterior = match (mine, theirs) {
+            (_, None) => (self.exterior_max, self.exterior_at),
+            (None, Some(_)) => (other.exterior_max, other.exterior_at),
+            (Some(a), Some(b)) => {
+                if other.exterior_max > self.exterior_max
+                    || (other.exterior_max == self.exterior_max && b < a)
+                {
+                    (other.exterior_max, other.exterior_at)
+                } else {
+                    (self.exterior_max, self.exterior_at)
+                }
+            }
+        };
+        let mut r = self.merge(other);
+        (r.exterior_max, r.exterior_at) = exterior;
+        r
+    }
+}
+
+/// G1 measured as a fit's faces are built, a range of faces at a time, without the whole
+/// [`Fit`]'s nets ([`crate::stream`]). Give it every face exactly once, in order of ranges
+/// ([`StreamingG1::faces`]), and each exterior edge exactly once from either side
+/// ([`StreamingG1::edge`], any order); [`StreamingG1::finish`] then returns the report
+/// [`measure`] gives for the whole fit, bit for bit.
+pub struct StreamingG1 {
+    plan: Option<Plan>,
+    /// The merged report of the face ranges so far (in order) and of the edges.
+    faces: G1Report,
+    edges: G1Report,
+}
+
+impl StreamingG1 {
+    /// A measurement of fits with `layout` at `samples ≥ 2` points per boundary.
+    pub fn new(layout: &Layout, samples: usize) -> Self {
+        StreamingG1 {
+            plan: Plan::new(layout, samples.max(2)),
+            faces: G1Report::empty(),
+            edges: G1Report::empty(),
+        }
+    }
+
+    /// The part of the report from faces `first..first + fallback.len()`, whose points
+    /// (`points_per_face` each, in face order) are `points`: interior boundaries and
+    /// interpolation. Parts are independent; merge them in face order with
+    /// [`StreamingG1::add_faces`].
+    pub fn faces(
+        &self,
+        mesh: &Mesh,
+        first: usize,
+        points: &[Point3<f64>],
+        fallback: &[bool],
+    ) -> G1Report {
+        let mut r = G1Report::empty();
+        let Some(plan) = &self.plan else {
+            return r;
+        };
+        let per_face = points.len() / fallback.len().max(1);
+        for (i, (pts, fb)) in points
+            .chunks_exact(per_face.max(1))
+            .zip(fallback)
+            .enumerate()
+        {
+            plan.face(mesh, first + i, pts, *fb, &mut r);
+        }
+        r
+    }
+
+    /// The part of the report from exterior edge `edge` (two faces) given both faces' points
+    /// and fallback flags, `[first face, second face]` as the mesh's edge lists them. Parts
+    /// merge in any order with [`StreamingG1::add_edges`].
+    pub fn edge(
+        &self,
+        mesh: &Mesh,
+        edge: usize,
+        points: [&[Point3<f64>]; 2],
+        fallback: [bool; 2],
+        into: &mut G1Report,
+    ) {
+        if let Some(plan) = &self.plan {
+            plan.edge(mesh, edge, points, fallback, into);
+        }
+    }
+
+    /// An empty part to accumulate edges into.
+    pub fn empty_part() -> G1Report {
+        G1Report::empty()
+    }
+
+    /// Merges the next range of faces (ranges must come in face order).
+    pub fn add_faces(&mut self, part: G1Report) {
+        self.faces = std::mem::replace(&mut self.faces, G1Report::empty()).merge(part);
+    }
+
+    /// Merges a part of the edges (any order, ties resolved as the sequential scan would).
+    pub fn add_edges(&mut self, part: G1Report) {
+        self.edges = std::mem::replace(&mut self.edges, G1Report::empty()).merge_unordered(part);
+    }
+
+    /// Merges two edge parts (any order; see [`StreamingG1::add_edges`]).
+    pub fn merge_edges(a: G1Report, b: G1Report) -> G1Report {
+        a.merge_unordered(b)
+    }
+
+    /// The report.
+    pub fn finish(self) -> G1Report {
+        self.faces.merge(self.edges).into_angles()
+    }
+}
+
+impl Plan {
+    /// Face `f`'s interior boundaries and interpolation, its points `pts`.
+    fn face(&self, mesh: &Mesh, f: usize, pts: &[Point3<f64>], fallback: bool, r: &mut G1Report) {
+        let np = self.np;
+        for (bi, row) in self.interior.iter().enumerate() {
+            for (t, a, b) in row {
+                match (a.normal(pts, np), b.normal(pts, np)) {
+                    (Some(x), Some(y)) if fallback => {
+                        r.fallback_interior_max = r.fallback_interior_max.max(chord2(&x, &y));
+                    }
+                    (Some(x), Some(y)) => r.interior(
+                        chord2(&x, &y),
+                        (
+                            Boundary::Interior {
+                                face: f,
+                                boundary: bi,
+                            },
+                            *t,
+                        ),
+                    ),
+                    _ => r.undefined_normals += 1,
+                }
+            }
+        }
+        let face = mesh.faces()[f];
+        for (i, (point, tangents)) in self.corners.iter().enumerate() {
+            let v = &mesh.vertices()[face[i]].data;
+            let (at, normal) = tangents.point_and_normal(pts, np);
+            let at = at.unwrap_or(pts[*point]);
+            r.position_error = r.position_error.max((at - v.p).norm());
+            if fallback {
+                continue;
+            }
+            match normal {
+                Some(n) => r.normal_error = r.normal_error.max(angle(&n, &v.n.normalize())),
+                None => r.undefined_normals += 1,
+            }
+        }
+    }
+
+    /// Exterior edge `ei` between its first face (points `pts[0]`) and second (`pts[1]`).
+    fn edge(
+        &self,
+        mesh: &Mesh,
+        ei: usize,
+        pts: [&[Point3<f64>]; 2],
+        fallback: [bool; 2],
+        r: &mut G1Report,
+    ) {
+        let e = &mesh.edges()[ei];
+        let (Some((_, lg)), (_, lf)) = (e.second, e.first) else {
+            return;
+        };
+        let np = self.np;
+        let [pf, pg] = pts;
+        let touches_fallback = fallback[0] || fallback[1];
+        r.fallback_edges += usize::from(touches_fallback);
+        let (sf, sg) = (&self.exterior[lf], &self.exterior[lg]);
+        for (k, (t, tf)) in sf.iter().enumerate() {
+            // Face f's edge runs from its corner lf to lf + 1; g's runs backwards.
+            let tg = &sg[sg.len() - 1 - k].1;
+            match (tf.normal(pf, np), tg.normal(pg, np)) {
+                (Some(a), Some(b)) if touches_fallback => {
+                    r.fallback_exterior_max = r.fallback_exterior_max.max(chord2(&a, &b));
+                }
+                (Some(a), Some(b)) => {
+                    r.exterior(chord2(&a, &b), (Boundary::Exterior { edge: ei }, *t))
+                }
+                _ => r.undefined_normals += 1,
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn exterior(edge: usize, t: f64, chord2: f64) -> G1Report {
+        let mut r = G1Report::empty();
+        r.exterior(chord2, (Boundary::Exterior { edge }, t));
+        r
+    }
+
+    /// Edge parts merged out of order name what the sequential scan names: the largest defect,
+    /// and among equal ones the smallest edge, then the smallest parameter.
+    #[test]
+    fn unordered_edge_parts_resolve_ties_as_the_sequential_scan() {
+        let parts = [
+            exterior(9, 0.0, 0.5),
+            exterior(5, 0.75, 1.0),
+            exterior(7, 0.0, 1.0),
+            exterior(5, 0.25, 1.0),
+            exterior(2, 0.5, 0.25),
+        ];
+        let sequential = {
+            let mut sorted = parts;
+            sorted.sort_by(|a, b| {
+                let key = |r: &G1Report| match r.exterior_at {
+                    Some((Boundary::Exterior { edge }, t)) => (edge, t),
+                    _ => (usize::MAX, 0.0),
+                };
+                key(a)
+                    .partial_cmp(&key(b))
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            });
+            sorted.into_iter().fold(G1Report::empty(), G1Report::merge)
+        };
+        assert_eq!(
+            sequential.exterior_at,
+            Some((Boundary::Exterior { edge: 5 }, 0.25))
+        );
+        for order in [[0, 1, 2, 3, 4], [4, 3, 2, 1, 0], [2, 0, 4, 1, 3]] {
+            let mut s = StreamingG1::new(&Layout::bezier(4, &crate::scheme::CENTROID_SPLIT), 9);
+            for i in order {
+                s.add_edges(parts[i]);
+            }
+            assert_eq!(s.edges, sequential, "order {order:?}");
+        }
+    }
 }

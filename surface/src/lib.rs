@@ -20,6 +20,7 @@
 //!   patches per triangle, G1 by construction (derivation in the module docs);
 //! * [`fit`](mod@fit) — a whole mesh: one curve per edge (shared), one macro-patch per face;
 //! * [`patch_io`] — a fit's patches written as JSON Lines or a compact binary form;
+//! * [`stream`] — a fit measured and written a window of faces at a time, without holding its nets;
 //! * [`metrics`] — errors of a tessellation against the true surface;
 //! * [`fairing`] — thin-plate and membrane energies of a macro-patch in β and c, for optimizing
 //!   the interior parameters;
@@ -51,6 +52,7 @@ pub mod repair;
 pub mod scheme;
 pub mod shirman_sequin;
 pub mod side_vertex;
+pub mod stream;
 pub mod tessellate;
 pub mod tessellate_fit;
 pub mod testbed_format;

@@ -18,14 +18,13 @@
 //! the body is the in-memory layout, 24 bytes per control point (2.7–3.2× smaller than the JSON
 //! Lines form, and written at memory speed).
 
-use std::fmt::Write as _;
 use std::io::Write;
 
 use nalgebra::Point3;
 use rayon::prelude::*;
 
 use crate::fit::Fit;
-use crate::scheme::Form;
+use crate::scheme::{Form, Layout};
 
 /// How stored point `k` of a patch maps to the world: positions by `to_world`, directions (a
 /// sampled form's normals) by its linear part, renormalized.
@@ -82,18 +81,75 @@ pub enum PatchReadError {
     },
 }
 
-/// Writes every patch of `fit` as JSON Lines to `out`, each point mapped by `to_world` first
-/// (the identity, or a working frame's way back). Chunks of patches are formatted in parallel
-/// and written in order.
-pub fn write_jsonl<W: Write + ?Sized>(
-    fit: &Fit,
+/// The two forms patches are written in (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PatchFormat {
+    /// One JSON record per patch, a line each.
+    JsonLines,
+    /// [`BINARY_MAGIC`], a JSON header line, then little-endian `f64`s.
+    Binary,
+}
+
+impl PatchFormat {
+    /// The form a file name asks for: binary when it ends in `.bzp`, JSON Lines otherwise.
+    pub fn for_path(path: &std::path::Path) -> PatchFormat {
+        if path.extension().is_some_and(|e| e == "bzp") {
+            PatchFormat::Binary
+        } else {
+            PatchFormat::JsonLines
+        }
+    }
+
+    /// What comes before the first patch of a fit with `layout` and `faces` faces.
+    pub fn header(self, layout: &Layout, faces: usize) -> Vec<u8> {
+        match self {
+            PatchFormat::JsonLines => Vec::new(),
+            PatchFormat::Binary => {
+                let mut h = BINARY_MAGIC.to_vec();
+                let _ = writeln!(
+                    h,
+                    "{{\"degree\":{},\"patches_per_face\":{},\"faces\":{faces},\"points_per_patch\":{},\"form\":\"{}\",\"scalar\":\"f64le\"}}",
+                    layout.degree,
+                    layout.patches_per_face(),
+                    layout.points_per_patch(),
+                    form_name(layout.form),
+                );
+                h
+            }
+        }
+    }
+
+    /// Appends to `out` the patches whose nets are `points` (whole patches of `layout`),
+    /// the first of them patch number `first_patch` of the fit, each point mapped by
+    /// `to_world`. A fit's output is its header and then its patches formatted in order, in
+    /// pieces of any size: the bytes do not depend on where the pieces are cut.
+    pub fn format(
+        self,
+        layout: &Layout,
+        first_patch: usize,
+        points: &[Point3<f64>],
+        to_world: &(dyn Fn(&Point3<f64>) -> Point3<f64> + Sync),
+        out: &mut Vec<u8>,
+    ) {
+        match self {
+            PatchFormat::JsonLines => format_jsonl(layout, first_patch, points, to_world, out),
+            PatchFormat::Binary => format_binary(layout, points, to_world, out),
+        }
+    }
+}
+
+/// [`PatchFormat::format`] for JSON Lines.
+fn format_jsonl(
+    layout: &Layout,
+    first_patch: usize,
+    points: &[Point3<f64>],
     to_world: &(dyn Fn(&Point3<f64>) -> Point3<f64> + Sync),
-    out: &mut W,
-) -> std::io::Result<()> {
-    let per_face = fit.layout.patches_per_face().max(1);
-    let degree = fit.layout.degree;
-    let np = fit.layout.points_per_patch().max(1);
-    let form = fit.layout.form;
+    s: &mut Vec<u8>,
+) {
+    let per_face = layout.patches_per_face().max(1);
+    let degree = layout.degree;
+    let np = layout.points_per_patch().max(1);
+    let form = layout.form;
     let head = match form {
         Form::Bezier => format!("{{\"type\":\"BezierTriangle\",\"degree\":{degree},\"points\":["),
         Form::Sampled(f) => format!(
@@ -101,77 +157,91 @@ pub fn write_jsonl<W: Write + ?Sized>(
             f.name()
         ),
     };
-    let patches = fit.num_patches();
-    let chunks: Vec<usize> = (0..patches).step_by(CHUNK).collect();
-    // Formatting in parallel, a window of chunks at a time, so memory stays bounded.
-    for window in chunks.chunks(64) {
-        let texts: Vec<String> = window
-            .par_iter()
-            .map(|&first| {
-                let last = (first + CHUNK).min(patches);
-                let mut s = String::with_capacity((last - first) * (np * 60 + 80));
-                let mut num = ryu::Buffer::new();
-                for i in first..last {
-                    s.push_str(&head);
-                    for (k, p) in fit.points[i * np..(i + 1) * np].iter().enumerate() {
-                        let q = mapped(form, k, p, to_world);
-                        if k > 0 {
-                            s.push(',');
-                        }
-                        s.push('[');
-                        s.push_str(num.format(q.x));
-                        s.push(',');
-                        s.push_str(num.format(q.y));
-                        s.push(',');
-                        s.push_str(num.format(q.z));
-                        s.push(']');
-                    }
-                    let _ = writeln!(
-                        s,
-                        "],\"face\":{},\"subpatch\":{}}}",
-                        i / per_face,
-                        i % per_face
-                    );
-                }
-                s
-            })
-            .collect();
-        for t in texts {
-            out.write_all(t.as_bytes())?;
+    s.reserve(points.len() / np * (np * 60 + 80));
+    let mut num = ryu::Buffer::new();
+    let mut int = itoa_buffer();
+    for (j, net) in points.chunks_exact(np).enumerate() {
+        let i = first_patch + j;
+        s.extend_from_slice(head.as_bytes());
+        for (k, p) in net.iter().enumerate() {
+            let q = mapped(form, k, p, to_world);
+            if k > 0 {
+                s.push(b',');
+            }
+            s.push(b'[');
+            s.extend_from_slice(num.format(q.x).as_bytes());
+            s.push(b',');
+            s.extend_from_slice(num.format(q.y).as_bytes());
+            s.push(b',');
+            s.extend_from_slice(num.format(q.z).as_bytes());
+            s.push(b']');
         }
+        s.extend_from_slice(b"],\"face\":");
+        s.extend_from_slice(format_usize(&mut int, i / per_face));
+        s.extend_from_slice(b",\"subpatch\":");
+        s.extend_from_slice(format_usize(&mut int, i % per_face));
+        s.extend_from_slice(b"}\n");
     }
-    Ok(())
 }
 
-/// Writes every patch of `fit` in the binary form (module docs), points mapped by `to_world`.
-pub fn write_binary<W: Write + ?Sized>(
+/// Room for the decimal digits of any `usize`.
+fn itoa_buffer() -> [u8; 20] {
+    [0; 20]
+}
+
+/// `n` in decimal, in the tail of `buf`.
+fn format_usize(buf: &mut [u8; 20], mut n: usize) -> &[u8] {
+    let mut at = buf.len();
+    loop {
+        at -= 1;
+        buf[at] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    &buf[at..]
+}
+
+/// [`PatchFormat::format`] for the binary form.
+fn format_binary(
+    layout: &Layout,
+    points: &[Point3<f64>],
+    to_world: &(dyn Fn(&Point3<f64>) -> Point3<f64> + Sync),
+    b: &mut Vec<u8>,
+) {
+    let np = layout.points_per_patch().max(1);
+    let form = layout.form;
+    b.reserve(points.len() * 24);
+    for (k, p) in points.iter().enumerate() {
+        let q = mapped(form, k % np, p, to_world);
+        for c in [q.x, q.y, q.z] {
+            b.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+}
+
+/// Writes every patch of `fit` in `format` to `out`, each point mapped by `to_world` first
+/// (the identity, or a working frame's way back). Chunks of patches are formatted in parallel,
+/// a window at a time (so memory stays bounded), and written in order.
+pub fn write_patches<W: Write + ?Sized>(
     fit: &Fit,
+    format: PatchFormat,
     to_world: &(dyn Fn(&Point3<f64>) -> Point3<f64> + Sync),
     out: &mut W,
 ) -> std::io::Result<()> {
-    let np = fit.layout.points_per_patch();
-    out.write_all(BINARY_MAGIC)?;
-    writeln!(
-        out,
-        "{{\"degree\":{},\"patches_per_face\":{},\"faces\":{},\"points_per_patch\":{np},\"form\":\"{}\",\"scalar\":\"f64le\"}}",
-        fit.layout.degree,
-        fit.layout.patches_per_face(),
-        fit.num_patches() / fit.layout.patches_per_face().max(1),
-        form_name(fit.layout.form),
-    )?;
-    let form = fit.layout.form;
-    let per_chunk = CHUNK * np.max(1);
-    for window in fit.points.chunks(per_chunk * 64) {
+    let np = fit.layout.points_per_patch().max(1);
+    let faces = fit.num_patches() / fit.layout.patches_per_face().max(1);
+    out.write_all(&format.header(&fit.layout, faces))?;
+    let per_chunk = CHUNK * np;
+    for (w, window) in fit.points.chunks(per_chunk * 64).enumerate() {
         let bytes: Vec<Vec<u8>> = window
             .par_chunks(per_chunk)
-            .map(|pts| {
-                let mut b = Vec::with_capacity(pts.len() * 24);
-                for (k, p) in pts.iter().enumerate() {
-                    let q = mapped(form, k % np.max(1), p, to_world);
-                    for c in [q.x, q.y, q.z] {
-                        b.extend_from_slice(&c.to_le_bytes());
-                    }
-                }
+            .enumerate()
+            .map(|(c, pts)| {
+                let mut b = Vec::new();
+                let first = (w * 64 + c) * CHUNK;
+                format.format(&fit.layout, first, pts, to_world, &mut b);
                 b
             })
             .collect();
@@ -180,6 +250,24 @@ pub fn write_binary<W: Write + ?Sized>(
         }
     }
     Ok(())
+}
+
+/// Writes every patch of `fit` as JSON Lines to `out` ([`write_patches`]).
+pub fn write_jsonl<W: Write + ?Sized>(
+    fit: &Fit,
+    to_world: &(dyn Fn(&Point3<f64>) -> Point3<f64> + Sync),
+    out: &mut W,
+) -> std::io::Result<()> {
+    write_patches(fit, PatchFormat::JsonLines, to_world, out)
+}
+
+/// Writes every patch of `fit` in the binary form (module docs, [`write_patches`]).
+pub fn write_binary<W: Write + ?Sized>(
+    fit: &Fit,
+    to_world: &(dyn Fn(&Point3<f64>) -> Point3<f64> + Sync),
+    out: &mut W,
+) -> std::io::Result<()> {
+    write_patches(fit, PatchFormat::Binary, to_world, out)
 }
 
 /// The layout and control points of a binary patch file: `(degree, patches_per_face, points)`.

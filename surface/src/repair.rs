@@ -607,8 +607,8 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
                 if v.curvature_known {
                     v.data.shape = symmetric(&v.data.shape);
                 }
-                if let Some(name) = raw.vertex_names.as_ref().and_then(|n| n.get(s)) {
-                    v.name = Some(name.clone());
+                if let Some(name) = raw.vertex_name(s) {
+                    v.name = Some(name.into_owned());
                 }
                 if !raw.properties.is_empty() {
                     let mut extra = ExtraFields::new();
@@ -664,10 +664,10 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         }
     };
     let mut mesh = mesh;
-    if let Some(names) = &raw.face_names {
+    if raw.has_face_names() {
         let n: Vec<String> = face_source
             .iter()
-            .map(|&s| names.get(s).cloned().unwrap_or_default())
+            .map(|&s| raw.face_name(s).map(|n| n.into_owned()).unwrap_or_default())
             .collect();
         mesh = mesh.with_face_names(n);
     }

@@ -83,10 +83,8 @@ fn face_of(e: &MeshError) -> Option<usize> {
 /// A raw testbed mesh as a [`Mesh`], strictly (module docs).
 fn strict(raw: RawMesh) -> Result<Mesh, TestbedError> {
     let name = |f: usize| {
-        raw.face_names
-            .as_ref()
-            .and_then(|n| n.get(f).cloned())
-            .unwrap_or_else(|| format!("#{f}"))
+        raw.face_name(f)
+            .map_or_else(|| format!("#{f}"), |n| n.into_owned())
     };
     let mut faces = Vec::with_capacity(raw.polygons.len());
     for (f, poly) in raw.polygons.iter().enumerate() {
@@ -111,7 +109,7 @@ fn strict(raw: RawMesh) -> Result<Mesh, TestbedError> {
                 Some(s) => crate::Vertex::new(curves::VertexData::new(p, n, s[i])),
                 None => crate::Vertex::without_curvature(p, n),
             };
-            v.name = raw.vertex_names.as_ref().and_then(|ns| ns.get(i).cloned());
+            v.name = raw.vertex_name(i).map(|n| n.into_owned());
             for (k, vals) in &raw.properties {
                 if let Some(x) = vals.get(i) {
                     v.extra.insert(k.clone(), vec![*x]);
@@ -124,9 +122,13 @@ fn strict(raw: RawMesh) -> Result<Mesh, TestbedError> {
         face_name: face_of(&source).map(name),
         source,
     })?;
-    let mut mesh = match &raw.face_names {
-        Some(names) => mesh.with_face_names(names.clone()),
-        None => mesh,
+    let mut mesh = if raw.has_face_names() {
+        let names = (0..raw.polygons.len())
+            .map(|f| raw.face_name(f).map(|n| n.into_owned()).unwrap_or_default())
+            .collect();
+        mesh.with_face_names(names)
+    } else {
+        mesh
     };
     mesh.extra = raw.mesh_fields;
     Ok(mesh)
