@@ -21,8 +21,9 @@
 //! [`solve`] — what the boundary curves (2 unknowns, 4 residuals) and every other fixed-size
 //! caller use — runs each adapter on a **fixed-size fast path**:
 //!
-//! - `exact-penalty` is this crate's own code; its 2×2 model system is solved by a Cholesky
-//!   factorisation written out in nalgebra's order (`small`).
+//! - `exact-penalty` is this crate's own code; its 2×2 model system is solved in closed form
+//!   (`small`), and it takes Newton steps where the problem gives its second-order term
+//!   ([`LeastSquaresProblem::second_order_term`]).
 //! - `lm` runs `lm_fixed`, the `levenberg-marquardt` crate's MINPACK `lmder` (pivoted QR, `lmpar`,
 //!   `qrsolv`) transcribed over fixed-size arrays, for `M ≥ N`.
 //! - `lbfgs` runs `lbfgs_fixed`, one argmin `Executor` run of `LBFGS` with
@@ -79,7 +80,7 @@ use nalgebra::SVector;
 
 pub use check::{
     check_gradient, check_gradient_with, check_jacobian, check_jacobian_with, check_problem,
-    CheckOptions, DerivativeCheck, WorstEntry,
+    check_second_order, CheckOptions, DerivativeCheck, WorstEntry,
 };
 pub use error::SolveError;
 pub use exact_penalty::solve_exact_penalty;
