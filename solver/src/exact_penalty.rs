@@ -49,9 +49,11 @@
 //!    `yᵀs ≤ ε‖y‖‖s‖`. **Where the problem gives the exact term**
 //!    ([`LeastSquaresProblem::second_order_term`], e.g. the boundary-curve objective) it is used
 //!    instead of the secant approximation: the model Hessian is then the true Hessian of the
-//!    cost and the horizontal step a projected Newton step (quadratic convergence; on the
-//!    boundary curves 4 iterations instead of 6). When a search along the Newton step fails, one
-//!    Gauss–Newton iteration follows.
+//!    cost and the horizontal step a projected Newton step (quadratic convergence: on the
+//!    benchmark boundary curve 4 iterations instead of 6; over the 1164 edge problems of
+//!    `results/solvers` as many on average (3.0), the most (6) on 12 of them instead of 62, and
+//!    fewer evaluations). When a search along the Newton step fails, one Gauss–Newton
+//!    iteration follows.
 //!
 //! # What is simplified
 //!
