@@ -10,7 +10,8 @@
 //!   region): it must end the same way (the same kind of termination) at the same optimum, to
 //!   [`LM_AGREE`] on the fixed problems; on random boundary problems, which can have several
 //!   local minima, wherever both runs reach the same one ([`SAME_MINIMUM`]), to
-//!   [`LM_AGREE_RANDOM`].
+//!   [`LM_AGREE_RANDOM`] (or closer to the exact-penalty optimum than the crate), and next to a
+//!   bound to [`NEAR_BOUND`].
 
 mod common;
 
@@ -26,19 +27,22 @@ const LM_AGREE: f64 = 1e-8;
 /// Random boundary problems reach costs near 10 (targets up to ±3 against arbitrary tangents):
 /// there Gauss–Newton converges slowly and the relative function tolerance 1e-12 leaves `x`
 /// accurate to about 1e-6 — both paths, measured against the Newton optimum of the exact-penalty
-/// adapter over 20 000 such problems: median 2.3e-7 (crate 2.4e-7), 99th percentile 3.9e-6
-/// (3.6e-6), worst 6.2e-5 (4.9e-5). Twice that worst is what agreement can mean here.
+/// adapter over 20 000 such problems: median 1.1e-7 (crate 2.4e-7), 99th percentile 3.3e-6
+/// (3.6e-6), worst 6.2e-5 (4.9e-5). Twice that worst is what agreement can mean here; beyond it
+/// (1 problem in 39 000 of another sample, the crate 1.9e-4 from the optimum, the fast path
+/// 1.6e-5) the fast path must be the closer of the two to the Newton optimum.
 const LM_AGREE_RANDOM: f64 = 1e-4;
 /// An optimum on a bound: the change-of-variables runs stop within this of it and of each other
-/// (as `NEAR_BOUND_TOL` in `tests/adapters.rs`).
+/// (as `NEAR_BOUND_TOL` in `tests/adapters.rs`; on 415 random boundary problems with the optimum
+/// on the bound the two paths differed by 5.1e-7 at most).
 const NEAR_BOUND: f64 = 1e-6;
 /// Random linear problems: the fast path's cost is at most the crate's plus this relative
 /// margin (the function tolerance 1e-12 bounds how far above its minimum either run stops, with
 /// room for the crate's spurious early stops below it).
 const LINEAR_COST_REL: f64 = 1e-10;
-/// Two runs whose points are closer than this (or both within it of the same bound) are taken
-/// to have found the same local minimum; farther apart they found different ones (2 500 of the
-/// 20 000 problems, the two paths finding the lower one about equally often).
+/// Two runs whose points are closer than this are taken to have found the same local minimum;
+/// farther apart they found different ones (about 2 000 of 20 000 random problems: the fast path
+/// found the lower of the two in 1 372 of them, the crate in 603).
 const SAME_MINIMUM: f64 = 1e-3;
 
 /// The whole report but the timing, printed with `{:?}` (so NaN equals NaN and −0 differs
@@ -284,15 +288,22 @@ proptest! {
             // Levenberg–Marquardt: the same optimum where both converge to the same minimum.
             let a = solver::solve(SolverKind::Lm, &p, x0, &options).unwrap();
             let b = solver::solve_lm_crate(&p, x0, &options).unwrap();
-            let bound = 0.05 + SAME_MINIMUM;
-            let same = (a.x - b.x).amax() <= SAME_MINIMUM
-                || (a.x.min() <= bound && b.x.min() <= bound);
+            let d = (a.x - b.x).amax();
+            let same = d <= SAME_MINIMUM;
             if options.function_tolerance <= 1e-9 && a.report.converged() && b.report.converged() && same {
-                let d = (a.x - b.x).amax();
-                let near_bound = a.x.min() <= bound;
-                // Next to the bound α = 0.05 both stop at x − l = y² with y small but not zero.
-                let tol = if near_bound { SAME_MINIMUM } else { LM_AGREE_RANDOM };
-                prop_assert!(d <= tol, "{} vs {} from {}", a.x, b.x, x0);
+                let near_bound = a.x.min().min(b.x.min()) <= 0.05 + SAME_MINIMUM;
+                if near_bound {
+                    // Next to the bound α = 0.05 both stop at x − l = y² with y small but not zero.
+                    prop_assert!(d <= NEAR_BOUND, "{} vs {} from {}", a.x, b.x, x0);
+                } else if d > LM_AGREE_RANDOM {
+                    // Allowed only where the crate is the one that stopped short: the fast path
+                    // is then the closer of the two to the Newton optimum of exact penalty.
+                    let e = solver::solve(SolverKind::ExactPenalty, &p, x0, &options).unwrap();
+                    prop_assert!(
+                        (a.x - e.x).amax() < (b.x - e.x).amax(),
+                        "{} vs {} from {} (exact penalty {})", a.x, b.x, x0, e.x
+                    );
+                }
             }
         }
     }
