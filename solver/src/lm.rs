@@ -132,7 +132,8 @@ struct Target<'a, P, const N: usize, const M: usize> {
     hit_limit: Cell<bool>,
     /// Cost of the latest residual evaluation (that of the current `y` when a Jacobian is asked).
     last_cost: Cell<f64>,
-    best: Cell<(f64, SVector<f64, N>)>,
+    /// `(cost, y, r(y))` at the lowest cost evaluated.
+    best: Cell<(f64, SVector<f64, N>, SVector<f64, M>)>,
     /// `(cost, y)` at the start of the previous and the current outer iteration.
     iterates: Cell<[(f64, SVector<f64, N>); 2]>,
     history: Option<RefCell<Vec<f64>>>,
@@ -154,7 +155,7 @@ where
         }
         self.last_cost.set(cost);
         if cost < self.best.get().0 {
-            self.best.set((cost, self.y));
+            self.best.set((cost, self.y, r));
         }
         Some(r)
     }
@@ -392,7 +393,7 @@ where
         max_jacobians: options.max_iterations,
         hit_limit: Cell::new(false),
         last_cost: Cell::new(f64::INFINITY),
-        best: Cell::new((f64::INFINITY, y0)),
+        best: Cell::new((f64::INFINITY, y0, SVector::zeros())),
         iterates: Cell::new([(f64::INFINITY, y0); 2]),
         history: options
             .record_history
@@ -400,15 +401,20 @@ where
     };
     let (target, lm_termination) = minimize(&lm, target);
 
-    let (best_cost, best_y) = target.best.get();
+    let (best_cost, best_y, best_r) = target.best.get();
     let y = if best_cost.is_finite() {
         best_y
     } else {
         y_start
     };
     let x = map.to_x(&y);
-    // One more evaluation at the returned point, for the report.
-    let r = problem.residuals(&x);
+    // The Jacobian at the returned point, for the report; its residuals were kept (the same
+    // evaluation at the same `x`).
+    let r = if best_cost.is_finite() {
+        best_r
+    } else {
+        problem.residuals(&x)
+    };
     let j = problem.jacobian(&x);
     let final_cost = 0.5 * r.norm_squared();
     let g = j.transpose() * r;
@@ -504,7 +510,8 @@ where
         gnorm_x,
         termination,
         iterations,
-        target.residual_evaluations.get() + 2,
+        // The start's cost, and the returned point's residuals unless they were kept.
+        target.residual_evaluations.get() + if best_cost.is_finite() { 1 } else { 2 },
         iterations + 1,
         history,
     ))
