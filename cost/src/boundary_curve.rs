@@ -166,6 +166,29 @@ impl LeastSquaresProblem<2, 4> for BoundaryCurveObjective {
     fn lower_bounds(&self) -> SVector<f64, 2> {
         SVector::<f64, 2>::from_element(self.alpha_min)
     }
+
+    /// `S = r₂ ∇²r₂ + r₃ ∇²r₃` (the tangent residuals are linear), from
+    /// `∂²κ0/∂α0² = 12 A0/α0⁴`, `∂²κ0/∂α0∂α1 = 4c/α0³`, `∂²κ0/∂α1² = 0` and
+    /// `∂²κ1/∂α1² = 12 A1/α1⁴`, `∂²κ1/∂α0∂α1 = 4c/α1³`, `∂²κ1/∂α0² = 0`, each times `√w_k`.
+    fn second_order_term(
+        &self,
+        x: &SVector<f64, 2>,
+        r: &SVector<f64, 4>,
+    ) -> Option<SMatrix<f64, 2, 2>> {
+        let (a0, a1) = (x[0], x[1]);
+        let (i0, i1) = (1.0 / a0, 1.0 / a1);
+        let (c0, c1) = (i0 * i0 * i0, i1 * i1 * i1);
+        let a0_term = 3.0 * self.d0 - a1 * self.c;
+        let a1_term = -3.0 * self.d1 - a0 * self.c;
+        let (w2, w3) = (self.sqrt_wk * r[2], self.sqrt_wk * r[3]);
+        let cross = 4.0 * self.c * (w2 * c0 + w3 * c1);
+        Some(SMatrix::<f64, 2, 2>::new(
+            12.0 * w2 * a0_term * c0 * i0,
+            cross,
+            cross,
+            12.0 * w3 * a1_term * c1 * i1,
+        ))
+    }
 }
 
 /// The techreport's eqs 11–14 evaluated exactly as printed, for unit tangents `t0, t1`, targets

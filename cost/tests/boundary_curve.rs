@@ -7,7 +7,9 @@ use cost::boundary_curve::printed_eqs_11_to_14;
 use cost::{BoundaryCurveObjective, CostError, Weights};
 use nalgebra::{SVector, Vector2};
 use proptest::prelude::*;
-use solver::{check_gradient_with, check_jacobian_with, CheckOptions, LeastSquaresProblem};
+use solver::{
+    check_gradient_with, check_jacobian_with, check_second_order, CheckOptions, LeastSquaresProblem,
+};
 
 /// Central differences with steps of ε^{1/3}|x| carry relative errors near 1e-10 on these smooth
 /// rational functions; 1e-6 leaves room for the large curvature terms near small α while any
@@ -99,8 +101,8 @@ fn bad_data_is_refused() {
 }
 
 proptest! {
-    /// Residuals' Jacobian and the objective's gradient against finite differences, anywhere in
-    /// the feasible region, including points on and just above the bound.
+    /// Residuals' Jacobian, the objective's gradient and the cost's Hessian (the second-order
+    /// term) against finite differences, anywhere in the feasible region, including points on and just above the bound.
     #[test]
     fn derivatives_match_finite_differences(
         th0 in -1.2f64..1.2, th1 in -1.2f64..1.2, k0 in -5.0f64..5.0, k1 in -5.0f64..5.0,
@@ -119,7 +121,9 @@ proptest! {
         let opts = CheckOptions { floor: 1e-4 };
         let jc = check_jacobian_with(|x| f.residuals(x), |x| f.jacobian(x), &a, &lower, &opts);
         let gc = check_gradient_with(|x| f.objective(x), |x| f.gradient(x), &a, &lower, &opts);
-        for c in [&jc, &gc] {
+        // The Hessian JᵀJ + S (with the second-order term) against differences of Jᵀr.
+        let hc = check_second_order(&f, &a, &opts).expect("the objective gives S");
+        for c in [&jc, &gc, &hc] {
             let w = c.worst.expect("entries checked");
             let tol = if w.one_sided { FD_TOL_ONE_SIDED } else { FD_TOL };
             prop_assert!(w.error <= tol, "{}", c);

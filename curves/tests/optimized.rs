@@ -110,8 +110,10 @@ fn circular_arc_is_nearly_matched() {
 
 #[test]
 fn fast_paths_return_the_backends_results_on_every_ring_edge() {
-    // `solve` (the fixed-size fast paths the construction uses) against the backends themselves:
-    // the same optimum and report, bit for bit, on every edge (timing aside).
+    // `solve` (the fixed-size fast paths the construction uses) against the backends themselves
+    // on every edge: L-BFGS (a transcription of argmin's) the same optimum and report, bit for
+    // bit (timing aside); Levenberg–Marquardt (a hand-written iteration for two unknowns, not
+    // MINPACK's) converged to the same optimum, to `AGREE`.
     let o = MethodOptions::default();
     let start = nalgebra::Vector2::new(1.0, 1.0);
     let strip = |s: solver::Solution<2>| {
@@ -126,7 +128,13 @@ fn fast_paths_return_the_backends_results_on_every_ring_edge() {
         let opts = o.solve_options;
         let lm = solver::solve(SolverKind::Lm, &objective, start, &opts).unwrap();
         let lm_ref = solver::solve_lm_crate(&objective, start, &opts).unwrap();
-        assert_eq!(strip(lm), strip(lm_ref));
+        assert!(lm.report.converged() && lm_ref.report.converged());
+        assert!(
+            (lm.x - lm_ref.x).amax() <= AGREE,
+            "{u:?}: {} vs {}",
+            lm.x,
+            lm_ref.x
+        );
         let lbfgs = solver::solve(SolverKind::Lbfgs, &objective, start, &opts).unwrap();
         let lbfgs_ref = solver::solve_lbfgs_argmin(&objective, start, &opts).unwrap();
         assert_eq!(strip(lbfgs), strip(lbfgs_ref));

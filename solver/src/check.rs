@@ -266,3 +266,32 @@ where
         options,
     )
 }
+
+/// Checks a [`LeastSquaresProblem`]'s second-order term at `x` (if it provides one): the
+/// Hessian of the cost `JᵀJ + S` against finite differences of its gradient `Jᵀr`, one-sided
+/// next to the lower bounds. `None` when [`LeastSquaresProblem::second_order_term`] is `None`.
+pub fn check_second_order<P, const N: usize, const M: usize>(
+    problem: &P,
+    x: &SVector<f64, N>,
+    options: &CheckOptions,
+) -> Option<DerivativeCheck>
+where
+    P: LeastSquaresProblem<N, M>,
+{
+    problem.second_order_term(x, &problem.residuals(x))?;
+    let hessian = |x: &SVector<f64, N>| {
+        let j = problem.jacobian(x);
+        let r = problem.residuals(x);
+        let s = problem
+            .second_order_term(x, &r)
+            .unwrap_or_else(SMatrix::zeros);
+        j.transpose() * j + s
+    };
+    Some(check_jacobian_with(
+        |x| problem.jacobian(x).transpose() * problem.residuals(x),
+        hessian,
+        x,
+        &problem.lower_bounds(),
+        options,
+    ))
+}

@@ -21,19 +21,23 @@
 //! [`solve`] — what the boundary curves (2 unknowns, 4 residuals) and every other fixed-size
 //! caller use — runs each adapter on a **fixed-size fast path**:
 //!
-//! - `exact-penalty` is this crate's own code; its 2×2 model system is solved by a Cholesky
-//!   factorisation written out in nalgebra's order (`small`).
-//! - `lm` runs `lm_fixed`, the `levenberg-marquardt` crate's MINPACK `lmder` (pivoted QR, `lmpar`,
-//!   `qrsolv`) transcribed over fixed-size arrays, for `M ≥ N`.
+//! - `exact-penalty` is this crate's own code; its 2×2 model system is solved in closed form
+//!   (`small`), and it takes Newton steps where the problem gives its second-order term
+//!   ([`LeastSquaresProblem::second_order_term`]).
+//! - `lm` runs, for two unknowns, `lm_nielsen`: a hand-written Levenberg–Marquardt iteration
+//!   (Nielsen's damping, the 2×2 damped normal equations in closed form, MINPACK's tests); for
+//!   other sizes with `M ≥ N`, `lm_fixed`, the `levenberg-marquardt` crate's MINPACK `lmder`
+//!   (pivoted QR, `lmpar`, `qrsolv`) transcribed over fixed-size arrays.
 //! - `lbfgs` runs `lbfgs_fixed`, one argmin `Executor` run of `LBFGS` with
 //!   `MoreThuenteLineSearch` transcribed (no executor, observers, state clones or `HashMap`
 //!   counters; cost and gradient from one [`ObjectiveProblem::value_and_gradient`] call; the
 //!   gradient argmin recomputes at each accepted point reused, and counted as argmin counts it).
 //!
-//! The transcriptions perform the backends' floating-point operations in the backends' order, so
-//! they return **the same points, termination reasons, iteration and evaluation counts and cost
-//! histories, bit for bit**, as the backends themselves; `tests/fast_paths.rs` checks this on
-//! fixed and random problems. The backends stay available as the reference paths:
+//! The transcriptions (`lbfgs_fixed`, `lm_fixed`) perform the backends' floating-point operations
+//! in the backends' order, so they return **the same points, termination reasons, iteration and
+//! evaluation counts and cost histories, bit for bit**, as the backends themselves;
+//! `lm_nielsen` returns the same optima to the agreement tolerances (and the same kind of
+//! termination); `tests/fast_paths.rs` checks both on fixed and random problems. The backends stay available as the reference paths:
 //! [`solve_lm_crate`] and [`solve_lbfgs_argmin`] (fixed size), and [`solve_any`], which runs
 //! [`solve_lm_any`] (dynamic matrices, any number of residuals) and argmin for problems of any
 //! size. `cargo run --release -p solver --example profile_solvers -- lm` is a loop for `perf`.
@@ -70,6 +74,7 @@ pub mod lbfgs;
 mod lbfgs_fixed;
 pub mod lm;
 mod lm_fixed;
+mod lm_nielsen;
 mod options;
 pub mod problem;
 pub mod report;
@@ -79,7 +84,7 @@ use nalgebra::SVector;
 
 pub use check::{
     check_gradient, check_gradient_with, check_jacobian, check_jacobian_with, check_problem,
-    CheckOptions, DerivativeCheck, WorstEntry,
+    check_second_order, CheckOptions, DerivativeCheck, WorstEntry,
 };
 pub use error::SolveError;
 pub use exact_penalty::solve_exact_penalty;

@@ -3,11 +3,15 @@
 //!
 //! # Paths
 //!
-//! [`solve_lm`] (what [`crate::solve`] runs) uses a fixed-size transcription of the crate's
-//! `minimize` for `M ≥ N` (`lm_fixed`: the same floating-point operations in the same order, so
-//! the same iterates, counts and termination); [`solve_lm_crate`] runs the crate itself on
-//! fixed-size matrices and [`solve_lm_any`] on dynamic ones (any number of residuals). All three
-//! share this wrapper, so their reports are the same.
+//! [`solve_lm`] (what [`crate::solve`] runs) uses, for two unknowns (every boundary curve), a
+//! hand-written Levenberg–Marquardt iteration with Nielsen's damping on the closed-form 2×2
+//! normal equations (`lm_nielsen`; Madsen, Nielsen & Tingleff 2004, Algorithm 3.16: different
+//! iterates from MINPACK's, the same optima to the adapters' agreement tolerances), and for other
+//! sizes with `M ≥ N` a fixed-size transcription of the crate's `minimize` (`lm_fixed`: the same
+//! floating-point operations in the same order, so the same iterates, counts and termination);
+//! [`solve_lm_crate`] runs the crate itself on fixed-size matrices (the reference) and
+//! [`solve_lm_any`] on dynamic ones (any number of residuals). All share this wrapper (bounds,
+//! counts, the mapping of termination reasons), so their reports mean the same.
 //!
 //! # Bounds
 //!
@@ -128,7 +132,8 @@ struct Target<'a, P, const N: usize, const M: usize> {
     hit_limit: Cell<bool>,
     /// Cost of the latest residual evaluation (that of the current `y` when a Jacobian is asked).
     last_cost: Cell<f64>,
-    best: Cell<(f64, SVector<f64, N>)>,
+    /// `(cost, y, r(y))` at the lowest cost evaluated.
+    best: Cell<(f64, SVector<f64, N>, SVector<f64, M>)>,
     /// `(cost, y)` at the start of the previous and the current outer iteration.
     iterates: Cell<[(f64, SVector<f64, N>); 2]>,
     history: Option<RefCell<Vec<f64>>>,
@@ -138,6 +143,7 @@ impl<P, const N: usize, const M: usize> Target<'_, P, N, M>
 where
     P: LeastSquaresProblem<N, M>,
 {
+    #[inline]
     fn eval_residuals(&self) -> Option<SVector<f64, M>> {
         self.residual_evaluations
             .set(self.residual_evaluations.get() + 1);
@@ -149,11 +155,12 @@ where
         }
         self.last_cost.set(cost);
         if cost < self.best.get().0 {
-            self.best.set((cost, self.y));
+            self.best.set((cost, self.y, r));
         }
         Some(r)
     }
 
+    #[inline]
     fn eval_jacobian(&self) -> Option<SMatrix<f64, M, N>> {
         let count = self.jacobian_evaluations.get();
         if count >= self.max_jacobians {
@@ -259,11 +266,13 @@ where
 /// Solves `min ½‖r(x)‖² s.t. x ≥ l` with the `levenberg-marquardt` crate's algorithm on
 /// fixed-size (stack) linear algebra: the fast path, for every size up to 127 residuals.
 ///
-/// With at least as many residuals as unknowns (every least-squares problem here, the
-/// boundary curve's 4 × 2 among them) the crate's `minimize` runs as a fixed-size transcription
-/// (`lm_fixed`, the same floating-point operations in the same order, so the same iterates and
-/// report, without the generic machinery); otherwise the crate itself runs on fixed-size
-/// matrices. [`solve_lm_crate`] always runs the crate.
+/// For two unknowns and at least two residuals (the boundary curve's 4 × 2 among them) a
+/// hand-written iteration runs (`lm_nielsen`: Nielsen's damping, closed-form 2×2 steps, MINPACK's
+/// tests; the same optima as the crate to the agreement tolerances, not the same iterates). With
+/// other sizes and at least as many residuals as unknowns the crate's `minimize` runs as a
+/// fixed-size transcription (`lm_fixed`, the same floating-point operations in the same order,
+/// so the same iterates and report, without the generic machinery); otherwise the crate itself
+/// runs on fixed-size matrices. [`solve_lm_crate`] always runs the crate.
 ///
 /// # Errors
 /// [`SolveError`] for invalid options, a non-finite start, invalid bounds or a start below a bound.
@@ -287,7 +296,11 @@ where
             patience: lm.patience,
         };
         let y0 = target.y;
-        let termination = crate::lm_fixed::minimize(&config, &mut target, y0);
+        let termination = if N == 2 {
+            crate::lm_nielsen::minimize(&config, &mut target, y0)
+        } else {
+            crate::lm_fixed::minimize(&config, &mut target, y0)
+        };
         (target, termination)
     })
 }
@@ -380,7 +393,7 @@ where
         max_jacobians: options.max_iterations,
         hit_limit: Cell::new(false),
         last_cost: Cell::new(f64::INFINITY),
-        best: Cell::new((f64::INFINITY, y0)),
+        best: Cell::new((f64::INFINITY, y0, SVector::zeros())),
         iterates: Cell::new([(f64::INFINITY, y0); 2]),
         history: options
             .record_history
@@ -388,15 +401,20 @@ where
     };
     let (target, lm_termination) = minimize(&lm, target);
 
-    let (best_cost, best_y) = target.best.get();
+    let (best_cost, best_y, best_r) = target.best.get();
     let y = if best_cost.is_finite() {
         best_y
     } else {
         y_start
     };
     let x = map.to_x(&y);
-    // One more evaluation at the returned point, for the report.
-    let r = problem.residuals(&x);
+    // The Jacobian at the returned point, for the report; its residuals were kept (the same
+    // evaluation at the same `x`).
+    let r = if best_cost.is_finite() {
+        best_r
+    } else {
+        problem.residuals(&x)
+    };
     let j = problem.jacobian(&x);
     let final_cost = 0.5 * r.norm_squared();
     let g = j.transpose() * r;
@@ -492,7 +510,8 @@ where
         gnorm_x,
         termination,
         iterations,
-        target.residual_evaluations.get() + 2,
+        // The start's cost, and the returned point's residuals unless they were kept.
+        target.residual_evaluations.get() + if best_cost.is_finite() { 1 } else { 2 },
         iterations + 1,
         history,
     ))

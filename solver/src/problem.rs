@@ -53,6 +53,22 @@ pub trait LeastSquaresProblem<const N: usize, const M: usize> {
     fn gradient(&self, x: &SVector<f64, N>) -> SVector<f64, N> {
         2.0 * self.jacobian(x).transpose() * self.residuals(x)
     }
+
+    /// The second-order term `S(x) = Σᵢ rᵢ(x) ∇²rᵢ(x)` of the Hessian of the cost,
+    /// `∇²(½‖r‖²) = JᵀJ + S`, given the residuals `r = r(x)` already evaluated at `x`; `None` (the
+    /// default) when the problem does not provide second derivatives.
+    ///
+    /// The exact-penalty adapter uses it, where given, in place of its structured secant
+    /// approximation of `S` (a Newton model instead of a quasi-Newton one: fewer iterations on
+    /// nonzero-residual problems). Check it with
+    /// [`check_second_order`](crate::check_second_order).
+    fn second_order_term(
+        &self,
+        _x: &SVector<f64, N>,
+        _r: &SVector<f64, M>,
+    ) -> Option<SMatrix<f64, N, N>> {
+        None
+    }
 }
 
 /// A smooth objective `f: ℝᴺ → ℝ` with its gradient and simple lower bounds.

@@ -371,7 +371,7 @@ fn the_dynamic_lm_path_agrees_with_the_fixed_one() {
     let p = Rosenbrock {
         lower_x2: f64::NEG_INFINITY,
     };
-    let fixed = solver::solve_lm(&p, Vector2::new(-1.2, 1.0), &opts()).unwrap();
+    let fixed = solver::solve_lm_crate(&p, Vector2::new(-1.2, 1.0), &opts()).unwrap();
     let any = solver::solve_lm_any(&p, Vector2::new(-1.2, 1.0), &opts()).unwrap();
     assert!((fixed.x - any.x).amax() < SAME, "{} vs {}", fixed.x, any.x);
     assert_eq!(fixed.report.iterations, any.report.iterations);

@@ -4,7 +4,10 @@ mod common;
 
 use common::{EndCurvature, Rosenbrock};
 use nalgebra::{SMatrix, SVector, Vector2};
-use solver::{check_gradient, check_gradient_with, check_jacobian, check_problem, CheckOptions};
+use solver::{
+    check_gradient, check_gradient_with, check_jacobian, check_problem, check_second_order,
+    CheckOptions,
+};
 
 /// Central differences with h = ε^{1/3} are accurate to ~1e-10 relative on these smooth,
 /// well-scaled functions; 1e-7 leaves margin.
@@ -62,6 +65,26 @@ fn jacobians_of_test_problems_pass() {
     let e = EndCurvature::representative();
     let c = check_problem(&e, &Vector2::new(0.8, 1.3), &CheckOptions::default());
     assert!(c.passes(CENTRAL_TOL), "{c}");
+}
+
+#[test]
+fn second_order_terms_pass_and_problems_without_one_are_skipped() {
+    let e = EndCurvature::representative();
+    for a in [
+        Vector2::new(0.8, 1.3),
+        Vector2::new(1.0, 1.0),
+        Vector2::new(0.2, 2.5),
+    ] {
+        let c = check_second_order(&e, &a, &CheckOptions::default()).unwrap();
+        assert!(c.passes(CENTRAL_TOL), "{c}");
+    }
+    // At the bound α₀ = 0.05: forward differences.
+    let c = check_second_order(&e, &Vector2::new(0.05, 1.0), &CheckOptions::default()).unwrap();
+    assert!(c.worst.unwrap().one_sided && c.passes(FORWARD_TOL), "{c}");
+    let r = Rosenbrock {
+        lower_x2: f64::NEG_INFINITY,
+    };
+    assert!(check_second_order(&r, &Vector2::new(-1.2, 1.0), &CheckOptions::default()).is_none());
 }
 
 #[test]

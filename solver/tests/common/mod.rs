@@ -117,6 +117,26 @@ impl LeastSquaresProblem<2, 4> for EndCurvature {
     fn lower_bounds(&self) -> SVector<f64, 2> {
         SVector::from_element(self.alpha_min)
     }
+
+    /// `S = r₂ ∇²κ₀ + r₃ ∇²κ₁`: `∂²κ₀/∂α₀² = 12A₀/α₀⁴`, `∂²κ₀/∂α₀∂α₁ = 4c/α₀³`,
+    /// `∂²κ₁/∂α₁² = 12A₁/α₁⁴`, `∂²κ₁/∂α₀∂α₁ = 4c/α₁³` (`A₀ = 3d₀ − α₁c`, `A₁ = −3d₁ − α₀c`).
+    fn second_order_term(
+        &self,
+        a: &SVector<f64, 2>,
+        r: &SVector<f64, 4>,
+    ) -> Option<SMatrix<f64, 2, 2>> {
+        let (i0, i1) = (1.0 / a[0], 1.0 / a[1]);
+        let (q0, q1) = (i0 * i0 * i0, i1 * i1 * i1);
+        let n0 = 3.0 * self.d0 - a[1] * self.c;
+        let n1 = -3.0 * self.d1 - a[0] * self.c;
+        let cross = 4.0 * self.c * (r[2] * q0 + r[3] * q1);
+        Some(SMatrix::<f64, 2, 2>::new(
+            12.0 * r[2] * n0 * q0 * i0,
+            cross,
+            cross,
+            12.0 * r[3] * n1 * q1 * i1,
+        ))
+    }
 }
 
 /// A linear least-squares problem `r = A x − b` with lower bounds.
