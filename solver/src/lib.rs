@@ -92,7 +92,7 @@ pub use kind::{SolverKind, UnknownSolver};
 pub use lbfgs::{minimize_lbfgs, minimize_lbfgs_argmin, solve_lbfgs, solve_lbfgs_argmin};
 pub use lm::{solve_lm, solve_lm_any, solve_lm_crate, Dims, LmDims};
 pub use options::SolveOptions;
-pub use problem::{HalfSumOfSquares, LeastSquaresProblem, ObjectiveProblem};
+pub use problem::{HalfSumOfSquares, LeastSquaresProblem, ObjectiveProblem, SecantModel};
 pub use report::{ConvergenceTest, FailureReason, SolveReport, Termination};
 
 /// A solver's result: the best point found and the report.

@@ -125,3 +125,39 @@ where
         self.0.lower_bounds()
     }
 }
+
+/// A least-squares problem with its second derivatives hidden: the exact-penalty adapter then
+/// approximates the second-order term `S` by the Dennis–Gay–Welsch structured secant update, as
+/// Mahdavi-Amiri and Bartels (1989) do, instead of taking Newton steps with the problem's exact
+/// [`LeastSquaresProblem::second_order_term`]. For reproducing the seeds' quasi-Newton
+/// convergence (iteration counts, cost histories); the optima agree to the adapters' tolerances.
+#[derive(Debug, Clone, Copy)]
+pub struct SecantModel<'a, P>(
+    /// The wrapped least-squares problem.
+    pub &'a P,
+);
+
+impl<P, const N: usize, const M: usize> LeastSquaresProblem<N, M> for SecantModel<'_, P>
+where
+    P: LeastSquaresProblem<N, M>,
+{
+    fn residuals(&self, x: &SVector<f64, N>) -> SVector<f64, M> {
+        self.0.residuals(x)
+    }
+    fn jacobian(&self, x: &SVector<f64, N>) -> SMatrix<f64, M, N> {
+        self.0.jacobian(x)
+    }
+    fn lower_bounds(&self) -> SVector<f64, N> {
+        self.0.lower_bounds()
+    }
+    fn objective(&self, x: &SVector<f64, N>) -> f64 {
+        self.0.objective(x)
+    }
+    fn cost(&self, x: &SVector<f64, N>) -> f64 {
+        self.0.cost(x)
+    }
+    fn gradient(&self, x: &SVector<f64, N>) -> SVector<f64, N> {
+        self.0.gradient(x)
+    }
+    // `second_order_term` keeps the default: `None`.
+}

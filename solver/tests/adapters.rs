@@ -5,8 +5,8 @@ mod common;
 use common::{hs2_optimum, EndCurvature, Misra1a, Rosenbrock, MISRA1A_B, MISRA1A_RSS};
 use nalgebra::Vector2;
 use solver::{
-    solve, ConvergenceTest, FailureReason, LeastSquaresProblem, SolveError, SolveOptions,
-    SolverKind, Termination,
+    solve, ConvergenceTest, FailureReason, LeastSquaresProblem, SecantModel, SolveError,
+    SolveOptions, SolverKind, Termination,
 };
 
 /// Agreement required with an interior optimum: the adapters' default tolerances (gradient 1e-10,
@@ -152,6 +152,32 @@ fn representative_problem_adapters_agree() {
             reference.x
         );
     }
+}
+
+/// The exact-penalty adapter takes Newton steps with the problem's second derivatives; behind
+/// `SecantModel` it builds the second-order term by the structured secant update instead (the
+/// Mahdavi-Amiri–Bartels model). Both reach the same optimum; Newton needs fewer iterations on
+/// this nonzero-residual problem (4 against 6 when measured).
+#[test]
+fn the_secant_model_reaches_the_newton_optimum_in_more_iterations() {
+    let p = EndCurvature::representative();
+    let start = Vector2::new(1.0, 1.0);
+    let newton = solve(SolverKind::ExactPenalty, &p, start, &opts()).unwrap();
+    let secant = solve(SolverKind::ExactPenalty, &SecantModel(&p), start, &opts()).unwrap();
+    assert!(newton.report.converged(), "{}", newton.report.table());
+    assert!(secant.report.converged(), "{}", secant.report.table());
+    assert!(
+        (newton.x - secant.x).amax() < X_TOL,
+        "{} vs {}",
+        newton.x,
+        secant.x
+    );
+    assert!(
+        newton.report.iterations < secant.report.iterations,
+        "Newton {} iterations, secant {}",
+        newton.report.iterations,
+        secant.report.iterations
+    );
 }
 
 #[test]
