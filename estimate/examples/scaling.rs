@@ -17,7 +17,9 @@ use curves::{method_by_name, MethodOptions};
 use estimate::{estimator_by_name, prepare, EstimateChoice, DEFAULT_ESTIMATOR};
 use fixtures::analytic::{torus, Irregular};
 use surface::patch_io::{write_binary, write_jsonl};
-use surface::{fit_scheme, measure_g1, scheme_by_name, tessellate_fit, SchemeOptions};
+use surface::{
+    fit_scheme, fit_scheme_into, measure_g1, scheme_by_name, tessellate_fit, Fit, SchemeOptions,
+};
 
 /// Runs of a stage at `faces` faces: about 2·10⁶ face-runs in all, at least 3, at most 200.
 fn runs(faces: usize) -> usize {
@@ -68,6 +70,7 @@ fn main() {
         ("repair + estimate (hybrid)", "faces"),
         ("fit, chord curves", "faces"),
         ("fit, optimized curves", "faces"),
+        ("fit, optimized curves, into a reused Fit", "faces"),
         ("G1 measurement (9 samples an edge)", "faces"),
         ("tessellate s = 1", "output triangles"),
         ("tessellate s = 4", "output triangles"),
@@ -106,27 +109,31 @@ fn main() {
             fit_scheme(&mesh, scheme.as_ref(), optimized.as_ref()).expect("fits")
         });
         record(2, t, faces as f64);
-        let fit = fit_scheme(&mesh, scheme.as_ref(), optimized.as_ref()).expect("fits");
-        let t = best(n, || measure_g1(&mesh, &fit, 9));
+        let mut fit = Fit::default();
+        let t = best(n, || {
+            fit_scheme_into(&mesh, scheme.as_ref(), optimized.as_ref(), &mut fit).expect("fits")
+        });
         record(3, t, faces as f64);
+        let t = best(n, || measure_g1(&mesh, &fit, 9));
+        record(4, t, faces as f64);
         let t = best(n, || tessellate_fit(&mesh, &fit, 1).expect("tessellates"));
-        record(4, t, (3 * faces) as f64);
+        record(5, t, (3 * faces) as f64);
         if faces <= 200_000 {
             let t = best(n, || tessellate_fit(&mesh, &fit, 4).expect("tessellates"));
-            record(5, t, (3 * 16 * faces) as f64);
+            record(6, t, (3 * 16 * faces) as f64);
         }
         let mut bytes = Vec::new();
         write_jsonl(&fit, &identity, &mut bytes).expect("writes");
         let t = best(n.min(20), || {
             write_jsonl(&fit, &identity, &mut std::io::sink()).expect("writes")
         });
-        record(6, t, bytes.len() as f64 / 1e6);
+        record(7, t, bytes.len() as f64 / 1e6);
         bytes = Vec::new();
         write_binary(&fit, &identity, &mut bytes).expect("writes");
         let t = best(n.min(20), || {
             write_binary(&fit, &identity, &mut std::io::sink()).expect("writes")
         });
-        record(7, t, bytes.len() as f64 / 1e6);
+        record(8, t, bytes.len() as f64 / 1e6);
     }
     print!("| stage |");
     for faces in &sizes {
