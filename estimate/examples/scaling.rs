@@ -1,8 +1,9 @@
 //! How the speed of each stage scales from 10³ to 10⁶ faces, and what a user gets per second at
 //! each: `cargo run --release -p estimate --example scaling [MAX_FACES]` (default 10⁶).
 //!
-//! The meshes are the irregular noisy tori of `fixtures --example big_mesh` (jittered, random
-//! diagonals, noise a tenth of an edge) with `2·nu·nv` triangles for `(nu, nv)` = (32, 16),
+//! The meshes are the irregular noisy tori of `fixtures --example big_mesh`
+//! (`fixtures::large::noisy_torus`: jittered, random diagonals, noise a tenth of an edge) with
+//! `2·nu·nv` triangles for `(nu, nv)` = (32, 16),
 //! (100, 50), (320, 160), (1000, 500). Each stage runs on the previous stage's output; its time
 //! is the best of several runs (more at the small sizes, where one run is short). Printed: the
 //! cost per face in nanoseconds at each size, the spread (largest over smallest) from 10⁴ up and
@@ -15,7 +16,6 @@ use std::time::Instant;
 
 use curves::{method_by_name, MethodOptions};
 use estimate::{estimator_by_name, prepare, EstimateChoice, DEFAULT_ESTIMATOR};
-use fixtures::analytic::{torus, Irregular};
 use surface::patch_io::{write_binary, write_jsonl};
 use surface::{
     fit_scheme, fit_scheme_into, measure_g1, scheme_by_name, tessellate_fit, Fit, SchemeOptions,
@@ -86,13 +86,7 @@ fn main() {
     .collect();
     for &(nu, nv) in &grids {
         let faces = 2 * nu * nv;
-        let edge = std::f64::consts::TAU * 0.4 / nv as f64;
-        let opts = Irregular {
-            noise: 0.1 * edge,
-            seed: 20261129,
-            ..Irregular::default()
-        };
-        let raw = torus(nu, nv, 1.0, 0.4, &opts);
+        let raw = fixtures::large::noisy_torus(nu, nv);
         let n = runs(faces);
         eprintln!("{faces} faces, best of {n}");
         let mut record = |stage: usize, seconds: f64, units: f64| {

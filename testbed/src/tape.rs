@@ -264,6 +264,49 @@ impl Tape {
         }
     }
 
+    /// Appends the object at token `at` to `out` with its fields `names` set to the values
+    /// built by `value(i, out)` (`i` the name's index): in place when present, appended after
+    /// the last field (with key `spans[i]`) otherwise; every other field copied whole, in order.
+    fn rebuild_object(
+        &self,
+        at: usize,
+        names: &[&str],
+        spans: &[Span],
+        out: &mut Vec<Tok>,
+        value: &mut dyn FnMut(usize, &mut Vec<Tok>),
+    ) {
+        let obj = out.len();
+        out.push(Tok::Obj { fields: 0, len: 0 });
+        let mut set = [false; MAX_SET];
+        let mut count = 0u32;
+        for (key, v) in self.fields(at) {
+            let Some(Tok::Key(span)) = v.checked_sub(1).and_then(|k| self.toks.get(k)) else {
+                continue;
+            };
+            count += 1;
+            out.push(Tok::Key(*span));
+            match names.iter().position(|n| n.as_bytes() == key) {
+                Some(ni) if !set[ni] => {
+                    set[ni] = true;
+                    value(ni, out);
+                }
+                _ => {
+                    let w = self.toks[v].width();
+                    out.extend_from_slice(&self.toks[v..v + w]);
+                }
+            }
+        }
+        for (ni, span) in spans.iter().enumerate() {
+            if !set[ni] {
+                count += 1;
+                out.push(Tok::Key(*span));
+                value(ni, out);
+            }
+        }
+        let len = (out.len() - obj - 1) as u32;
+        out[obj] = Tok::Obj { fields: count, len };
+    }
+
     /// Sets field `name` of every vertex object (`vertex1` … `vertex3`) to the value built
     /// by `value(i, tape)` (`i` the vertex): in place when present, appended otherwise; every
     /// other token is kept in order. `scratch` is reused storage. False when a vertex field is
@@ -299,36 +342,9 @@ impl Tape {
                 i += 1;
                 continue;
             };
-            let obj = scratch.len();
-            scratch.push(Tok::Obj { fields: 0, len: 0 });
-            let mut set = [false; MAX_SET];
-            let mut count = 0u32;
-            for (key, v) in self.fields(i) {
-                let Some(Tok::Key(span)) = v.checked_sub(1).and_then(|k| self.toks.get(k)) else {
-                    continue;
-                };
-                count += 1;
-                scratch.push(Tok::Key(*span));
-                match names.iter().position(|n| n.as_bytes() == key) {
-                    Some(ni) if !set[ni] => {
-                        set[ni] = true;
-                        value(vi, ni, scratch);
-                    }
-                    _ => {
-                        let w = self.toks[v].width();
-                        scratch.extend_from_slice(&self.toks[v..v + w]);
-                    }
-                }
-            }
-            for (ni, span) in name_spans.iter().enumerate() {
-                if !set[ni] {
-                    count += 1;
-                    scratch.push(Tok::Key(*span));
-                    value(vi, ni, scratch);
-                }
-            }
-            let len = (scratch.len() - obj - 1) as u32;
-            scratch[obj] = Tok::Obj { fields: count, len };
+            self.rebuild_object(i, names, &name_spans, scratch, &mut |ni, out| {
+                value(vi, ni, out)
+            });
             i += self.toks[i].width();
         }
         // Only the record's own length changed: the vertex objects were rebuilt with theirs,
@@ -355,39 +371,13 @@ impl Tape {
         if names.len() > MAX_SET || !matches!(self.toks.first(), Some(Tok::Obj { .. })) {
             return false;
         }
+        // Keys to append are written to the text once (no allocation per record).
+        let mut spans = [Span { start: 0, len: 0 }; MAX_SET];
+        for (span, n) in spans.iter_mut().zip(names) {
+            *span = self.push_text(n.as_bytes());
+        }
         scratch.clear();
-        scratch.push(Tok::Obj { fields: 0, len: 0 });
-        let mut set = [false; MAX_SET];
-        let mut count = 0u32;
-        for (key, v) in self.fields(0) {
-            let Some(Tok::Key(span)) = v.checked_sub(1).and_then(|k| self.toks.get(k)) else {
-                continue;
-            };
-            count += 1;
-            scratch.push(Tok::Key(*span));
-            match names.iter().position(|n| n.as_bytes() == key) {
-                Some(ni) if !set[ni] => {
-                    set[ni] = true;
-                    value(ni, scratch);
-                }
-                _ => {
-                    let w = self.toks[v].width();
-                    scratch.extend_from_slice(&self.toks[v..v + w]);
-                }
-            }
-        }
-        for (ni, n) in names.iter().enumerate() {
-            if !set[ni] {
-                count += 1;
-                let span = self.push_text(n.as_bytes());
-                scratch.push(Tok::Key(span));
-                value(ni, scratch);
-            }
-        }
-        scratch[0] = Tok::Obj {
-            fields: count,
-            len: (scratch.len() - 1) as u32,
-        };
+        self.rebuild_object(0, names, &spans[..names.len()], scratch, value);
         std::mem::swap(&mut self.toks, scratch);
         true
     }

@@ -48,6 +48,15 @@ fn json_records(bytes: &[u8]) -> Vec<Value> {
         .collect()
 }
 
+/// The top-level keys of record `r`, in order.
+fn keys(r: &Value) -> Vec<&str> {
+    r.as_object()
+        .expect("object")
+        .keys()
+        .map(String::as_str)
+        .collect()
+}
+
 /// Patches of the octahedron with a `provenance` field added after the known ones.
 fn patches_with_provenance() -> Vec<u8> {
     let patches = ok(&["fit", "--scheme", "shirman-sequin"], &octa());
@@ -75,14 +84,8 @@ fn a_field_added_at_the_head_arrives_at_the_end_in_every_format() {
         let recs = json_records(&s5);
         assert_eq!(recs.len(), 24, "{format}");
         for r in &recs {
-            let keys: Vec<&str> = r
-                .as_object()
-                .expect("object")
-                .keys()
-                .map(String::as_str)
-                .collect();
             assert_eq!(
-                keys,
+                keys(r),
                 [
                     "type",
                     "pos",
@@ -116,14 +119,8 @@ fn a_field_added_at_the_head_arrives_at_the_end_in_every_format() {
         let recs = json_records(&s5);
         assert_eq!(recs.len(), 24 * 4, "{format}");
         for r in &recs {
-            let keys: Vec<&str> = r
-                .as_object()
-                .expect("object")
-                .keys()
-                .map(String::as_str)
-                .collect();
             assert_eq!(
-                keys,
+                keys(r),
                 [
                     "type",
                     "vertex1",
@@ -137,13 +134,11 @@ fn a_field_added_at_the_head_arrives_at_the_end_in_every_format() {
                 "{format}"
             );
             assert_eq!(r["provenance"], "octa.m via test");
-            let v: Vec<&str> = r["vertex2"]
-                .as_object()
-                .expect("vertex")
-                .keys()
-                .map(String::as_str)
-                .collect();
-            assert_eq!(v, ["pos", "norm", "kg", "color", "dist"], "{format}");
+            assert_eq!(
+                keys(&r["vertex2"]),
+                ["pos", "norm", "kg", "color", "dist"],
+                "{format}"
+            );
         }
     }
 }
@@ -185,9 +180,9 @@ fn unknown_records_and_fields_pass_every_filter_in_every_format() {
             // The TriangleMesh: its fields in order, unknown ones (a column `uv` too)
             // unchanged; the colour filters set `color` (and `dist`) after the last field.
             let m = &recs[2];
-            let keys: Vec<&str> = m.as_object().unwrap().keys().map(String::as_str).collect();
+            let mk = keys(m);
             let known = ["type", "name", "pos", "uv", "kg", "triangles", "provenance"];
-            assert_eq!(&keys[..7], known, "{format} {args:?}");
+            assert_eq!(&mk[..7], known, "{format} {args:?}");
             for k in known {
                 assert_eq!(m[k], expected_mesh[k], "{format} {args:?} {k}");
             }
@@ -196,14 +191,13 @@ fn unknown_records_and_fields_pass_every_filter_in_every_format() {
                 "radial" => &["color", "dist"],
                 _ => &["color"],
             };
-            assert_eq!(&keys[7..], extra, "{format} {args:?}");
+            assert_eq!(&mk[7..], extra, "{format} {args:?}");
             if !extra.is_empty() {
                 assert_eq!(m["color"].as_array().map(Vec::len), Some(4));
             }
             let t = &recs[1];
-            let keys: Vec<&str> = t.as_object().unwrap().keys().map(String::as_str).collect();
             assert_eq!(
-                keys,
+                keys(t),
                 [
                     "type",
                     "name",
@@ -216,27 +210,15 @@ fn unknown_records_and_fields_pass_every_filter_in_every_format() {
             );
             assert_eq!(t["vertex1"]["label"], "a");
             assert_eq!(t["vertex2"]["extra"]["k"][0], 1.5);
-            let v1: Vec<&str> = t["vertex1"]
-                .as_object()
-                .unwrap()
-                .keys()
-                .map(String::as_str)
-                .collect();
             assert_eq!(
-                &v1[..4],
+                &keys(&t["vertex1"])[..4],
                 ["label", "pos", "kg", "norm"],
                 "{format} {args:?}"
             );
             if mesh_out {
                 // The patch's mesh: columns and triangles first, then the patch's other fields.
-                let keys: Vec<&str> = recs[3]
-                    .as_object()
-                    .unwrap()
-                    .keys()
-                    .map(String::as_str)
-                    .collect();
                 assert_eq!(
-                    keys,
+                    keys(&recs[3]),
                     [
                         "type",
                         "pos",
@@ -250,14 +232,8 @@ fn unknown_records_and_fields_pass_every_filter_in_every_format() {
                 assert_eq!(recs[3]["triangles"], serde_json::json!([[1, 2, 0]]));
             } else if args[0] == "tess" {
                 // The patch's triangle: vertices first, then the patch's other fields.
-                let keys: Vec<&str> = recs[3]
-                    .as_object()
-                    .unwrap()
-                    .keys()
-                    .map(String::as_str)
-                    .collect();
                 assert_eq!(
-                    keys,
+                    keys(&recs[3]),
                     [
                         "type",
                         "vertex1",
