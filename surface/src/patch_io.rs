@@ -62,6 +62,10 @@ pub const BINARY_MAGIC: &[u8] = b"BEZPATCH1\n";
 /// memory held by formatted text at once.
 const CHUNK: usize = 4096;
 
+/// Chunks formatted side by side before they are written in order: a window of 262 144
+/// patches (at most about 94 MB of binary, 260 MB of JSON Lines for quartics).
+const CHUNKS_PER_WINDOW: usize = 64;
+
 /// Why patches could not be read back.
 #[derive(Debug, thiserror::Error)]
 pub enum PatchReadError {
@@ -234,19 +238,22 @@ pub fn write_patches<W: Write + ?Sized>(
     let faces = fit.num_patches() / fit.layout.patches_per_face().max(1);
     out.write_all(&format.header(&fit.layout, faces))?;
     let per_chunk = CHUNK * np;
-    for (w, window) in fit.points.chunks(per_chunk * 64).enumerate() {
-        let bytes: Vec<Vec<u8>> = window
+    // One buffer per chunk of a window, reused by every window: their pages are faulted in
+    // once, not once per window (from 10⁵ faces on that was a third of the binary form's time).
+    let mut buffers: Vec<Vec<u8>> = vec![Vec::new(); CHUNKS_PER_WINDOW];
+    for (w, window) in fit.points.chunks(per_chunk * CHUNKS_PER_WINDOW).enumerate() {
+        window
             .par_chunks(per_chunk)
+            .zip(buffers.par_iter_mut())
             .enumerate()
-            .map(|(c, pts)| {
-                let mut b = Vec::new();
-                let first = (w * 64 + c) * CHUNK;
-                format.format(&fit.layout, first, pts, to_world, &mut b);
-                b
-            })
-            .collect();
-        for b in bytes {
-            out.write_all(&b)?;
+            .for_each(|(c, (pts, b))| {
+                b.clear();
+                let first = (w * CHUNKS_PER_WINDOW + c) * CHUNK;
+                format.format(&fit.layout, first, pts, to_world, b);
+            });
+        let used = window.len().div_ceil(per_chunk);
+        for b in &buffers[..used] {
+            out.write_all(b)?;
         }
     }
     Ok(())
