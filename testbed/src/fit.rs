@@ -43,6 +43,9 @@ pub struct FitOptions {
     pub sample: Option<usize>,
     /// Curvatures written with sampled triangles.
     pub fields: CurvatureFields,
+    /// Sampled output as one shared-vertex `TriangleMesh` record per patch instead of
+    /// `Triangle` records (`tess --mesh`'s record).
+    pub mesh: bool,
 }
 
 /// A mesh for fitting: prepared from bytes, or a named data set.
@@ -122,12 +125,26 @@ pub fn fit<W: std::io::Write>(
         }
         s => s,
     };
+    if options.mesh && sample.is_none() {
+        return Err(FilterError::Usage(
+            "fit --mesh writes sampled triangles: give --sample N (tess --mesh does it for patches)"
+                .into(),
+        ));
+    }
     if let Some(s) = sample {
         if s == 0 {
             return Err(FilterError::Usage("fit --sample must be at least 1".into()));
         }
         let mut t = surface::tessellate_fit(&input.mesh, &fitted, s)?;
         input.frame.tessellation_to_world(&mut t);
+        if options.mesh {
+            for v in patch_meshes(&t, per_face, &scheme_name, options.fields) {
+                at.record += 1;
+                out.write(&v, at)?;
+            }
+            out.finish()?;
+            return Ok(());
+        }
         for (fi, f) in t.faces.iter().enumerate() {
             let sample = |i: usize| Sample {
                 pos: t.positions[i],
@@ -173,4 +190,76 @@ pub fn fit<W: std::io::Write>(
     }
     out.finish()?;
     Ok(())
+}
+
+/// The welded tessellation `t` cut back into one `TriangleMesh` record per patch, in patch
+/// order: each patch's vertices (in the order its triangles first use them) as columns, its
+/// triangles as indices into them, then `face`, `subpatch` and `scheme` as the `Triangle`
+/// records carry them. The triangles of a patch are consecutive in `t` (`tessellate_fit`
+/// writes them patch by patch).
+fn patch_meshes<'a>(
+    t: &'a surface::Tessellation,
+    per_face: usize,
+    scheme: &'a Value,
+    fields: CurvatureFields,
+) -> impl Iterator<Item = Value> + 'a {
+    let mut start = 0;
+    std::iter::from_fn(move || {
+        t.faces.get(start)?;
+        let patch = t.patch_of_face.get(start).copied().unwrap_or(0);
+        let end = start
+            + t.patch_of_face[start..]
+                .iter()
+                .take_while(|p| **p == patch)
+                .count()
+                .max(1);
+        let mut local: Vec<usize> = Vec::new();
+        let mut triangles = Vec::with_capacity(end - start);
+        for f in &t.faces[start..end] {
+            let tri: Vec<Value> = f
+                .iter()
+                .map(|g| {
+                    let i = local.iter().position(|x| x == g).unwrap_or_else(|| {
+                        local.push(*g);
+                        local.len() - 1
+                    });
+                    Value::from(i)
+                })
+                .collect();
+            triangles.push(Value::Array(tri));
+        }
+        start = end;
+        let column3 = |xs: &dyn Fn(usize) -> [f64; 3]| {
+            Value::Array(local.iter().map(|&g| record::arr3(xs(g))).collect())
+        };
+        let column1 =
+            |xs: &[f64]| Value::Array(local.iter().map(|&g| record::num(xs[g])).collect());
+        let mut m = Map::new();
+        m.insert("type".into(), Value::from("TriangleMesh"));
+        m.insert(
+            "pos".into(),
+            column3(&|g| {
+                let p = t.positions[g];
+                [p.x, p.y, p.z]
+            }),
+        );
+        m.insert(
+            "norm".into(),
+            column3(&|g| {
+                let n = t.normals[g];
+                [n.x, n.y, n.z]
+            }),
+        );
+        if fields.kg {
+            m.insert("kg".into(), column1(&t.gaussian));
+        }
+        if fields.km {
+            m.insert("km".into(), column1(&t.mean));
+        }
+        m.insert("triangles".into(), Value::Array(triangles));
+        m.insert("face".into(), Value::from(patch / per_face));
+        m.insert("subpatch".into(), Value::from(patch % per_face));
+        m.insert("scheme".into(), scheme.clone());
+        Some(Value::Object(m))
+    })
 }

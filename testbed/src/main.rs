@@ -71,6 +71,10 @@ enum Command {
         /// With --sample: write mean curvature.
         #[arg(long)]
         km: bool,
+        /// With --sample (or an evaluated scheme): one shared-vertex TriangleMesh record per
+        /// patch instead of Triangle records (as `tess --mesh`).
+        #[arg(long)]
+        mesh: bool,
         #[command(flatten)]
         common: Common,
     },
@@ -317,6 +321,7 @@ fn run(cli: Cli) -> Result<(), FilterError> {
             sample,
             kg,
             km,
+            mesh,
             common,
         } => {
             let input = match &dataset {
@@ -346,6 +351,7 @@ fn run(cli: Cli) -> Result<(), FilterError> {
                 replace_normals,
                 sample,
                 fields: CurvatureFields { kg, km },
+                mesh,
             };
             with_output(&common.output, &mut |out| {
                 let mut w = RecordWriter::new(out, common.format.or(Some(Format::Json)));

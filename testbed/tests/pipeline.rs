@@ -465,6 +465,51 @@ fn mesh_records_give_the_pictures_and_meshes_of_triangle_records() {
     }
 }
 
+/// `fit --sample N --mesh` (Example 5's path) writes one `TriangleMesh` per patch: its
+/// records hold the patch's samples once each, and they colour and draw as the `Triangle`
+/// records of `fit --sample N` do, byte for byte; without `--sample` the flag is refused.
+#[test]
+fn sampled_fits_write_mesh_records_that_draw_as_their_triangles() {
+    for scheme in ["nielson", "shirman-sequin"] {
+        let args = ["fit", "--scheme", scheme, "--sample", "3", "--kg"];
+        let tris = ok(&args, &octa());
+        let meshes = ok(&[&args[..], &["--mesh"]].concat(), &octa());
+        let recs = json_records(&meshes);
+        let patches = if scheme == "nielson" { 8 } else { 24 };
+        assert_eq!(recs.len(), patches, "{scheme}");
+        assert_eq!(json_records(&tris).len(), patches * 9, "{scheme}");
+        for r in &recs {
+            assert_eq!(
+                keys(r),
+                [
+                    "type",
+                    "pos",
+                    "norm",
+                    "kg",
+                    "triangles",
+                    "face",
+                    "subpatch",
+                    "scheme"
+                ]
+            );
+            // s = 3: 10 samples, 9 triangles a patch.
+            assert_eq!(r["pos"].as_array().map(Vec::len), Some(10), "{scheme}");
+            assert_eq!(r["kg"].as_array().map(Vec::len), Some(10), "{scheme}");
+            assert_eq!(r["triangles"].as_array().map(Vec::len), Some(9), "{scheme}");
+        }
+        let draw = |stream: &[u8]| {
+            let coloured = ok(&["kcolor"], stream);
+            (ok(&["render"], &coloured), ok(&["wire"], &coloured))
+        };
+        let (a, b) = (draw(&tris), draw(&meshes));
+        assert!(a.0 == b.0, "{scheme}: shaded pictures differ");
+        assert!(a.1 == b.1, "{scheme}: wire frames differ");
+    }
+    let out = testbed(&["fit", "--mesh"], &octa());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("--sample"), "{err}");
+}
+
 /// Deterministic pseudo-random numbers (xorshift), so failures reproduce.
 fn xorshift(state: &mut u64) -> u64 {
     *state ^= *state << 13;
