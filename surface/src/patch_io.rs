@@ -58,12 +58,22 @@ fn form_name(form: Form) -> &'static str {
 /// The first bytes of the binary form.
 pub const BINARY_MAGIC: &[u8] = b"BEZPATCH1\n";
 
-/// Patches per formatting task: large enough to amortize rayon, small enough to bound the
-/// memory held by formatted text at once.
-const CHUNK: usize = 4096;
+/// Patches per formatting task at most: large enough to amortize rayon (a task formats in
+/// about 30 µs as binary, 600 µs as JSON Lines, one thread), small enough that its buffer (190 KB binary,
+/// about 0.5 MB of JSON for quartics) stays in the allocator's reach. With 4096, buffers of
+/// 1.5–4 MB were mapped fresh and returned on many calls (glibc's thresholds), which cost a
+/// 10⁵-face fit's binary output up to 2.3× and left small fits one task for two threads.
+const CHUNK: usize = 512;
 
-/// Chunks formatted side by side before they are written in order: a window of 262 144
-/// patches (at most about 94 MB of binary, 260 MB of JSON Lines for quartics).
+/// Fewest patches per formatting task (below this the task costs more than it saves).
+const MIN_CHUNK: usize = 256;
+
+/// Chunks a fit is cut into at least, when it has patches enough: two threads, a few
+/// tasks each to even out their speeds.
+const MIN_CHUNKS: usize = 16;
+
+/// Chunks formatted side by side before they are written in order: a window of at most
+/// 32 768 patches (about 12 MB of binary, 33 MB of JSON Lines for quartics).
 const CHUNKS_PER_WINDOW: usize = 64;
 
 /// Why patches could not be read back.
@@ -237,7 +247,11 @@ pub fn write_patches<W: Write + ?Sized>(
     let np = fit.layout.points_per_patch().max(1);
     let faces = fit.num_patches() / fit.layout.patches_per_face().max(1);
     out.write_all(&format.header(&fit.layout, faces))?;
-    let per_chunk = CHUNK * np;
+    // Small fits in smaller chunks, so both threads have work (at 10³ faces one chunk of
+    // CHUNK patches held them all); the bytes do not depend on the cut.
+    let patches = fit.points.len() / np;
+    let chunk = patches.div_ceil(MIN_CHUNKS).clamp(MIN_CHUNK, CHUNK);
+    let per_chunk = chunk * np;
     // One buffer per chunk of a window, reused by every window: their pages are faulted in
     // once, not once per window (from 10⁵ faces on that was a third of the binary form's time).
     let mut buffers: Vec<Vec<u8>> = vec![Vec::new(); CHUNKS_PER_WINDOW];
@@ -248,7 +262,7 @@ pub fn write_patches<W: Write + ?Sized>(
             .enumerate()
             .for_each(|(c, (pts, b))| {
                 b.clear();
-                let first = (w * CHUNKS_PER_WINDOW + c) * CHUNK;
+                let first = (w * CHUNKS_PER_WINDOW + c) * chunk;
                 format.format(&fit.layout, first, pts, to_world, b);
             });
         let used = window.len().div_ceil(per_chunk);
