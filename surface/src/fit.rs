@@ -332,8 +332,13 @@ pub fn fit_scheme_into(
         face_fallbacks,
         ..
     } = &mut *out;
+    // Filled by both threads: a fresh gigabyte at 10⁶ faces is first touched (page faults)
+    // in parallel rather than by one thread before the parallel build.
     points.clear();
-    points.resize(per_face * mesh.num_faces(), nalgebra::Point3::origin());
+    points.par_extend(rayon::iter::repeat_n(
+        nalgebra::Point3::origin(),
+        per_face * mesh.num_faces(),
+    ));
     let mut reasons: Vec<Option<FaceFallbackReason>> = vec![None; mesh.num_faces()];
     let curves: &[CubicBez3] = curves;
     points
