@@ -28,7 +28,7 @@
 //! Nesting is limited to [`MAX_DEPTH`] levels, so hostile input cannot overflow the stack.
 
 use crate::json;
-use crate::tape::{Span, Tape, Tok};
+use crate::tape::{NumberError, Span, Tape, Tok};
 
 /// Deepest nesting of lists and arrays accepted: far above any record of the pipeline (a
 /// Triangle nests 3 levels), low enough that recursion cannot exhaust the stack (JSON's reader
@@ -190,36 +190,15 @@ impl Parser<'_, '_> {
             None => std::str::from_utf8(bytes).unwrap_or_default(),
         };
         let text = text.strip_prefix('+').unwrap_or(text);
-        if !float {
-            if let Ok(v) = text.parse::<i64>() {
-                self.tape.toks.push(Tok::Int(v));
-                return Ok(());
-            }
-            if let Ok(v) = text.parse::<u64>() {
-                self.tape.toks.push(Tok::UInt(v));
-                return Ok(());
-            }
-        }
-        match text.parse::<f64>() {
-            Ok(v) if v.is_finite() => {
-                // Text in JSON's grammar is kept to be written back as it came.
-                if json::is_json_number(text.as_bytes()) {
-                    let span = self.tape.push_text(text.as_bytes());
-                    self.tape.toks.push(Tok::Text(v, span));
-                } else {
-                    self.tape.toks.push(Tok::Float(v));
-                }
-                Ok(())
-            }
-            Ok(_) => {
-                self.i = start;
-                self.err(format!("number `{text}` is out of range"))
-            }
-            Err(_) => {
-                self.i = start;
-                self.err(format!("bad number `{text}`"))
-            }
-        }
+        // Text in JSON's grammar is kept to be written back as it came.
+        let keep = json::is_json_number(text.as_bytes());
+        self.tape.push_number(text, !float, keep).or_else(|e| {
+            self.i = start;
+            self.err(match e {
+                NumberError::OutOfRange => format!("number `{text}` is out of range"),
+                NumberError::Malformed => format!("bad number `{text}`"),
+            })
+        })
     }
 
     /// One or more pairs, the first `(` next: an object (its token at `obj`, `first` fields

@@ -242,29 +242,12 @@ impl Parser<'_, '_> {
                 return self.err("bad number");
             }
         }
-        // ASCII by construction.
+        // ASCII by construction; in JSON's grammar, so its text is kept to be written back.
         let text = self.src.get(start..self.i).unwrap_or_default();
-        if !float {
-            if let Ok(v) = text.parse::<i64>() {
-                self.tape.toks.push(Tok::Int(v));
-                return Ok(());
-            }
-            if let Ok(v) = text.parse::<u64>() {
-                self.tape.toks.push(Tok::UInt(v));
-                return Ok(());
-            }
-        }
-        match text.parse::<f64>() {
-            Ok(v) if v.is_finite() => {
-                let span = self.tape.push_text(text.as_bytes());
-                self.tape.toks.push(Tok::Text(v, span));
-                Ok(())
-            }
-            _ => {
-                self.i = start;
-                self.err(format!("number `{text}` is out of range"))
-            }
-        }
+        self.tape.push_number(text, !float, true).or_else(|_| {
+            self.i = start;
+            self.err(format!("number `{text}` is out of range"))
+        })
     }
 }
 

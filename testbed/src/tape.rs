@@ -24,6 +24,15 @@ pub struct Span {
     pub len: u32,
 }
 
+/// Why a number's text made no token ([`Tape::push_number`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NumberError {
+    /// A number too large for an `f64`.
+    OutOfRange,
+    /// Not a number.
+    Malformed,
+}
+
 /// One token of a tape (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Tok {
@@ -125,6 +134,41 @@ impl Tape {
     pub fn clear(&mut self) {
         self.toks.clear();
         self.text.clear();
+    }
+
+    /// Pushes the number written `text` (a reader's token, sign and digits checked by its
+    /// grammar): an `Int` or `UInt` when `integral` and it fits, else a finite float — a
+    /// `Text` token keeping `text` to be written back as it came when `keep_text`, a `Float`
+    /// otherwise. Nothing is pushed on an error.
+    pub fn push_number(
+        &mut self,
+        text: &str,
+        integral: bool,
+        keep_text: bool,
+    ) -> Result<(), NumberError> {
+        if integral {
+            if let Ok(v) = text.parse::<i64>() {
+                self.toks.push(Tok::Int(v));
+                return Ok(());
+            }
+            if let Ok(v) = text.parse::<u64>() {
+                self.toks.push(Tok::UInt(v));
+                return Ok(());
+            }
+        }
+        match text.parse::<f64>() {
+            Ok(v) if v.is_finite() => {
+                if keep_text {
+                    let span = self.push_text(text.as_bytes());
+                    self.toks.push(Tok::Text(v, span));
+                } else {
+                    self.toks.push(Tok::Float(v));
+                }
+                Ok(())
+            }
+            Ok(_) => Err(NumberError::OutOfRange),
+            Err(_) => Err(NumberError::Malformed),
+        }
     }
 
     /// Appends `s` to the text; its span.
