@@ -112,6 +112,20 @@ pub struct Derivatives {
     pub dvv: Vector3<f64>,
 }
 
+impl From<[Vector3<f64>; 6]> for Derivatives {
+    /// `[p, du, dv, duu, duv, dvv]`, the order of [`SampleWeights`]' weights.
+    fn from(d: [Vector3<f64>; 6]) -> Self {
+        Derivatives {
+            p: Point3::from(d[0]),
+            du: d[1],
+            dv: d[2],
+            duu: d[3],
+            duv: d[4],
+            dvv: d[5],
+        }
+    }
+}
+
 /// Differential geometry at a regular point of a patch.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Curvature {
@@ -270,6 +284,23 @@ impl SampleWeights {
         }
     }
 
+    /// The weights of every sample `(i/s, j/s)` of a degree-`n` patch with `s` segments an
+    /// edge, rows by `j` (the order of the tessellations' sample grid): computed once and
+    /// shared by every patch of that degree.
+    pub fn grid(degree: usize, s: usize) -> Vec<SampleWeights> {
+        let mut t = Vec::with_capacity((s + 1) * (s + 2) / 2);
+        for j in 0..=s {
+            for i in 0..=s - j {
+                t.push(SampleWeights::new(
+                    degree,
+                    i as f64 / s as f64,
+                    j as f64 / s as f64,
+                ));
+            }
+        }
+        t
+    }
+
     /// The degree of the nets the weights are for.
     pub fn degree(&self) -> usize {
         self.degree
@@ -294,14 +325,7 @@ pub fn net_derivatives(points: &[Point3<f64>], weights: &SampleWeights) -> Deriv
             *a += b.coords * *wk;
         }
     }
-    Derivatives {
-        p: Point3::from(acc[0]),
-        du: acc[1],
-        dv: acc[2],
-        duu: acc[3],
-        duv: acc[4],
-        dvv: acc[5],
-    }
+    Derivatives::from(acc)
 }
 
 /// A triangular Bézier patch of degree `n ≥ 0` in space.

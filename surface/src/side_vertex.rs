@@ -629,14 +629,7 @@ fn eval_regular(data: &FaceData, cross: CrossBoundary, prepared: &[f64]) -> Deri
         acc[4] += v * wab[1] + d[0] * wa[1] + d[1] * wa[0] + second[1] * w;
         acc[5] += v * wab[2] + d[1] * (2.0 * wa[1]) + second[2] * w;
     }
-    Derivatives {
-        p: Point3::from(acc[0]),
-        du: acc[1],
-        dv: acc[2],
-        duu: acc[3],
-        duv: acc[4],
-        dvv: acc[5],
-    }
+    Derivatives::from(acc)
 }
 
 /// Vertex `i`: the vertex, the tangents of its two curves in `(λ_0, λ_1)` (the direction

@@ -266,19 +266,9 @@ pub fn tessellate(patches: &[BezierTriangle], s: usize) -> Result<Tessellation, 
     // patches (the patches of one scheme share a degree).
     let mut tables: HashMap<usize, Vec<SampleWeights>> = HashMap::new();
     for patch in patches {
-        tables.entry(patch.degree()).or_insert_with(|| {
-            let mut t = Vec::with_capacity((s + 1) * (s + 2) / 2);
-            for j in 0..=s {
-                for i in 0..=s - j {
-                    t.push(SampleWeights::new(
-                        patch.degree(),
-                        i as f64 / s as f64,
-                        j as f64 / s as f64,
-                    ));
-                }
-            }
-            t
-        });
+        tables
+            .entry(patch.degree())
+            .or_insert_with(|| SampleWeights::grid(patch.degree(), s));
     }
     let mut ids = vec![0usize; (s + 1) * (s + 2) / 2];
     for (pi, patch) in patches.iter().enumerate() {

@@ -234,19 +234,10 @@ impl PatchTessellator {
         out.samples.clear();
         out.triangles.clear();
         let s = self.s;
-        let table = self.tables.entry(patch.degree()).or_insert_with(|| {
-            let mut t = Vec::with_capacity((s + 1) * (s + 2) / 2);
-            for j in 0..=s {
-                for i in 0..=s - j {
-                    t.push(SampleWeights::new(
-                        patch.degree(),
-                        i as f64 / s as f64,
-                        j as f64 / s as f64,
-                    ));
-                }
-            }
-            t
-        });
+        let table = self
+            .tables
+            .entry(patch.degree())
+            .or_insert_with(|| SampleWeights::grid(patch.degree(), s));
         for w in table.iter() {
             let Some((d, c)) = patch
                 .derivatives_with(w)
