@@ -48,12 +48,7 @@ pub fn collect_triangles(pipe: &mut Pipe) -> Result<Vec<[Vertex; 3]>, FilterErro
             _ => {}
         }
     }
-    if pipe.skipped > 0 {
-        eprintln!(
-            "{}: {} bad record(s) skipped (--keep-going)",
-            pipe.name, pipe.skipped
-        );
-    }
+    pipe.report_skipped();
     Ok(tris)
 }
 
@@ -82,12 +77,7 @@ pub fn collect_mesh(pipe: &mut Pipe) -> Result<RenderMesh, FilterError> {
             _ => {}
         }
     }
-    if pipe.skipped > 0 {
-        eprintln!(
-            "{}: {} bad record(s) skipped (--keep-going)",
-            pipe.name, pipe.skipped
-        );
-    }
+    pipe.report_skipped();
     Ok(m)
 }
 

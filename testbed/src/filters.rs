@@ -124,13 +124,19 @@ impl<'a> Pipe<'a> {
     /// Flushes the output and reports the skipped records.
     pub fn finish(&mut self) -> Result<(), StreamError> {
         self.writer.finish()?;
+        self.report_skipped();
+        Ok(())
+    }
+
+    /// Says on standard error how many records were skipped, if any (the end of a sink's
+    /// reading; [`Pipe::finish`] for a filter).
+    pub fn report_skipped(&self) {
         if self.skipped > 0 {
             eprintln!(
                 "{}: {} bad record(s) skipped (--keep-going)",
                 self.name, self.skipped
             );
         }
-        Ok(())
     }
 }
 
