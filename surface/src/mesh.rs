@@ -606,9 +606,11 @@ impl Mesh {
         3 * (h / 3) + (h % 3 + 2) % 3
     }
 
-    fn faces_around_vertex_from(&self, v: usize, start: usize) -> Vec<usize> {
+    /// Walks the fan of half-edge `start`'s vertex: first clockwise (`h → next(twin(h))`) until
+    /// a boundary or back at the start, then counter-clockwise (`h → twin(prev(h))`), calling
+    /// `visit` with each half-edge of that second pass (one per face, in order).
+    fn walk_fan(&self, start: usize, mut visit: impl FnMut(usize)) {
         let nh = self.twin.len();
-        // Turn clockwise (h → next(twin(h))) until a boundary or back at the start.
         let mut h = start;
         for _ in 0..nh {
             match self.twin_of(h) {
@@ -616,18 +618,22 @@ impl Mesh {
                 _ => break,
             }
         }
-        // Now collect counter-clockwise (h → twin(prev(h))).
         let first = h;
-        let mut out = vec![h / 3];
+        visit(h);
         for _ in 0..nh {
             match self.twin_of(Self::prev(h)) {
                 Some(t) if t != first => {
                     h = t;
-                    out.push(h / 3);
+                    visit(h);
                 }
                 _ => break,
             }
         }
+    }
+
+    fn faces_around_vertex_from(&self, v: usize, start: usize) -> Vec<usize> {
+        let mut out = Vec::new();
+        self.walk_fan(start, |h| out.push(h / 3));
         debug_assert!(out.iter().all(|&f| self.faces[f].contains(&v)));
         out
     }
@@ -648,25 +654,8 @@ impl Mesh {
         let Some(start) = self.outgoing.get(v).copied().flatten() else {
             return 0;
         };
-        let nh = self.twin.len();
-        let mut h = start;
-        for _ in 0..nh {
-            match self.twin_of(h) {
-                Some(t) if Self::next(t) != start => h = Self::next(t),
-                _ => break,
-            }
-        }
-        let first = h;
-        let mut len = 1;
-        for _ in 0..nh {
-            match self.twin_of(Self::prev(h)) {
-                Some(t) if t != first => {
-                    h = t;
-                    len += 1;
-                }
-                _ => break,
-            }
-        }
+        let mut len = 0;
+        self.walk_fan(start, |_| len += 1);
         len
     }
 
