@@ -53,6 +53,9 @@ pub const MAX_DEGREE: usize = 4;
 /// Largest number of coefficients (degree 4 with constant term).
 pub const MAX_COEFFS: usize = 15;
 
+/// Length of a row of [`Workspace`]'s monomial table: the coefficients, then the height.
+const ROW: usize = MAX_COEFFS + 1;
+
 /// Number of coefficients of a bivariate polynomial of degree `d`, with or without the
 /// constant term.
 pub fn num_coeffs(degree: usize, constant: bool) -> usize {
@@ -127,6 +130,9 @@ pub struct Workspace {
     pub ring: Vec<usize>,
     /// Local coordinates `(x, y, z)/h`.
     pub local: Vec<[f64; 3]>,
+    /// Per point: the monomials of degree ≤ 4 in the order of [`fit_height`], then the height
+    /// (entry [`MAX_COEFFS`]).
+    rows: Vec<[f64; ROW]>,
     a: Vec<f64>,
     b: Vec<f64>,
     marks: crate::topology::RingMarks,
@@ -147,45 +153,34 @@ pub fn fit_height(
     if m < n {
         return Err(FitFailure::TooFewPoints);
     }
-    let first_degree = usize::from(!constant);
-    let row = |p: &[f64; 3], out: &mut [f64; MAX_COEFFS]| {
-        // Powers by repeated multiplication (no `powi` in the hot loop).
-        let mut xp = [1.0; MAX_DEGREE + 1];
-        let mut yp = [1.0; MAX_DEGREE + 1];
-        for e in 1..=degree {
-            xp[e] = xp[e - 1] * p[0];
-            yp[e] = yp[e - 1] * p[1];
-        }
-        let mut col = 0;
-        for total in first_degree..=degree {
-            for k in 0..=total {
-                out[col] = xp[total - k] * yp[k];
-                col += 1;
-            }
-        }
-    };
+    // Every point's monomials (all of degree ≤ 4: a lower degree uses a prefix, without the
+    // constant term from the second) and height, computed once before the sums: written and
+    // read in one pass, the short stores of a row stall the wide loads that read it back.
+    ws.rows.clear();
+    ws.rows.extend(ws.local.iter().map(monomials));
+    let first = usize::from(!constant);
     let mut coeffs = [0.0; MAX_COEFFS];
     // Fast path: the equilibrated normal equations, accepted only when well conditioned.
     let mut gram = [[0.0; MAX_COEFFS]; MAX_COEFFS];
     let mut rhs = [0.0; MAX_COEFFS];
-    let mut r = [0.0; MAX_COEFFS];
     // The upper triangle of `AᵀA` and `Aᵀz`, point by point in order (each entry is its own
     // sequential sum, so the sizes the jets use are unrolled at compile time with the same
     // results to the bit).
-    match n {
-        15 => accumulate_normal_equations::<15, _>(&ws.local, &row, &mut gram, &mut rhs),
-        14 => accumulate_normal_equations::<14, _>(&ws.local, &row, &mut gram, &mut rhs),
-        10 => accumulate_normal_equations::<10, _>(&ws.local, &row, &mut gram, &mut rhs),
-        9 => accumulate_normal_equations::<9, _>(&ws.local, &row, &mut gram, &mut rhs),
-        6 => accumulate_normal_equations::<6, _>(&ws.local, &row, &mut gram, &mut rhs),
-        5 => accumulate_normal_equations::<5, _>(&ws.local, &row, &mut gram, &mut rhs),
+    let rows = &ws.rows;
+    match (n, first) {
+        (15, 0) => accumulate_normal_equations::<15, 0>(rows, &mut gram, &mut rhs),
+        (14, 1) => accumulate_normal_equations::<14, 1>(rows, &mut gram, &mut rhs),
+        (10, 0) => accumulate_normal_equations::<10, 0>(rows, &mut gram, &mut rhs),
+        (9, 1) => accumulate_normal_equations::<9, 1>(rows, &mut gram, &mut rhs),
+        (6, 0) => accumulate_normal_equations::<6, 0>(rows, &mut gram, &mut rhs),
+        (5, 1) => accumulate_normal_equations::<5, 1>(rows, &mut gram, &mut rhs),
         _ => {
-            for p in ws.local.iter() {
-                row(p, &mut r);
+            for row in rows.iter() {
+                let cols = &row[first..first + n];
                 for i in 0..n {
-                    let ri = r[i];
-                    rhs[i] += ri * p[2];
-                    for (g, rj) in gram[i][i..n].iter_mut().zip(&r[i..n]) {
+                    let ri = cols[i];
+                    rhs[i] += ri * row[MAX_COEFFS];
+                    for (g, rj) in gram[i][i..n].iter_mut().zip(&cols[i..n]) {
                         *g += ri * rj;
                     }
                 }
@@ -198,9 +193,8 @@ pub fn fit_height(
         ws.a.resize(m * n, 0.0);
         ws.b.clear();
         ws.b.extend(ws.local.iter().map(|p| p[2]));
-        for (i, p) in ws.local.iter().enumerate() {
-            row(p, &mut r);
-            for (j, rj) in r.iter().take(n).enumerate() {
+        for (i, row) in ws.rows.iter().enumerate() {
+            for (j, rj) in row[first..first + n].iter().enumerate() {
                 ws.a[j * m + i] = *rj;
             }
         }
@@ -220,23 +214,51 @@ pub fn fit_height(
     })
 }
 
-/// Adds `rowᵀ row` (upper triangle) and `row · z` of every point to `gram` and `rhs`, for `N`
-/// coefficients known at compile time.
+/// The monomials of degree ≤ 4 at `p` (`x = p[0]`, `y = p[1]`) in the order of [`fit_height`],
+/// then the height `p[2]`: `xᵃ yᵇ` as `xᵃ · yᵇ`, each power by repeated multiplication
+/// (`x⁴ = ((x·x)·x)·x`, no `powi`; `x⁰ = 1`, `x¹ = 1 · x`, both exact).
+fn monomials(p: &[f64; 3]) -> [f64; ROW] {
+    let powers = |v: f64| {
+        let v2 = v * v;
+        let v3 = v2 * v;
+        [1.0, v, v2, v3, v3 * v]
+    };
+    let ([x0, x1, x2, x3, x4], [y0, y1, y2, y3, y4]) = (powers(p[0]), powers(p[1]));
+    [
+        x0 * y0,
+        x1 * y0,
+        x0 * y1,
+        x2 * y0,
+        x1 * y1,
+        x0 * y2,
+        x3 * y0,
+        x2 * y1,
+        x1 * y2,
+        x0 * y3,
+        x4 * y0,
+        x3 * y1,
+        x2 * y2,
+        x1 * y3,
+        x0 * y4,
+        p[2],
+    ]
+}
+
+/// Adds `rowᵀ row` (upper triangle) and `row · z` of every point to `gram` and `rhs`, for the
+/// `N` monomial columns from `FIRST` on, both known at compile time (the loops unroll; each
+/// entry is still its own sum over the points in order).
 #[allow(clippy::needless_range_loop)] // triangular index arithmetic reads clearer with indices
-fn accumulate_normal_equations<const N: usize, F: Fn(&[f64; 3], &mut [f64; MAX_COEFFS])>(
-    local: &[[f64; 3]],
-    row: &F,
+fn accumulate_normal_equations<const N: usize, const FIRST: usize>(
+    rows: &[[f64; ROW]],
     gram: &mut [[f64; MAX_COEFFS]; MAX_COEFFS],
     rhs: &mut [f64; MAX_COEFFS],
 ) {
-    let mut r = [0.0; MAX_COEFFS];
-    for p in local {
-        row(p, &mut r);
-        for i in 0..N.min(MAX_COEFFS) {
-            let ri = r[i];
-            rhs[i] += ri * p[2];
-            for j in i..N.min(MAX_COEFFS) {
-                gram[i][j] += ri * r[j];
+    for row in rows {
+        for i in 0..N.min(MAX_COEFFS - FIRST) {
+            let ri = row[FIRST + i];
+            rhs[i] += ri * row[MAX_COEFFS];
+            for j in i..N.min(MAX_COEFFS - FIRST) {
+                gram[i][j] += ri * row[FIRST + j];
             }
         }
     }
@@ -273,8 +295,29 @@ pub const NORMAL_EQUATIONS_CONDITION: f64 = 1e2;
 /// the estimated condition number of `A` (ratio of the largest to the smallest diagonal entry of
 /// the Cholesky factor, which is `R`'s diagonal of the unpivoted QR of `A`) exceeds
 /// [`NORMAL_EQUATIONS_CONDITION`]. Returns the estimate.
-#[allow(clippy::needless_range_loop)] // triangular index arithmetic reads clearer with indices
 pub fn solve_normal_equations(
+    g: &mut [[f64; MAX_COEFFS]; MAX_COEFFS],
+    r: &mut [f64; MAX_COEFFS],
+    n: usize,
+    out: &mut [f64],
+) -> Option<f64> {
+    // The sizes the jets and the quadric use with `n` a constant, so that the inlined solver's
+    // loops unroll (the same operations in the same order).
+    match n {
+        15 => cholesky_solve(g, r, 15, out),
+        14 => cholesky_solve(g, r, 14, out),
+        10 => cholesky_solve(g, r, 10, out),
+        9 => cholesky_solve(g, r, 9, out),
+        6 => cholesky_solve(g, r, 6, out),
+        5 => cholesky_solve(g, r, 5, out),
+        _ => cholesky_solve(g, r, n, out),
+    }
+}
+
+/// The body of [`solve_normal_equations`].
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // triangular index arithmetic reads clearer with indices
+fn cholesky_solve(
     g: &mut [[f64; MAX_COEFFS]; MAX_COEFFS],
     r: &mut [f64; MAX_COEFFS],
     n: usize,
