@@ -7,6 +7,7 @@
 //!   mesh file, or `torus:NU:NV` for `fixtures::large::noisy_torus(NU, NV)` (default
 //!   `torus:1000:500`, 10⁶ faces, the mesh of `fixtures --example big_mesh`). Under
 //!   `perf stat` or `perf record` with `none` as the baseline it isolates an estimator's cost.
+//!   Each run also prints how far the peak resident memory rose above the prepared mesh's.
 //! * `… -- hash` prints one 64-bit FNV-1a hash per (mesh, estimator, given normals or not) of
 //!   the bits of every normal, every shape tensor and every fallback, over the small zoo of
 //!   hostile meshes (`fixtures::zoo`), the corpus meshes and the noisy tori at 10⁴ and 10⁶
@@ -63,6 +64,26 @@ fn cpu_seconds() -> f64 {
     };
     // Field 14 is index 11 after the state (field 3 is index 0); clock ticks of 1/100 s.
     (ticks(11) + ticks(12)) / 100.0
+}
+
+/// A `kB` line of `/proc/self/status` in MB (`VmHWM`: the peak resident memory, `VmRSS`: the
+/// current one).
+fn status_mb(key: &str) -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with(key))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map_or(0.0, |kb| kb / 1000.0)
+}
+
+/// Resets the peak resident memory to the current one (writing `5` to `/proc/self/clear_refs`,
+/// Linux 4.0 on) and returns the current one, MB.
+fn reset_peak_mb() -> f64 {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+    status_mb("VmRSS:")
 }
 
 /// FNV-1a over 64-bit words.
@@ -154,14 +175,17 @@ fn time(name: &str, runs: usize, spec: &str) {
     }
     let est = estimator_by_name(name).expect("registered estimator");
     for _ in 0..runs {
+        let before = reset_peak_mb();
         let (c, t) = (cpu_seconds(), Instant::now());
         let e = std::hint::black_box(est.estimate(&mesh, None));
         let wall = t.elapsed().as_secs_f64();
         let cpu = cpu_seconds() - c;
+        let peak = status_mb("VmHWM:") - before;
         println!(
-            "{name}: wall {wall:.3} s, cpu {cpu:.2} s, hash {:016x}",
+            "{name}: wall {wall:.3} s, cpu {cpu:.2} s, peak +{peak:.0} MB, hash {:016x}",
             hash(&e)
         );
+        drop(e);
     }
 }
 

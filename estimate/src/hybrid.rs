@@ -18,11 +18,23 @@
 //! over one edge). `ρ ≤` [`RESOLVED`] takes `jet4`'s normal and tensor, otherwise
 //! Rusinkiewicz's. A vertex where `jet4` had to fall back (lower degree or planar) takes
 //! Rusinkiewicz's estimate too. Given normals are kept by both.
+//!
+//! # Cost
+//!
+//! Both estimators share one [`Topology`]. Rusinkiewicz's estimate is computed first, then the
+//! jet is fitted only at the vertices whose resolution test passes, in the same parallel pass
+//! that writes its result over Rusinkiewicz's: a jet's estimate at a vertex reads only the
+//! mesh and the first (angle-weighted) normals, so it is bit for bit the one a fit at every
+//! vertex gives there, and no second full estimate is held (about 35 MB less at the peak at
+//! 10⁶ triangles).
 
 use nalgebra::Vector3;
+use rayon::prelude::*;
 use surface::Mesh;
 
-use crate::{Estimate, Estimator, FallbackKind, JET4, RUSINKIEWICZ};
+use crate::fit::Workspace;
+use crate::jet::{first_normals, fit_at};
+use crate::{principal_curvatures, Estimate, Estimator, Topology, JET4, RUSINKIEWICZ};
 
 /// The largest normal turn per edge (radians) at which the degree-4 jet is trusted: chosen by
 /// the `estimation` study (at 0.1 the jet is used only from about ring 128 × 64 on and loses
@@ -47,10 +59,8 @@ impl Estimator for Hybrid {
     }
 
     fn estimate(&self, mesh: &Mesh, given: Option<&[Vector3<f64>]>) -> Estimate {
-        // One after the other: run side by side (rayon::join) they measured no faster on two
-        // cores (both are parallel inside) and left 44 MB more at the peak at 10⁶ triangles.
-        let rus = RUSINKIEWICZ.estimate(mesh, given);
-        let jet = JET4.estimate(mesh, given);
+        let topo = Topology::new(mesh);
+        let mut out = RUSINKIEWICZ.estimate_with(mesh, &topo, given);
         let n = mesh.num_vertices();
         // Mean incident edge length per vertex.
         let mut len = vec![0.0f64; n];
@@ -64,31 +74,31 @@ impl Estimator for Hybrid {
                 count[v] += 1;
             }
         }
-        let mut jet_fell_back = vec![false; n];
-        for f in &jet.fallbacks {
-            if matches!(
-                f.kind,
-                FallbackKind::LowerDegree { .. } | FallbackKind::Planar { .. }
-            ) {
-                if let Some(x) = jet_fell_back.get_mut(f.vertex) {
-                    *x = true;
-                }
-            }
-        }
         // The result is Rusinkiewicz's (its fallbacks too: the jet's are used only where its
         // estimate is, and by the rule none are, but for normal fallbacks, which both share),
         // with the jet's estimate where the rule takes it. Vertex v's test reads only v's
-        // Rusinkiewicz values, not yet replaced when it runs.
-        let mut out = rus;
-        for v in 0..n {
-            let [k1, k2] = out.principal(v).unwrap_or([0.0, 0.0]);
-            let ell = len[v] / count[v].max(1) as f64;
-            let rho = k1.abs().max(k2.abs()) * ell;
-            if rho <= RESOLVED && !jet_fell_back[v] && count[v] > 0 {
-                out.normals[v] = jet.normals[v];
-                out.shapes[v] = jet.shapes[v];
-            }
-        }
+        // Rusinkiewicz values, replaced only after it. The jet is fitted only where the
+        // resolution test passes: its estimate at a vertex reads only the mesh and the first
+        // normals, so it is the one a fit at every vertex would give there.
+        let first = first_normals(mesh, &topo, given);
+        let spec = JET4.spec();
+        out.normals
+            .par_iter_mut()
+            .zip(out.shapes.par_iter_mut())
+            .enumerate()
+            .with_min_len(256)
+            .for_each_init(Workspace::default, |ws, (v, (normal, shape))| {
+                let [k1, k2] = principal_curvatures(shape, normal);
+                let ell = len[v] / count[v].max(1) as f64;
+                let rho = k1.abs().max(k2.abs()) * ell;
+                if !(rho <= RESOLVED && count[v] > 0) {
+                    return;
+                }
+                if let Some((jn, js)) = fit_at(mesh, &topo, &first, given, &spec, v, ws) {
+                    *normal = jn;
+                    *shape = js;
+                }
+            });
         out
     }
 }

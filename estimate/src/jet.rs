@@ -36,10 +36,11 @@ use rayon::prelude::*;
 use surface::Mesh;
 
 use crate::fit::{fit_vertex, num_coeffs, FitFailure, FitSpec, RingRule, Workspace};
-use crate::normals::{vertex_normals_with, NormalWeighting};
+use crate::normals::{vertex_normals_with, NormalWeighting, Normals};
 use crate::Topology;
 use crate::{
-    finish, given_normal, project_shape, Estimate, Estimator, Fallback, FallbackKind, PlanarReason,
+    finish, finish_vertex, given_normal, project_shape, Estimate, Estimator, Fallback,
+    FallbackKind, PlanarReason,
 };
 
 /// The neighbourhood has at least this many points per coefficient: twice as many equations as
@@ -96,7 +97,8 @@ pub static JET4: Jet = Jet {
 };
 
 impl Jet {
-    fn spec(&self) -> FitSpec {
+    /// What [`Jet::estimate`] fits.
+    pub(crate) fn spec(&self) -> FitSpec {
         FitSpec {
             degree: self.degree,
             constant: true,
@@ -149,6 +151,33 @@ fn fit_one(
     }
 }
 
+/// The first normals of the fitting estimators: the given ones, else angle-weighted.
+pub(crate) fn first_normals(
+    mesh: &Mesh,
+    topo: &Topology,
+    given: Option<&[Vector3<f64>]>,
+) -> Normals {
+    vertex_normals_with(mesh, topo, NormalWeighting::Angle, given)
+}
+
+/// The normal and tensor [`estimate_by_fitting`] (with the fitted normal) gives vertex `v`, if
+/// it records no fallback of its own there (a lower degree, a planar or non-finite tensor);
+/// `first` as [`first_normals`] gives it. The same per-vertex steps, for estimators that want
+/// the fit at some vertices only.
+pub(crate) fn fit_at(
+    mesh: &Mesh,
+    topo: &Topology,
+    first: &Normals,
+    given: Option<&[Vector3<f64>]>,
+    spec: &FitSpec,
+    v: usize,
+    ws: &mut Workspace,
+) -> Option<(Vector3<f64>, Matrix3<f64>)> {
+    let (mut n, mut s, fb) = fit_one(mesh, topo, &first.normals, given, spec, true, v, ws);
+    let non_finite = finish_vertex(&mut n, &mut s, first.normals.get(v));
+    (fb.is_none() && !non_finite).then_some((n, s))
+}
+
 /// Runs a local fit at every vertex (in parallel) and assembles the [`Estimate`].
 /// `use_fit_normal`: output the fitted surface's normal where the normal is not given.
 pub(crate) fn estimate_by_fitting(
@@ -158,7 +187,7 @@ pub(crate) fn estimate_by_fitting(
     use_fit_normal: bool,
 ) -> Estimate {
     let topo = Topology::new(mesh);
-    let first = vertex_normals_with(mesh, &topo, NormalWeighting::Angle, given);
+    let first = first_normals(mesh, &topo, given);
     let nv = mesh.num_vertices();
     let mut normals = vec![Vector3::z(); nv];
     let mut shapes = vec![Matrix3::zeros(); nv];

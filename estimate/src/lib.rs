@@ -293,6 +293,28 @@ pub(crate) fn project_shape(s: &Matrix3<f64>, n: &Vector3<f64>) -> Matrix3<f64> 
     (out + out.transpose()) * 0.5
 }
 
+/// [`finish`] at one vertex: `n` normalized (replaced by `first`, else `+z`, when it has no
+/// length), `s` symmetrized and projected; true when `s` had a non-finite entry and was zeroed
+/// (a [`PlanarReason::NonFinite`] fallback).
+pub(crate) fn finish_vertex(
+    n: &mut Vector3<f64>,
+    s: &mut Matrix3<f64>,
+    first: Option<&Vector3<f64>>,
+) -> bool {
+    let len = n.norm();
+    if !(len.is_finite() && len > 0.0) {
+        *n = first.copied().unwrap_or_else(Vector3::z);
+    } else {
+        *n = unit(n, len);
+    }
+    *s = project_shape(s, n);
+    if s.iter().all(|c| c.is_finite()) {
+        return false;
+    }
+    *s = Matrix3::zeros();
+    true
+}
+
 /// The last step of every estimator: given normals are kept exactly, every tensor is symmetric
 /// and projected (`S n = 0`), and any non-finite value (not expected) is replaced by the first
 /// normal estimate and `S = 0`, recorded as [`PlanarReason::NonFinite`]. Sorts the fallbacks.
@@ -308,18 +330,7 @@ pub(crate) fn finish(
         .enumerate()
         .with_min_len(1024)
         .filter_map(|(v, (n, s))| {
-            let len = n.norm();
-            if !(len.is_finite() && len > 0.0) {
-                *n = first.normals.get(v).copied().unwrap_or_else(Vector3::z);
-            } else {
-                *n = unit(n, len);
-            }
-            *s = project_shape(s, n);
-            if s.iter().all(|c| c.is_finite()) {
-                return None;
-            }
-            *s = Matrix3::zeros();
-            Some(Fallback {
+            finish_vertex(n, s, first.normals.get(v)).then_some(Fallback {
                 vertex: v,
                 kind: FallbackKind::Planar {
                     reason: PlanarReason::NonFinite,

@@ -114,8 +114,20 @@ impl Estimator for Rusinkiewicz {
     }
 
     fn estimate(&self, mesh: &Mesh, given: Option<&[Vector3<f64>]>) -> Estimate {
-        let topo = Topology::new(mesh);
-        let first = vertex_normals_with(mesh, &topo, self.weighting, given);
+        self.estimate_with(mesh, &Topology::new(mesh), given)
+    }
+}
+
+impl Rusinkiewicz {
+    /// [`Estimator::estimate`] with the mesh's [`Topology`] built by the caller (who needs it
+    /// too).
+    pub(crate) fn estimate_with(
+        &self,
+        mesh: &Mesh,
+        topo: &Topology,
+        given: Option<&[Vector3<f64>]>,
+    ) -> Estimate {
+        let first = vertex_normals_with(mesh, topo, self.weighting, given);
         let verts = mesh.vertices();
         let faces = mesh.faces();
         let normals = &first.normals;
