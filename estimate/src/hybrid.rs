@@ -21,7 +21,9 @@
 //!
 //! # Cost
 //!
-//! Both estimators share one [`Topology`]. Rusinkiewicz's estimate is computed first, then the
+//! Both estimators share one [`Topology`], and their vertex normals (Max-weighted for
+//! Rusinkiewicz, angle-weighted as the jet's first normals) are computed in one pass over the
+//! corners ([`crate::normals::vertex_normals_many`]). Rusinkiewicz's estimate is computed first, then the
 //! jet is fitted only at the vertices whose resolution test passes, in the same parallel pass
 //! that writes its result over Rusinkiewicz's: a jet's estimate at a vertex reads only the
 //! mesh and the first (angle-weighted) normals, so it is bit for bit the one a fit at every
@@ -33,7 +35,8 @@ use rayon::prelude::*;
 use surface::Mesh;
 
 use crate::fit::Workspace;
-use crate::jet::{first_normals, fit_at};
+use crate::jet::{fit_at, FIRST_WEIGHTING};
+use crate::normals::vertex_normals_many;
 use crate::{principal_curvatures, Estimate, Estimator, Topology, JET4, RUSINKIEWICZ};
 
 /// The largest normal turn per edge (radians) at which the degree-4 jet is trusted: chosen by
@@ -60,7 +63,13 @@ impl Estimator for Hybrid {
 
     fn estimate(&self, mesh: &Mesh, given: Option<&[Vector3<f64>]>) -> Estimate {
         let topo = Topology::new(mesh);
-        let mut out = RUSINKIEWICZ.estimate_with(mesh, &topo, given);
+        let [max, first] = vertex_normals_many(
+            mesh,
+            &topo,
+            [RUSINKIEWICZ.weighting, FIRST_WEIGHTING],
+            given,
+        );
+        let mut out = RUSINKIEWICZ.estimate_with(mesh, &topo, max);
         let n = mesh.num_vertices();
         // Mean incident edge length per vertex.
         let mut len = vec![0.0f64; n];
@@ -80,7 +89,6 @@ impl Estimator for Hybrid {
         // Rusinkiewicz values, replaced only after it. The jet is fitted only where the
         // resolution test passes: its estimate at a vertex reads only the mesh and the first
         // normals, so it is the one a fit at every vertex would give there.
-        let first = first_normals(mesh, &topo, given);
         let spec = JET4.spec();
         out.normals
             .par_iter_mut()

@@ -151,18 +151,12 @@ fn fit_one(
     }
 }
 
-/// The first normals of the fitting estimators: the given ones, else angle-weighted.
-pub(crate) fn first_normals(
-    mesh: &Mesh,
-    topo: &Topology,
-    given: Option<&[Vector3<f64>]>,
-) -> Normals {
-    vertex_normals_with(mesh, topo, NormalWeighting::Angle, given)
-}
+/// The weighting of the first normals of the fitting estimators (when not given).
+pub(crate) const FIRST_WEIGHTING: NormalWeighting = NormalWeighting::Angle;
 
 /// The normal and tensor [`estimate_by_fitting`] (with the fitted normal) gives vertex `v`, if
 /// it records no fallback of its own there (a lower degree, a planar or non-finite tensor);
-/// `first` as [`first_normals`] gives it. The same per-vertex steps, for estimators that want
+/// `first` as `vertex_normals_with` under [`FIRST_WEIGHTING`] gives it. The same per-vertex steps, for estimators that want
 /// the fit at some vertices only.
 pub(crate) fn fit_at(
     mesh: &Mesh,
@@ -187,7 +181,7 @@ pub(crate) fn estimate_by_fitting(
     use_fit_normal: bool,
 ) -> Estimate {
     let topo = Topology::new(mesh);
-    let first = first_normals(mesh, &topo, given);
+    let first = vertex_normals_with(mesh, &topo, FIRST_WEIGHTING, given);
     let nv = mesh.num_vertices();
     let mut normals = vec![Vector3::z(); nv];
     let mut shapes = vec![Matrix3::zeros(); nv];

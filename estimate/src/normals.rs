@@ -53,24 +53,41 @@ pub struct Normals {
 /// The unit normal of the triangle `(a, b, c)` (counter-clockwise), `None` when it has zero area
 /// by the mesh's test (module docs).
 pub fn face_unit_normal(a: &Point3<f64>, b: &Point3<f64>, c: &Point3<f64>) -> Option<Vector3<f64>> {
-    let (e1, e2) = (b - a, c - a);
-    let cross = e1.cross(&e2);
-    let mut l = [e1.norm(), e2.norm(), (c - b).norm()];
-    l.sort_by(f64::total_cmp);
-    let area2 = cross.norm();
-    (area2 > DEGENERATE_FACE_SINE * l[1] * l[2] && area2.is_finite()).then(|| cross / area2)
+    unit_normal_and_doubled_area(a, b, c).map(|(n, _)| n)
 }
 
-/// The weighted face-normal sum at vertex `v` (not normalized; zero when no face counts).
-fn weighted_sum(
+/// [`face_unit_normal`] and the doubled area `|(b − a) × (c − a)|` it divides by.
+///
+/// The test needs the two longest edges: taken by comparisons rather than a sort of the three
+/// lengths (the same two values; when a length is not finite neither is the area and the face
+/// is refused either way).
+fn unit_normal_and_doubled_area(
+    a: &Point3<f64>,
+    b: &Point3<f64>,
+    c: &Point3<f64>,
+) -> Option<(Vector3<f64>, f64)> {
+    let (e1, e2) = (b - a, c - a);
+    let cross = e1.cross(&e2);
+    let (l0, l1, l2) = (e1.norm(), e2.norm(), (c - b).norm());
+    let longest = l0.max(l1).max(l2);
+    let middle = l0.min(l1).max(l0.max(l1).min(l2));
+    let area2 = cross.norm();
+    (area2 > DEGENERATE_FACE_SINE * middle * longest && area2.is_finite())
+        .then(|| (cross / area2, area2))
+}
+
+/// The weighted face-normal sums at vertex `v` under each of `weightings` (not normalized;
+/// zero when no face counts). Each corner's face normal, doubled area and edges are computed
+/// once for all the weightings.
+fn weighted_sums<const K: usize>(
     mesh: &Mesh,
     topo: &Topology,
     v: usize,
-    weighting: NormalWeighting,
-) -> Vector3<f64> {
+    weightings: &[NormalWeighting; K],
+) -> [Vector3<f64>; K] {
     let verts = mesh.vertices();
     let faces = mesh.faces();
-    let mut sum = Vector3::zeros();
+    let mut sums = [Vector3::zeros(); K];
     for &f in topo.faces(v) {
         let face = faces[f];
         let Some(c) = face.iter().position(|&x| x == v) else {
@@ -79,20 +96,23 @@ fn weighted_sum(
         let p = &verts[v].data.p;
         let a = &verts[face[(c + 1) % 3]].data.p;
         let b = &verts[face[(c + 2) % 3]].data.p;
-        let Some(n) = face_unit_normal(p, a, b) else {
+        // `area2` is `|e1 × e2|`, the corner's sine times its two edges.
+        let Some((n, area2)) = unit_normal_and_doubled_area(p, a, b) else {
             continue;
         };
         let (e1, e2) = (a - p, b - p);
-        let w = match weighting {
-            NormalWeighting::Angle => e1.cross(&e2).norm().atan2(e1.dot(&e2)),
-            NormalWeighting::Area => 0.5 * e1.cross(&e2).norm(),
-            NormalWeighting::Max => e1.cross(&e2).norm() / (e1.norm_squared() * e2.norm_squared()),
-        };
-        if w.is_finite() {
-            sum += n * w;
+        for (sum, weighting) in sums.iter_mut().zip(weightings) {
+            let w = match weighting {
+                NormalWeighting::Angle => area2.atan2(e1.dot(&e2)),
+                NormalWeighting::Area => 0.5 * area2,
+                NormalWeighting::Max => area2 / (e1.norm_squared() * e2.norm_squared()),
+            };
+            if w.is_finite() {
+                *sum += n * w;
+            }
         }
     }
-    sum
+    sums
 }
 
 /// Vertex normals of `mesh` (module docs).
@@ -109,18 +129,43 @@ pub fn vertex_normals_with(
     weighting: NormalWeighting,
     given: Option<&[Vector3<f64>]>,
 ) -> Normals {
+    let [normals] = vertex_normals_many(mesh, topo, [weighting], given);
+    normals
+}
+
+/// [`vertex_normals_with`] under several weightings in one pass over the corners (each corner's
+/// face normal is computed once for all of them): the same normals and fallbacks, to the bit,
+/// as one call per weighting.
+pub fn vertex_normals_many<const K: usize>(
+    mesh: &Mesh,
+    topo: &Topology,
+    weightings: [NormalWeighting; K],
+    given: Option<&[Vector3<f64>]>,
+) -> [Normals; K] {
     let nv = mesh.num_vertices();
-    let raw: Vec<Option<Vector3<f64>>> = (0..nv)
+    let raw: Vec<[Option<Vector3<f64>>; K]> = (0..nv)
         .into_par_iter()
         .map(|v| {
             if let Some(n) = given_normal(given, v) {
-                return Some(n);
+                return [Some(n); K];
             }
-            let s = weighted_sum(mesh, topo, v, weighting);
-            let len = s.norm();
-            (len > 0.0 && len.is_finite()).then(|| s / len)
+            weighted_sums(mesh, topo, v, &weightings).map(|s| {
+                let len = s.norm();
+                (len > 0.0 && len.is_finite()).then(|| s / len)
+            })
         })
         .collect();
+    std::array::from_fn(|k| complete(topo, given, raw.iter().map(|r| r[k])))
+}
+
+/// The normals of every vertex from the weighted ones (`None` where no face counted): given and
+/// isolated vertices recorded, the missing ones spread from their neighbours (module docs).
+fn complete(
+    topo: &Topology,
+    given: Option<&[Vector3<f64>]>,
+    raw: impl ExactSizeIterator<Item = Option<Vector3<f64>>>,
+) -> Normals {
+    let nv = raw.len();
     let mut fallbacks = Vec::new();
     if given.is_some() {
         for v in 0..nv {
@@ -132,8 +177,13 @@ pub fn vertex_normals_with(
             }
         }
     }
-    let mut normals: Vec<Vector3<f64>> = raw.iter().map(|n| n.unwrap_or_else(Vector3::z)).collect();
-    let mut known: Vec<bool> = raw.iter().map(Option::is_some).collect();
+    let mut known = Vec::with_capacity(nv);
+    let mut normals: Vec<Vector3<f64>> = raw
+        .map(|n| {
+            known.push(n.is_some());
+            n.unwrap_or_else(Vector3::z)
+        })
+        .collect();
     let mut pending: Vec<usize> = (0..nv)
         .filter(|&v| !known[v] && !topo.faces(v).is_empty())
         .collect();

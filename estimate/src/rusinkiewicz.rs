@@ -30,7 +30,7 @@ use nalgebra::{Matrix3, Point3, Vector3};
 use rayon::prelude::*;
 use surface::Mesh;
 
-use crate::normals::{face_unit_normal, vertex_normals_with, NormalWeighting};
+use crate::normals::{face_unit_normal, vertex_normals_with, NormalWeighting, Normals};
 use crate::{finish, Estimate, Estimator, Fallback, FallbackKind, PlanarReason, Topology};
 
 /// The Rusinkiewicz estimator.
@@ -147,20 +147,17 @@ impl Estimator for Rusinkiewicz {
     }
 
     fn estimate(&self, mesh: &Mesh, given: Option<&[Vector3<f64>]>) -> Estimate {
-        self.estimate_with(mesh, &Topology::new(mesh), given)
+        let topo = Topology::new(mesh);
+        let first = vertex_normals_with(mesh, &topo, self.weighting, given);
+        self.estimate_with(mesh, &topo, first)
     }
 }
 
 impl Rusinkiewicz {
-    /// [`Estimator::estimate`] with the mesh's [`Topology`] built by the caller (who needs it
-    /// too).
-    pub(crate) fn estimate_with(
-        &self,
-        mesh: &Mesh,
-        topo: &Topology,
-        given: Option<&[Vector3<f64>]>,
-    ) -> Estimate {
-        let first = vertex_normals_with(mesh, topo, self.weighting, given);
+    /// [`Estimator::estimate`] with the mesh's [`Topology`] and the vertex normals of step 1
+    /// (`vertex_normals_with` under [`Rusinkiewicz::weighting`]) computed by the caller, who
+    /// needs them too.
+    pub(crate) fn estimate_with(&self, mesh: &Mesh, topo: &Topology, first: Normals) -> Estimate {
         let verts = mesh.vertices();
         let faces = mesh.faces();
         let normals = &first.normals;
