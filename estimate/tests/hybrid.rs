@@ -57,3 +57,71 @@ fn a_middle_ring_mixes_by_curvature() {
     let (nj, nr) = split(&mesh);
     assert!(nj > 0 && nr > 0, "jet4 {nj}, rusinkiewicz {nr}");
 }
+
+/// The zoo of hostile meshes (`fixtures::zoo`), repaired, positions only.
+fn zoo_meshes() -> Vec<(&'static str, Mesh)> {
+    fixtures::zoo()
+        .into_iter()
+        .filter_map(|(name, raw)| {
+            let repaired = surface::repair::repair(&raw, &Default::default()).ok()?;
+            Some((name, positions_only(repaired.mesh)))
+        })
+        .collect()
+}
+
+/// The rule of `estimate::hybrid` applied to the full Rusinkiewicz and `jet4` estimates, as the
+/// module states it.
+fn rule(mesh: &Mesh, given: Option<&[nalgebra::Vector3<f64>]>) -> estimate::Estimate {
+    use estimate::FallbackKind;
+    let rus = RUSINKIEWICZ.estimate(mesh, given);
+    let jet = JET4.estimate(mesh, given);
+    let n = mesh.num_vertices();
+    let (mut len, mut count) = (vec![0.0f64; n], vec![0usize; n]);
+    for e in mesh.edges() {
+        let [a, b] = e.vertices;
+        let l = (mesh.vertices()[b].data.p - mesh.vertices()[a].data.p).norm();
+        for v in [a, b] {
+            len[v] += l;
+            count[v] += 1;
+        }
+    }
+    let mut fell_back = vec![false; n];
+    for f in &jet.fallbacks {
+        if matches!(
+            f.kind,
+            FallbackKind::LowerDegree { .. } | FallbackKind::Planar { .. }
+        ) {
+            fell_back[f.vertex] = true;
+        }
+    }
+    let mut out = rus.clone();
+    for v in 0..n {
+        let [k1, k2] = rus.principal(v).unwrap();
+        let rho = k1.abs().max(k2.abs()) * len[v] / count[v].max(1) as f64;
+        if rho <= estimate::hybrid::RESOLVED && !fell_back[v] && count[v] > 0 {
+            out.normals[v] = jet.normals[v];
+            out.shapes[v] = jet.shapes[v];
+        }
+    }
+    out
+}
+
+#[test]
+fn hybrid_is_the_rule_on_the_two_full_estimates_to_the_bit() {
+    // `hybrid` fits the jet only where the rule can take it and shares the topology and the
+    // normal pass: the result must be the rule applied to the two full estimates, bit for bit
+    // (`==` on every float), with and without given normals (some spoiled).
+    for (name, mesh) in zoo_meshes() {
+        let mut given = estimate::vertex_normals(&mesh, estimate::NormalWeighting::Area).normals;
+        for (i, n) in given.iter_mut().enumerate().filter(|(i, _)| i % 7 == 3) {
+            *n = if i % 2 == 0 {
+                nalgebra::Vector3::zeros()
+            } else {
+                nalgebra::Vector3::new(f64::NAN, 0.0, 1.0)
+            };
+        }
+        for g in [None, Some(given.as_slice())] {
+            assert_eq!(HYBRID.estimate(&mesh, g), rule(&mesh, g), "{name}");
+        }
+    }
+}

@@ -51,3 +51,35 @@ fn fallbacks_are_counted() {
     assert!((n.normals[ix.valence3] - Vector3::z()).norm() < APEX_NORMAL);
     assert!(n.normals.iter().all(|v| (v.norm() - 1.0).abs() < UNIT));
 }
+
+#[test]
+fn several_weightings_in_one_pass_are_each_one_to_the_bit() {
+    use estimate::normals::{vertex_normals_many, vertex_normals_with};
+    use estimate::Topology;
+    let weightings = [
+        NormalWeighting::Max,
+        NormalWeighting::Angle,
+        NormalWeighting::Area,
+    ];
+    for (name, raw) in fixtures::zoo() {
+        let Ok(repaired) = surface::repair::repair(&raw, &Default::default()) else {
+            continue;
+        };
+        let mesh = repaired.mesh;
+        let topo = Topology::new(&mesh);
+        let mut given = vertex_normals(&mesh, NormalWeighting::Area).normals;
+        for n in given.iter_mut().step_by(5) {
+            *n = Vector3::zeros();
+        }
+        for g in [None, Some(given.as_slice())] {
+            let many = vertex_normals_many(&mesh, &topo, weightings, g);
+            for (w, normals) in weightings.into_iter().zip(many) {
+                assert_eq!(
+                    normals,
+                    vertex_normals_with(&mesh, &topo, w, g),
+                    "{name} {w:?}"
+                );
+            }
+        }
+    }
+}
