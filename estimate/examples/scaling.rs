@@ -1,5 +1,6 @@
 //! How the speed of each stage scales from 10³ to 10⁶ faces, and what a user gets per second at
-//! each: `cargo run --release -p estimate --example scaling [MAX_FACES]` (default 10⁶).
+//! each: `cargo run --release -p estimate --example scaling [--features mimalloc] [MAX_FACES]`
+//! (default 10⁶).
 //!
 //! The meshes are the irregular noisy tori of `fixtures --example big_mesh`
 //! (`fixtures::large::noisy_torus`: jittered, random diagonals, noise a tenth of an edge) with
@@ -8,18 +9,37 @@
 //! is the best of several runs (more at the small sizes, where one run is short). Printed: the
 //! cost per face in nanoseconds at each size, the spread (largest over smallest) from 10⁴ up and
 //! from 10³ up, and the rate at the largest size. The README's `bench` note is this table.
+//!
+//! The last two rows are references without arithmetic: the nets' bytes copied between reused
+//! buffers, and written into a fresh allocation. Their spreads are what the memory hierarchy
+//! and the allocator alone impose on a stage that moves that many bytes a face.
 
 // A measurement driver on fixed valid data: a failed step should stop it loudly.
 #![allow(clippy::expect_used)]
 
 use std::time::Instant;
 
+/// With `--features mimalloc`: an allocator that keeps freed memory for the next allocation,
+/// where glibc's malloc (the default) returns a freed block above its mmap threshold (32 MB at
+/// most) to the system, so that each run of a large stage faults its output in afresh.
+#[cfg(feature = "mimalloc")]
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use curves::{method_by_name, MethodOptions};
 use estimate::{estimator_by_name, prepare, EstimateChoice, DEFAULT_ESTIMATOR};
+use rayon::prelude::*;
 use surface::patch_io::{write_binary, write_jsonl};
 use surface::{
     fit_scheme, fit_scheme_into, measure_g1, scheme_by_name, tessellate_fit, Fit, SchemeOptions,
 };
+
+/// Bytes of a face's nets (three quartic Bézier triangles of 15 points): the memory references'
+/// unit.
+const NET_BYTES: usize = 3 * 15 * 3 * 8;
+
+/// Words per parallel chunk of the memory references (256 kB).
+const CHUNK: usize = 1 << 15;
 
 /// Runs of a stage at `faces` faces: about 2·10⁶ face-runs in all, at least 3, at most 200.
 fn runs(faces: usize) -> usize {
@@ -76,6 +96,8 @@ fn main() {
         ("tessellate s = 4", "output triangles"),
         ("patches as JSON Lines (to a sink)", "MB"),
         ("patches as binary .bzp (to a sink)", "MB"),
+        ("reference: copy 1080 B a face, reused buffers", "MB"),
+        ("reference: first touch of 1080 B a face, fresh", "MB"),
     ]
     .into_iter()
     .map(|(name, unit)| Stage {
@@ -128,6 +150,26 @@ fn main() {
             write_binary(&fit, &identity, &mut std::io::sink()).expect("writes")
         });
         record(8, t, bytes.len() as f64 / 1e6);
+        // What the memory gives at this size, without any arithmetic: the nets' bytes (three
+        // quartics, 1080 B a face) copied between two buffers that are reused (a cache-resident
+        // size against one that streams from memory), and written into a fresh allocation
+        // (glibc maps a block above 32 MB anew, so every run pays its page faults). Both on all
+        // threads in chunks, as the stages above run.
+        let words = faces * NET_BYTES / 8;
+        let src = vec![1.0f64; words];
+        let mut dst = vec![0.0f64; words];
+        let t = best(n, || {
+            dst.par_chunks_mut(CHUNK)
+                .zip(src.par_chunks(CHUNK))
+                .for_each(|(d, s)| d.copy_from_slice(s));
+        });
+        record(9, t, (faces * NET_BYTES) as f64 / 1e6);
+        let t = best(n.min(20), || {
+            let mut fresh = vec![0.0f64; words];
+            fresh.par_chunks_mut(CHUNK).for_each(|d| d.fill(2.0));
+            fresh
+        });
+        record(10, t, (faces * NET_BYTES) as f64 / 1e6);
     }
     print!("| stage |");
     for faces in &sizes {
