@@ -75,38 +75,36 @@ fn damaged(raw: &RawMesh, rate: f64, seed: u64) -> RawMesh {
     let nv = raw.positions.len();
     let mut extra = Vec::new();
     let mut positions = raw.positions.clone();
-    for f in 0..ps.len() {
+    for face in &mut ps {
         if !rng.chance(rate) {
             continue;
         }
         match rng.below(9) {
-            0 => ps[f].reverse(),
-            1 => extra.push(ps[f].clone()),
+            0 => face.reverse(),
+            1 => extra.push(face.clone()),
             2 => {
-                let mut r = ps[f].clone();
+                let mut r = face.clone();
                 r.reverse();
                 extra.push(r);
             }
             3 => {
                 // A fin on the face's first edge.
                 positions.push(Point3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()));
-                extra.push(vec![ps[f][0], ps[f][1], positions.len() - 1]);
+                extra.push(vec![face[0], face[1], positions.len() - 1]);
             }
             4 => {
-                let k = ps[f].len();
-                ps[f][rng.below(k)] = ps[f][0];
+                let k = face.len();
+                face[rng.below(k)] = face[0];
             }
             5 => {
                 // Merge a corner with a random vertex (non-manifold vertices, odd edges).
-                let k = ps[f].len();
-                ps[f][rng.below(k)] = rng.below(nv);
+                let k = face.len();
+                face[rng.below(k)] = rng.below(nv);
             }
-            6 => ps[f].clear(),
+            6 => face.clear(),
             7 => {
                 // A quad over this face and a neighbouring index.
-                let mut q = ps[f].clone();
-                q.push(rng.below(nv));
-                ps[f] = q;
+                face.push(rng.below(nv));
             }
             _ => {
                 // A collinear (zero-area) face on new points.
@@ -116,7 +114,7 @@ fn damaged(raw: &RawMesh, rate: f64, seed: u64) -> RawMesh {
                 positions.push(Point3::new(a.x + 2.0, 0.0, 0.0));
                 let n = positions.len();
                 extra.push(vec![n - 3, n - 2, n - 1]);
-                extra.push(vec![ps[f][0], n - 2, n - 1]);
+                extra.push(vec![face[0], n - 2, n - 1]);
             }
         }
     }
@@ -167,6 +165,10 @@ fn soup(rng: &mut SplitMix64) -> RawMesh {
                 })
                 .collect(),
         );
+    }
+    if rng.chance(0.02) {
+        // Not from a reader (they refuse NaN), but a hand-built raw mesh may have it.
+        raw.positions[0].x = f64::NAN;
     }
     if rng.chance(0.1) {
         raw.shapes = Some((0..n).map(|i| Matrix3::identity() * i as f64).collect());
