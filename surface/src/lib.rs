@@ -38,6 +38,7 @@
 pub mod beztri;
 pub mod curve_stats;
 pub mod datasets;
+mod edge_groups;
 pub mod fairing;
 pub mod fallback;
 pub mod fit;

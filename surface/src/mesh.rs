@@ -34,6 +34,8 @@ use curves::VertexData;
 use nalgebra::{Matrix3, Point3, Vector3};
 use rayon::prelude::*;
 
+use crate::edge_groups::{ends, key, EdgeGroups};
+
 /// A face whose doubled area is below this fraction of the product of its two longest edges
 /// (the sine of its largest angle, in effect) is degenerate: below `1e-12` a face normal has lost
 /// most of its digits to cancellation.
@@ -42,47 +44,6 @@ pub const DEGENERATE_FACE_SINE: f64 = 1e-12;
 /// Extra named per-vertex (or per-mesh) fields a reader found and did not interpret, kept so that
 /// a writer can put them back (the testbed's extensibility rule).
 pub type ExtraFields = BTreeMap<String, Vec<f64>>;
-
-/// Half-edges `h = 3f + l` (running from corner `l` of face `f` to corner `l + 1`) as `(min,
-/// max, h)` with `min, max` the edge's two vertices, in the order a full sort of these triples
-/// gives — grouped by undirected edge, each group in half-edge order — by a counting sort on
-/// `min` and a small sort per bucket (about the valence): linear in practice, deterministic.
-pub(crate) fn half_edges_by_key(faces: &[[usize; 3]]) -> Vec<(usize, usize, usize)> {
-    let n = faces
-        .iter()
-        .flat_map(|t| t.iter().copied())
-        .max()
-        .map_or(0, |m| m + 1);
-    let mut next = vec![0usize; n + 1];
-    for t in faces {
-        for l in 0..3 {
-            next[t[l].min(t[(l + 1) % 3]) + 1] += 1;
-        }
-    }
-    for v in 0..n {
-        next[v + 1] += next[v];
-    }
-    let bounds = next.clone();
-    let mut out = vec![(0usize, 0usize, 0usize); 3 * faces.len()];
-    for (f, t) in faces.iter().enumerate() {
-        for l in 0..3 {
-            let (a, b) = (t[l], t[(l + 1) % 3]);
-            let lo = a.min(b);
-            out[next[lo]] = (lo, a.max(b), 3 * f + l);
-            next[lo] += 1;
-        }
-    }
-    drop(next);
-    for w in bounds.windows(2) {
-        if w[1] - w[0] > 1 {
-            // Scattered in half-edge order already: a stable sort by `max` keeps it.
-            if let Some(bucket) = out.get_mut(w[0]..w[1]) {
-                bucket.sort_by_key(|x| x.1);
-            }
-        }
-    }
-    out
-}
 
 /// [`Mesh`]'s twin of a boundary half-edge.
 const NO_TWIN: usize = usize::MAX;
@@ -251,6 +212,54 @@ pub struct Mesh {
     pub extra: ExtraFields,
 }
 
+/// The twin of every half-edge of valid faces ([`NO_TWIN`] on the boundary), or the first
+/// error in half-edge order (the one a half-edge-by-half-edge construction meets first): a
+/// second half-edge running the same way along an edge, or a third half-edge on it.
+fn twins(faces: &[[usize; 3]]) -> Result<Vec<usize>, MeshError> {
+    let groups = EdgeGroups::new(faces);
+    let dir = |h: usize| faces[h / 3][h % 3];
+    let mut first_error: Option<(usize, MeshError)> = None;
+    for hs in groups.iter() {
+        let trigger = if hs.len() >= 2 && dir(hs[0]) == dir(hs[1]) {
+            let (a, b) = ends(faces, hs[1]);
+            Some((
+                hs[1],
+                MeshError::InconsistentOrientation {
+                    vertices: [a, b],
+                    faces: [hs[0] / 3, hs[1] / 3],
+                },
+            ))
+        } else if hs.len() >= 3 {
+            let (lo, hi) = key(faces, hs[0]);
+            Some((
+                hs[2],
+                MeshError::NonManifoldEdge {
+                    vertices: [lo, hi],
+                    faces: hs[..3].iter().map(|h| h / 3).collect(),
+                },
+            ))
+        } else {
+            None
+        };
+        if let Some((h, e)) = trigger {
+            if first_error.as_ref().is_none_or(|(h0, _)| h < *h0) {
+                first_error = Some((h, e));
+            }
+        }
+    }
+    if let Some((_, e)) = first_error {
+        return Err(e);
+    }
+    let mut twin = vec![NO_TWIN; 3 * faces.len()];
+    for hs in groups.iter() {
+        if let [h0, h1] = *hs {
+            twin[h0] = h1;
+            twin[h1] = h0;
+        }
+    }
+    Ok(twin)
+}
+
 /// The zero-area test of [`Mesh::new`]: doubled area at most [`DEGENERATE_FACE_SINE`] times
 /// the product of the two longest edges. Coordinates are finite (checked before), so no NaN
 /// reaches the comparison; a face with a NaN area (overflow) counts as degenerate.
@@ -344,98 +353,48 @@ impl Mesh {
             }
         }
 
-        let nh = 3 * faces.len();
-        let mut twin = vec![NO_TWIN; nh];
+        let twin = twins(&faces)?;
+        let mesh = Self::assemble(vertices, faces, twin);
+        match mesh.first_non_manifold_vertex() {
+            Some(vertex) => Err(MeshError::NonManifoldVertex { vertex }),
+            None => Ok(mesh),
+        }
+    }
+
+    /// The mesh of valid vertices and faces and a twin array pairing half-edges that run along
+    /// the same edge in opposite directions ([`NO_TWIN`] on the boundary): numbers the edges in
+    /// the order of their first half-edge and picks each vertex's outgoing half-edge. Nothing
+    /// is checked.
+    fn assemble(vertices: Vec<Vertex>, faces: Vec<[usize; 3]>, twin: Vec<usize>) -> Self {
+        let nh = twin.len();
+        // Edges numbered in the order of their first half-edge: walking the half-edges in
+        // order, a half-edge starts an edge unless its twin came before it.
         let mut edge_of = vec![0; nh];
-        // Half-edges grouped by undirected key (no hashing, no comparison sort of the whole
-        // list: a counting sort on the smaller vertex, small sorts per bucket); within a group, in
-        // half-edge order.
-        let order = half_edges_by_key(&faces);
-        // Groups as ranges of `order`, then the first error in half-edge order (the one the
-        // half-edge-by-half-edge construction meets first): a second half-edge running the same
-        // way, or a third half-edge.
-        let mut groups: Vec<std::ops::Range<usize>> = Vec::with_capacity(nh / 2 + 1);
-        let mut start = 0;
-        for k in 1..=order.len() {
-            if k == order.len() || (order[k].0, order[k].1) != (order[start].0, order[start].1) {
-                groups.push(start..k);
-                start = k;
+        let mut edges: Vec<Edge> = Vec::with_capacity(nh / 2 + 1);
+        for h in 0..nh {
+            let t = twin[h];
+            if t != NO_TWIN && t < h {
+                edge_of[h] = edge_of[t];
+                continue;
             }
-        }
-        let dir = |h: usize| faces[h / 3][h % 3];
-        let mut first_error: Option<(usize, MeshError)> = None;
-        for g in &groups {
-            let hs = &order[g.clone()];
-            let trigger = if hs.len() >= 2 && dir(hs[0].2) == dir(hs[1].2) {
-                Some((
-                    hs[1].2,
-                    MeshError::InconsistentOrientation {
-                        vertices: [dir(hs[1].2), faces[hs[1].2 / 3][(hs[1].2 % 3 + 1) % 3]],
-                        faces: [hs[0].2 / 3, hs[1].2 / 3],
-                    },
-                ))
-            } else if hs.len() >= 3 {
-                Some((
-                    hs[2].2,
-                    MeshError::NonManifoldEdge {
-                        vertices: [hs[0].0, hs[0].1],
-                        faces: hs[..3].iter().map(|x| x.2 / 3).collect(),
-                    },
-                ))
-            } else {
-                None
-            };
-            if let Some((h, e)) = trigger {
-                if first_error.as_ref().is_none_or(|(h0, _)| h < *h0) {
-                    first_error = Some((h, e));
-                }
-            }
-        }
-        if let Some((_, e)) = first_error {
-            return Err(e);
-        }
-        // Edges numbered in the order of their first half-edge: mark each group's leader, then
-        // walk the half-edges in order (linear; no sort of the groups).
-        let mut leader = vec![usize::MAX; nh];
-        for (gi, g) in groups.iter().enumerate() {
-            leader[order[g.start].2] = gi;
-        }
-        let mut edges: Vec<Edge> = Vec::with_capacity(groups.len());
-        for &gi in leader.iter().filter(|&&gi| gi != usize::MAX) {
-            let e = edges.len();
-            let hs = &order[groups[gi].clone()];
-            let h0 = hs[0].2;
-            let (f, l) = (h0 / 3, h0 % 3);
-            edge_of[h0] = e;
-            let mut edge = Edge {
+            edge_of[h] = edges.len();
+            let (f, l) = (h / 3, h % 3);
+            edges.push(Edge {
                 vertices: [faces[f][l], faces[f][(l + 1) % 3]],
                 first: (f, l),
-                second: None,
-            };
-            if let Some(&(_, _, h1)) = hs.get(1) {
-                edge_of[h1] = e;
-                twin[h0] = h1;
-                twin[h1] = h0;
-                edge.second = Some((h1 / 3, h1 % 3));
-            }
-            edges.push(edge);
+                second: (t != NO_TWIN).then_some((t / 3, t % 3)),
+            });
         }
-        drop(leader);
-        drop(groups);
-        drop(order);
-
-        let mut outgoing = vec![None; count];
-        let mut incident = vec![0usize; count];
+        let mut outgoing = vec![None; vertices.len()];
         for (h, &t) in twin.iter().enumerate() {
             let v = faces[h / 3][h % 3];
-            incident[v] += 1;
             // Prefer an outgoing half-edge on the boundary: not needed for correctness (queries
             // rotate to the boundary), but makes the common case cheap.
             if outgoing[v].is_none() || t == NO_TWIN {
                 outgoing[v] = Some(h);
             }
         }
-        let mesh = Mesh {
+        Mesh {
             face_names: Vec::new(),
             vertices,
             faces,
@@ -444,15 +403,21 @@ impl Mesh {
             edges,
             outgoing,
             extra: ExtraFields::new(),
-        };
-        // Every vertex's faces form one fan (in parallel; the lowest bad vertex is named).
-        if let Some(v) = (0..count)
-            .into_par_iter()
-            .find_first(|&v| mesh.fan_len(v) != incident[v])
-        {
-            return Err(MeshError::NonManifoldVertex { vertex: v });
         }
-        Ok(mesh)
+    }
+
+    /// The lowest vertex whose faces form more than one fan (in parallel): one whose fan walk
+    /// does not meet every half-edge leaving it.
+    fn first_non_manifold_vertex(&self) -> Option<usize> {
+        let mut incident = vec![0usize; self.vertices.len()];
+        for face in &self.faces {
+            for &v in face {
+                incident[v] += 1;
+            }
+        }
+        (0..self.vertices.len())
+            .into_par_iter()
+            .find_first(|&v| self.fan_len(v) != incident[v])
     }
 
     /// The same mesh with face names (for writers and messages); `names` shorter than the face

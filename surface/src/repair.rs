@@ -39,6 +39,7 @@ use meshio::RawMesh;
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 
+use crate::edge_groups::{ends, key, EdgeGroups};
 use crate::mesh::{ExtraFields, Mesh, MeshError, Vertex};
 
 /// Rule 9's bound: a mesh that still fails validation after this many faces were dropped is
@@ -279,28 +280,6 @@ impl Dsu {
     }
 }
 
-/// Half-edges grouped by undirected edge: `(key, face, local edge)` sorted by key, then face and
-/// local edge (a counting sort, [`crate::mesh::half_edges_by_key`]).
-fn sorted_half_edges(faces: &[[usize; 3]]) -> Vec<((usize, usize), usize, usize)> {
-    crate::mesh::half_edges_by_key(faces)
-        .into_iter()
-        .map(|(a, b, h)| ((a, b), h / 3, h % 3))
-        .collect()
-}
-
-/// Groups of equal keys in a sorted half-edge list, as index ranges.
-fn groups(hs: &[((usize, usize), usize, usize)]) -> Vec<std::ops::Range<usize>> {
-    let mut out = Vec::new();
-    let mut start = 0;
-    for i in 1..=hs.len() {
-        if i == hs.len() || hs[i].0 != hs[start].0 {
-            out.push(start..i);
-            start = i;
-        }
-    }
-    out
-}
-
 fn flip(t: &mut [usize; 3]) {
     t.swap(1, 2);
 }
@@ -405,16 +384,14 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     }
 
     // Rule 4: consistent orientation by a walk across two-face edges.
-    let hs = sorted_half_edges(&faces);
-    let edge_groups = groups(&hs);
+    let edge_groups = EdgeGroups::new(&faces);
     // Neighbours across two-face edges: (neighbour, same direction as given?), at most one per
     // local edge, so three slots a face (filled in the order of the edge groups).
     let mut adj: Vec<[(usize, bool); 3]> = vec![[(usize::MAX, false); 3]; faces.len()];
     let mut adj_len: Vec<u8> = vec![0; faces.len()];
-    for g in &edge_groups {
-        if g.len() == 2 {
-            let (_, f, l) = hs[g.start];
-            let (_, h, m) = hs[g.start + 1];
+    for g in edge_groups.iter() {
+        if let [h0, h1] = *g {
+            let (f, l, h, m) = (h0 / 3, h0 % 3, h1 / 3, h1 % 3);
             if f == h {
                 continue;
             }
@@ -518,10 +495,9 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
             }
             volume[component[f]] += a.coords.dot(&b.coords.cross(&c.coords));
         }
-        for g in &edge_groups {
+        for g in edge_groups.iter() {
             if g.len() != 2 {
-                let (_, f, _) = hs[g.start];
-                closed[component[f]] = false;
+                closed[component[g[0] / 3]] = false;
             }
         }
         let mut reverse = vec![false; n_components];
@@ -710,18 +686,18 @@ fn join_and_split(
         *extra_copies.entry(s).or_insert(0) += 1;
         vertex_source.len() - 1
     };
-    let hs = sorted_half_edges(tris);
-    let mut pairs: Vec<((usize, usize), (usize, usize))> = Vec::with_capacity(hs.len() / 2);
+    let groups = EdgeGroups::new(tris);
+    let mut pairs: Vec<((usize, usize), (usize, usize))> = Vec::with_capacity(groups.len());
     // Whether some edge has more than two faces or two running the same way: only then can a
     // face still be a third one after the split (splitting vertices only separates groups).
     let mut any_cut = false;
-    for g in groups(&hs) {
-        let members = &hs[g];
-        let (key, _, _) = members[0];
+    for members in groups.iter() {
+        let edge = key(tris, members[0]);
         let mut fwd: Option<(usize, usize)> = None;
         let mut bwd: Option<(usize, usize)> = None;
-        for &(_, f, l) in members {
-            let slot = if tris[f][l] == key.0 {
+        for &h in members {
+            let (f, l) = (h / 3, h % 3);
+            let slot = if tris[f][l] == edge.0 {
                 &mut fwd
             } else {
                 &mut bwd
@@ -743,11 +719,11 @@ fn join_and_split(
             _ => cut |= members.len() == 2,
         }
         if cut {
-            detached.insert([vertex_source[key.0], vertex_source[key.1]]);
+            detached.insert([vertex_source[edge.0], vertex_source[edge.1]]);
         }
         any_cut |= cut;
     }
-    drop(hs);
+    drop(groups);
     // Fans: union corners (f, corner) around each vertex across joined edges. Edge l of f runs
     // a → b and edge m of h runs b → a: vertex a is corner l of f and corner m + 1 of h, vertex
     // b is corner l + 1 of f and corner m of h.
@@ -788,33 +764,26 @@ fn join_and_split(
         joined[3 * f + l] = true;
         joined[3 * h + m] = true;
     }
-    let hs = sorted_half_edges(tris);
+    let groups = EdgeGroups::new(tris);
     let mut forced = false;
-    for g in groups(&hs) {
-        let members = &hs[g];
-        let same_direction = members.len() == 2 && {
-            let (_, f, l) = members[0];
-            let (_, h, m) = members[1];
-            tris[f][l] == tris[h][m]
-        };
+    for members in groups.iter() {
+        let same_direction =
+            members.len() == 2 && ends(tris, members[0]).0 == ends(tris, members[1]).0;
         if members.len() <= 2 && !same_direction {
             continue;
         }
         // Keep the joined pair (or the first face), cut the others loose.
-        let keep: Vec<(usize, usize)> = members
-            .iter()
-            .map(|&(_, f, l)| (f, l))
-            .filter(|&(f, l)| joined[3 * f + l])
-            .collect();
+        let keep: Vec<usize> = members.iter().copied().filter(|&h| joined[h]).collect();
         let keep = if keep.len() == 2 {
             keep
         } else {
-            vec![(members[0].1, members[0].2)]
+            vec![members[0]]
         };
-        for &(_, f, l) in members {
-            if keep.contains(&(f, l)) {
+        for &h in members {
+            if keep.contains(&h) {
                 continue;
             }
+            let (f, l) = (h / 3, h % 3);
             let (a, b) = (tris[f][l], tris[f][(l + 1) % 3]);
             let (ca, cb) = (copy_of(a, vertex_source), copy_of(b, vertex_source));
             tris[f][l] = ca;
