@@ -159,9 +159,9 @@ impl EdgeGroups {
         }
     }
 
-    /// Number of groups (undirected edges).
-    pub(crate) fn len(&self) -> usize {
-        self.starts.len().saturating_sub(1)
+    /// [`EdgeGroups::iter`] in parallel.
+    pub(crate) fn par_iter(&self) -> impl IndexedParallelIterator<Item = &[usize]> + '_ {
+        self.starts.par_windows(2).map(|w| &self.order[w[0]..w[1]])
     }
 
     /// The groups in order, each as its half-edges in increasing order.
@@ -219,7 +219,7 @@ mod tests {
                 .map(|_| [rnd(verts) + 3, rnd(verts) + 3, rnd(verts)])
                 .collect();
             let g = EdgeGroups::new(&tris);
-            assert_eq!(g.len(), by_full_sort(&tris).len());
+            assert_eq!(g.iter().count(), g.par_iter().count());
             assert_eq!(grouped(&tris), by_full_sort(&tris), "{faces} faces");
         }
     }

@@ -46,7 +46,7 @@ pub const DEGENERATE_FACE_SINE: f64 = 1e-12;
 pub type ExtraFields = BTreeMap<String, Vec<f64>>;
 
 /// [`Mesh`]'s twin of a boundary half-edge.
-const NO_TWIN: usize = usize::MAX;
+pub(crate) const NO_TWIN: usize = usize::MAX;
 
 /// One vertex: position, normal and shape tensor, whether the curvature is known, a name and
 /// extra fields.
@@ -260,6 +260,77 @@ fn twins(faces: &[[usize; 3]]) -> Result<Vec<usize>, MeshError> {
     Ok(twin)
 }
 
+/// One half-edge leaving each of `vertex_count` vertices (`None` for a vertex in no face):
+/// the last one on the boundary, else the first. Preferring the boundary is not needed for
+/// correctness (queries rotate to the boundary), but makes the common case cheap.
+pub(crate) fn outgoing_half_edges(
+    faces: &[[usize; 3]],
+    twin: &[usize],
+    vertex_count: usize,
+) -> Vec<Option<usize>> {
+    let mut outgoing = vec![None; vertex_count];
+    for (h, &t) in twin.iter().enumerate() {
+        let v = faces[h / 3][h % 3];
+        if outgoing[v].is_none() || t == NO_TWIN {
+            outgoing[v] = Some(h);
+        }
+    }
+    outgoing
+}
+
+/// Walks the fan of half-edge `start`'s vertex across `twin` ([`NO_TWIN`] on the boundary):
+/// first clockwise (`h → next(twin(h))`) until a boundary or back at the start, then
+/// counter-clockwise (`h → twin(prev(h))`), calling `visit` with each half-edge of that second
+/// pass (one per face, in order).
+fn walk_fan(twin: &[usize], start: usize, mut visit: impl FnMut(usize)) {
+    let nh = twin.len();
+    let twin_of = |h: usize| twin.get(h).copied().filter(|&t| t != NO_TWIN);
+    let mut h = start;
+    for _ in 0..nh {
+        match twin_of(h) {
+            Some(t) if Mesh::next(t) != start => h = Mesh::next(t),
+            _ => break,
+        }
+    }
+    let first = h;
+    visit(h);
+    for _ in 0..nh {
+        match twin_of(Mesh::prev(h)) {
+            Some(t) if t != first => {
+                h = t;
+                visit(h);
+            }
+            _ => break,
+        }
+    }
+}
+
+/// The lowest vertex whose faces form more than one fan across `twin`, in parallel: one
+/// whose fan walk from `outgoing[v]` ([`outgoing_half_edges`]) does not meet every half-edge
+/// leaving it. `None` when every vertex is manifold.
+pub(crate) fn first_vertex_with_several_fans(
+    faces: &[[usize; 3]],
+    twin: &[usize],
+    outgoing: &[Option<usize>],
+) -> Option<usize> {
+    let mut incident = vec![0usize; outgoing.len()];
+    for face in faces {
+        for &v in face {
+            incident[v] += 1;
+        }
+    }
+    let fan_len = |v: usize| {
+        let mut len = 0;
+        if let Some(start) = outgoing[v] {
+            walk_fan(twin, start, |_| len += 1);
+        }
+        len
+    };
+    (0..outgoing.len())
+        .into_par_iter()
+        .find_first(|&v| fan_len(v) != incident[v])
+}
+
 /// The zero-area test of [`Mesh::new`]: doubled area at most [`DEGENERATE_FACE_SINE`] times
 /// the product of the two longest edges. Coordinates are finite (checked before), so no NaN
 /// reaches the comparison; a face with a NaN area (overflow) counts as degenerate.
@@ -270,6 +341,20 @@ fn is_degenerate([a, b, c]: [Point3<f64>; 3]) -> bool {
     let area2 = e1.cross(&e2).norm();
     let limit = DEGENERATE_FACE_SINE * lengths[1] * lengths[2];
     area2.partial_cmp(&limit) != Some(std::cmp::Ordering::Greater)
+}
+
+/// The first vertex with non-finite data, in parallel (`find_first`: the lowest index, as a
+/// loop finds).
+fn check_vertices(vertices: &[Vertex]) -> Result<(), MeshError> {
+    match vertices
+        .par_iter()
+        .enumerate()
+        .map(|(i, v)| check_vertex(i, v))
+        .find_first(Result::is_err)
+    {
+        Some(Err(e)) => Err(e),
+        _ => Ok(()),
+    }
 }
 
 fn check_vertex(i: usize, v: &Vertex) -> Result<(), MeshError> {
@@ -317,15 +402,7 @@ impl Mesh {
         allow_degenerate: bool,
     ) -> Result<Self, MeshError> {
         let count = vertices.len();
-        // The first bad vertex, in parallel (`find_first`: the lowest index, as a loop finds).
-        if let Some(Err(e)) = vertices
-            .par_iter()
-            .enumerate()
-            .map(|(i, v)| check_vertex(i, v))
-            .find_first(Result::is_err)
-        {
-            return Err(e);
-        }
+        check_vertices(&vertices)?;
         for (f, face) in faces.iter().enumerate() {
             for (corner, &vertex) in face.iter().enumerate() {
                 if vertex >= count {
@@ -361,6 +438,25 @@ impl Mesh {
         }
     }
 
+    /// The mesh of faces whose adjacency the repair ([`crate::repair`]) has established: every
+    /// corner a vertex of `vertices`, no repeated vertex in a face, `twin` pairing the
+    /// half-edges of every edge with two faces running opposite ways ([`NO_TWIN`] on the
+    /// boundary), no edge with a third face, and the faces around every vertex one fan across
+    /// these twins. The validation of [`Mesh::new_allowing_degenerate`] would find exactly these
+    /// twins and nothing to reject, so only the vertex data is checked (the same
+    /// [`MeshError::NonFinite`] as there); debug builds check the rest too.
+    pub(crate) fn from_twins(
+        vertices: Vec<Vertex>,
+        faces: Vec<[usize; 3]>,
+        twin: Vec<usize>,
+    ) -> Result<Self, MeshError> {
+        check_vertices(&vertices)?;
+        debug_assert_eq!(twins(&faces).as_ref(), Ok(&twin));
+        let mesh = Self::assemble(vertices, faces, twin);
+        debug_assert_eq!(mesh.first_non_manifold_vertex(), None);
+        Ok(mesh)
+    }
+
     /// The mesh of valid vertices and faces and a twin array pairing half-edges that run along
     /// the same edge in opposite directions ([`NO_TWIN`] on the boundary): numbers the edges in
     /// the order of their first half-edge and picks each vertex's outgoing half-edge. Nothing
@@ -385,15 +481,7 @@ impl Mesh {
                 second: (t != NO_TWIN).then_some((t / 3, t % 3)),
             });
         }
-        let mut outgoing = vec![None; vertices.len()];
-        for (h, &t) in twin.iter().enumerate() {
-            let v = faces[h / 3][h % 3];
-            // Prefer an outgoing half-edge on the boundary: not needed for correctness (queries
-            // rotate to the boundary), but makes the common case cheap.
-            if outgoing[v].is_none() || t == NO_TWIN {
-                outgoing[v] = Some(h);
-            }
-        }
+        let outgoing = outgoing_half_edges(&faces, &twin, vertices.len());
         Mesh {
             face_names: Vec::new(),
             vertices,
@@ -406,18 +494,9 @@ impl Mesh {
         }
     }
 
-    /// The lowest vertex whose faces form more than one fan (in parallel): one whose fan walk
-    /// does not meet every half-edge leaving it.
+    /// The lowest vertex whose faces form more than one fan (in parallel).
     fn first_non_manifold_vertex(&self) -> Option<usize> {
-        let mut incident = vec![0usize; self.vertices.len()];
-        for face in &self.faces {
-            for &v in face {
-                incident[v] += 1;
-            }
-        }
-        (0..self.vertices.len())
-            .into_par_iter()
-            .find_first(|&v| self.fan_len(v) != incident[v])
+        first_vertex_with_several_fans(&self.faces, &self.twin, &self.outgoing)
     }
 
     /// The same mesh with face names (for writers and messages); `names` shorter than the face
@@ -571,29 +650,9 @@ impl Mesh {
         3 * (h / 3) + (h % 3 + 2) % 3
     }
 
-    /// Walks the fan of half-edge `start`'s vertex: first clockwise (`h → next(twin(h))`) until
-    /// a boundary or back at the start, then counter-clockwise (`h → twin(prev(h))`), calling
-    /// `visit` with each half-edge of that second pass (one per face, in order).
-    fn walk_fan(&self, start: usize, mut visit: impl FnMut(usize)) {
-        let nh = self.twin.len();
-        let mut h = start;
-        for _ in 0..nh {
-            match self.twin_of(h) {
-                Some(t) if Self::next(t) != start => h = Self::next(t),
-                _ => break,
-            }
-        }
-        let first = h;
-        visit(h);
-        for _ in 0..nh {
-            match self.twin_of(Self::prev(h)) {
-                Some(t) if t != first => {
-                    h = t;
-                    visit(h);
-                }
-                _ => break,
-            }
-        }
+    /// [`walk_fan`] on this mesh's twins.
+    fn walk_fan(&self, start: usize, visit: impl FnMut(usize)) {
+        walk_fan(&self.twin, start, visit);
     }
 
     fn faces_around_vertex_from(&self, v: usize, start: usize) -> Vec<usize> {
@@ -611,17 +670,6 @@ impl Mesh {
             Some(h) => self.faces_around_vertex_from(v, h),
             None => Vec::new(),
         }
-    }
-
-    /// `faces_around_vertex(v).len()` without building the list (the validation of a mesh asks
-    /// it of every vertex).
-    fn fan_len(&self, v: usize) -> usize {
-        let Some(start) = self.outgoing.get(v).copied().flatten() else {
-            return 0;
-        };
-        let mut len = 0;
-        self.walk_fan(start, |_| len += 1);
-        len
     }
 
     /// The vertices adjacent to `v` in the same counter-clockwise order as

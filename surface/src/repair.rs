@@ -40,7 +40,10 @@ use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 
 use crate::edge_groups::{ends, key, EdgeGroups};
-use crate::mesh::{ExtraFields, Mesh, MeshError, Vertex};
+use crate::mesh::{
+    first_vertex_with_several_fans, outgoing_half_edges, ExtraFields, Mesh, MeshError, Vertex,
+    NO_TWIN,
+};
 
 /// Rule 9's bound: a mesh that still fails validation after this many faces were dropped is
 /// refused (each drop costs a full validation, so the bound keeps the work linear in practice).
@@ -280,6 +283,61 @@ impl Dsu {
     }
 }
 
+/// Rule 3 on faces without a repeated vertex: the faces (indices, possibly repeated) with the
+/// same three vertices as an earlier face.
+///
+/// Found in the edge groups rather than by sorting the faces: two faces with the same three
+/// vertices are together in the group of each of their edges with the same third vertex, and
+/// two faces in one edge's group with the same third vertex have the same three vertices. So
+/// within every group, each face whose third vertex an earlier (lower) face of the group has
+/// too is a duplicate, and these are exactly all but the first face of every set of faces with
+/// the same vertices, which is what the sort kept.
+fn duplicate_faces(faces: &[[usize; 3]], groups: &EdgeGroups) -> Vec<usize> {
+    let third = |h: usize| faces[h / 3][(h % 3 + 2) % 3];
+    groups
+        .par_iter()
+        .flat_map_iter(|g| -> Vec<usize> {
+            match *g {
+                [_] => Vec::new(),
+                [h0, h1] => {
+                    if third(h0) == third(h1) {
+                        vec![h1 / 3]
+                    } else {
+                        Vec::new()
+                    }
+                }
+                _ => {
+                    let mut by_third: Vec<(usize, usize)> =
+                        g.iter().map(|&h| (third(h), h / 3)).collect();
+                    by_third.sort_unstable();
+                    by_third
+                        .windows(2)
+                        .filter(|w| w[0].0 == w[1].0)
+                        .map(|w| w[1].1)
+                        .collect()
+                }
+            }
+        })
+        .collect()
+}
+
+/// The faces across the edges of face `f` that have exactly two faces (`mate`, [`NO_TWIN`]
+/// elsewhere), each with whether it runs that edge the same way as `f`: in the order of the
+/// edges' keys (the order of the edge groups, which the orientation walk visited them in).
+fn neighbours<'a>(
+    faces: &'a [[usize; 3]],
+    mate: &'a [usize],
+    f: usize,
+) -> impl Iterator<Item = (usize, bool)> + 'a {
+    let t = faces[f];
+    let mut ls = [0, 1, 2];
+    ls.sort_unstable_by_key(|&l| key(faces, 3 * f + l));
+    ls.into_iter().filter_map(move |l| {
+        let m = mate[3 * f + l];
+        (m != NO_TWIN).then(|| (m / 3, t[l] == faces[m / 3][m % 3]))
+    })
+}
+
 fn flip(t: &mut [usize; 3]) {
     t.swap(1, 2);
 }
@@ -321,60 +379,28 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
             report.repeated_vertex_faces.push(pi);
         }
     }
-    {
-        // Faces grouped by their sorted corners: a counting sort on the smallest corner, then
-        // small sorts per bucket (the first face of each group is kept).
-        let sorted: Vec<[usize; 3]> = faces
-            .iter()
-            .map(|t| {
-                let mut k = *t;
-                k.sort_unstable();
-                k
-            })
-            .collect();
-        let mut next = vec![0usize; nv + 1];
-        for k in &sorted {
-            next[k[0] + 1] += 1;
+    let mut edge_groups = EdgeGroups::new(&faces);
+    let dup = duplicate_faces(&faces, &edge_groups);
+    if !dup.is_empty() {
+        let mut is_dup = vec![false; faces.len()];
+        for f in dup {
+            is_dup[f] = true;
         }
-        for v in 0..nv {
-            next[v + 1] += next[v];
-        }
-        let bounds = next.clone();
-        let mut keys: Vec<([usize; 3], usize)> = vec![([0; 3], 0); faces.len()];
-        for (f, k) in sorted.iter().enumerate() {
-            keys[next[k[0]]] = (*k, f);
-            next[k[0]] += 1;
-        }
-        drop((next, sorted));
-        for w in bounds.windows(2) {
-            if w[1] - w[0] > 1 {
-                if let Some(bucket) = keys.get_mut(w[0]..w[1]) {
-                    bucket.sort_unstable();
-                }
+        let mut k = 0;
+        faces.retain(|_| {
+            k += 1;
+            !is_dup[k - 1]
+        });
+        let mut k = 0;
+        source.retain(|s| {
+            k += 1;
+            if is_dup[k - 1] {
+                report.duplicate_faces.push(*s);
             }
-        }
-        let mut dup = vec![false; faces.len()];
-        for w in keys.windows(2) {
-            if w[0].0 == w[1].0 {
-                dup[w[1].1] = true;
-            }
-        }
-        if dup.iter().any(|d| *d) {
-            let mut k = 0;
-            faces.retain(|_| {
-                k += 1;
-                !dup[k - 1]
-            });
-            let mut k = 0;
-            source.retain(|s| {
-                k += 1;
-                if dup[k - 1] {
-                    report.duplicate_faces.push(*s);
-                }
-                !dup[k - 1]
-            });
-            report.duplicate_faces.dedup();
-        }
+            !is_dup[k - 1]
+        });
+        report.duplicate_faces.dedup();
+        edge_groups = EdgeGroups::new(&faces);
     }
     if faces.is_empty() {
         return Err(RepairError::Empty(format!(
@@ -384,49 +410,45 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     }
 
     // Rule 4: consistent orientation by a walk across two-face edges.
-    let edge_groups = EdgeGroups::new(&faces);
-    // Neighbours across two-face edges: (neighbour, same direction as given?), at most one per
-    // local edge, so three slots a face (filled in the order of the edge groups).
-    let mut adj: Vec<[(usize, bool); 3]> = vec![[(usize::MAX, false); 3]; faces.len()];
-    let mut adj_len: Vec<u8> = vec![0; faces.len()];
+    // Each half-edge's mate across an edge with exactly two faces (the walk's neighbour).
+    let mut mate = vec![NO_TWIN; 3 * faces.len()];
+    let mut several = false;
     for g in edge_groups.iter() {
-        if let [h0, h1] = *g {
-            let (f, l, h, m) = (h0 / 3, h0 % 3, h1 / 3, h1 % 3);
-            if f == h {
-                continue;
+        match *g {
+            [h0, h1] if h0 / 3 != h1 / 3 => {
+                mate[h0] = h1;
+                mate[h1] = h0;
             }
-            let same = faces[f][l] == faces[h][m];
-            for (x, y) in [(f, h), (h, f)] {
-                let k = usize::from(adj_len[x]);
-                if let Some(slot) = adj[x].get_mut(k) {
-                    *slot = (y, same);
-                    adj_len[x] += 1;
-                }
-            }
+            [_, _, _, ..] => several = true,
+            _ => {}
         }
     }
     let mut flipped: Vec<Option<bool>> = vec![None; faces.len()];
     let mut component = vec![0usize; faces.len()];
     let mut conflicts: Vec<(usize, usize)> = Vec::new();
     let mut n_components = 0;
-    let mut queue = std::collections::VecDeque::new();
+    // Breadth first: a queue in a vector (each face enters once), read from `head`.
+    let mut queue: Vec<usize> = Vec::with_capacity(faces.len());
     for seed in 0..faces.len() {
         if flipped[seed].is_some() {
             continue;
         }
         flipped[seed] = Some(false);
         component[seed] = n_components;
-        queue.push_back(seed);
-        while let Some(f) = queue.pop_front() {
+        queue.clear();
+        queue.push(seed);
+        let mut head = 0;
+        while let Some(&f) = queue.get(head) {
+            head += 1;
             let ff = flipped[f].unwrap_or(false);
-            for &(h, same) in &adj[f][..usize::from(adj_len[f])] {
+            for (h, same) in neighbours(&faces, &mate, f) {
                 // Consistent when, after flips, the two run the edge in opposite directions.
                 let want = ff ^ same;
                 match flipped[h] {
                     None => {
                         flipped[h] = Some(want);
                         component[h] = n_components;
-                        queue.push_back(h);
+                        queue.push(h);
                     }
                     Some(got) if got != want && f < h => conflicts.push((f, h)),
                     Some(_) => {}
@@ -435,6 +457,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         }
         n_components += 1;
     }
+    drop(queue);
     // Majority orientation per component, then the whole-component rules.
     let mut votes = vec![(0usize, 0usize); n_components];
     for (f, fl) in flipped.iter().enumerate() {
@@ -530,18 +553,51 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     let mut extra_copies: std::collections::BTreeMap<usize, usize> = Default::default();
     let mut detached: std::collections::BTreeSet<[usize; 2]> = Default::default();
     let mut tris = oriented;
-    for _round in 0..MAX_SPLIT_ROUNDS {
-        let forced = join_and_split(
-            &mut tris,
-            &mut vertex_source,
-            &conflict_set,
-            &mut detached,
-            &mut extra_copies,
-        );
-        if !forced {
-            break;
+    drop(edge_groups);
+    let twin = if !several && conflicts.is_empty() {
+        // What the first round of `join_and_split` finds, without grouping the half-edges
+        // again: every edge has one face, or two that the walk made run opposite ways (a pair
+        // that it could not is a conflict), so every such pair is joined and none is cut. Their
+        // half-edges are the mates' with the local edges of reversed faces renumbered (`[a, b,
+        // c]` → `[a, c, b]` turns local edge `l` into `2 − l`); splitting the fans then leaves
+        // nothing to cut, so there is no second round.
+        let mut twin = mate;
+        let turn = |h: usize| {
+            let f = h / 3;
+            if tris[f] == faces[f] {
+                h
+            } else {
+                3 * f + 2 - h % 3
+            }
+        };
+        twin.par_chunks_mut(3).enumerate().for_each(|(f, hs)| {
+            for h in hs.iter_mut().filter(|h| **h != NO_TWIN) {
+                *h = turn(*h);
+            }
+            if tris[f] != faces[f] {
+                hs.swap(0, 2);
+            }
+        });
+        split_fans(&mut tris, &twin, &mut vertex_source, &mut extra_copies);
+        Some(twin)
+    } else {
+        drop(mate);
+        let mut twin = None;
+        for _round in 0..MAX_SPLIT_ROUNDS {
+            let (forced, joined) = join_and_split(
+                &mut tris,
+                &mut vertex_source,
+                &conflict_set,
+                &mut detached,
+                &mut extra_copies,
+            );
+            twin = joined;
+            if !forced {
+                break;
+            }
         }
-    }
+        twin
+    };
     report.detached_edges = detached.into_iter().collect();
     report.split_vertices = extra_copies.into_iter().collect();
 
@@ -561,14 +617,17 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         }
     }
     report.unused_vertices = (0..nv).filter(|&v| !used[v]).count();
-    for t in &mut tris {
-        *t = t.map(|v| renumber[v]);
+    if kept_source.len() < vertex_source.len() {
+        // (Otherwise `renumber` is the identity.)
+        tris.par_iter_mut()
+            .for_each(|t| *t = t.map(|v| renumber[v]));
     }
+    drop((used, renumber));
     let vertex_source = kept_source;
 
     let make_vertices = || -> Vec<Vertex> {
         vertex_source
-            .iter()
+            .par_iter()
             .map(|&s| {
                 let p = raw.positions[s];
                 let n = given_normals
@@ -603,39 +662,58 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     // Rule 9: validate; drop what still fails, boundedly (the vertices are rebuilt for a retry
     // rather than copied for every attempt: a clean mesh is built once).
     let mut face_source = source;
-    let mesh = loop {
-        match Mesh::new_allowing_degenerate(make_vertices(), tris.clone()) {
-            Ok(m) => break m,
+    let mesh = if let Some(twin) = twin {
+        // The last round joined every edge with two faces and cut nothing: the validation
+        // would find these twins and nothing to drop (see `Mesh::from_twins`), so rule 9 has
+        // nothing to do but check the vertex data, as the validation does first.
+        match Mesh::from_twins(make_vertices(), tris, twin) {
+            Ok(m) => m,
             Err(e) => {
-                let culprit = match &e {
-                    MeshError::NonManifoldEdge { faces, .. } => faces.last().copied(),
-                    MeshError::InconsistentOrientation { faces, .. } => Some(faces[1]),
-                    MeshError::NonManifoldVertex { vertex } => {
-                        tris.iter().rposition(|t| t.contains(vertex))
-                    }
-                    MeshError::RepeatedVertex { face, .. }
-                    | MeshError::ZeroArea { face, .. }
-                    | MeshError::MissingVertex { face, .. } => Some(*face),
-                    _ => None,
-                };
-                match culprit {
-                    Some(f) if report.dropped_faces.len() < MAX_DROPPED_FACES && f < tris.len() => {
-                        report.dropped_faces.push(face_source[f]);
-                        tris.remove(f);
-                        face_source.remove(f);
-                        if tris.is_empty() {
-                            return Err(RepairError::Empty("every face had to be dropped".into()));
+                return Err(RepairError::Invalid {
+                    dropped: 0,
+                    source: e,
+                })
+            }
+        }
+    } else {
+        loop {
+            match Mesh::new_allowing_degenerate(make_vertices(), tris.clone()) {
+                Ok(m) => break m,
+                Err(e) => {
+                    let culprit = match &e {
+                        MeshError::NonManifoldEdge { faces, .. } => faces.last().copied(),
+                        MeshError::InconsistentOrientation { faces, .. } => Some(faces[1]),
+                        MeshError::NonManifoldVertex { vertex } => {
+                            tris.iter().rposition(|t| t.contains(vertex))
+                        }
+                        MeshError::RepeatedVertex { face, .. }
+                        | MeshError::ZeroArea { face, .. }
+                        | MeshError::MissingVertex { face, .. } => Some(*face),
+                        _ => None,
+                    };
+                    match culprit {
+                        Some(f)
+                            if report.dropped_faces.len() < MAX_DROPPED_FACES && f < tris.len() =>
+                        {
+                            report.dropped_faces.push(face_source[f]);
+                            tris.remove(f);
+                            face_source.remove(f);
+                            if tris.is_empty() {
+                                return Err(RepairError::Empty(
+                                    "every face had to be dropped".into(),
+                                ));
+                            }
+                        }
+                        _ => {
+                            return Err(RepairError::Invalid {
+                                dropped: report.dropped_faces.len(),
+                                source: e,
+                            })
                         }
                     }
-                    _ => {
-                        return Err(RepairError::Invalid {
-                            dropped: report.dropped_faces.len(),
-                            source: e,
-                        })
-                    }
+                    // Vertices left unused by a drop stay: an isolated vertex is harmless to a
+                    // mesh, and the numbering stays that of `vertex_source`.
                 }
-                // Vertices left unused by a drop stay: an isolated vertex is harmless to a
-                // mesh, and the numbering stays that of `vertex_source`.
             }
         }
     };
@@ -648,12 +726,16 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         mesh = mesh.with_face_names(n);
     }
     mesh.extra = raw.mesh_fields.clone();
-    report.degenerate_faces = (0..mesh.num_faces())
-        .into_par_iter()
-        .filter(|&f| mesh.is_degenerate_face(f))
-        .collect();
+    (report.degenerate_faces, report.components) = rayon::join(
+        || {
+            (0..mesh.num_faces())
+                .into_par_iter()
+                .filter(|&f| mesh.is_degenerate_face(f))
+                .collect()
+        },
+        || count_components(&mesh),
+    );
     report.boundary_edges = mesh.edges().iter().filter(|e| e.is_boundary()).count();
-    report.components = count_components(&mesh);
     Ok(Repaired {
         normals_given: given_normals.is_some(),
         mesh,
@@ -670,49 +752,48 @@ const MAX_SPLIT_ROUNDS: usize = 4;
 
 /// One round of rules 4–6 on `tris` (vertex indices into `vertex_source`, which maps them to
 /// the file's vertices): join the first face running each way along every edge, split every
-/// vertex into one copy per fan of joined faces, then cut loose (own copies of the edge's two
-/// vertices) every face that still shares an edge with two others. Returns true when a face was
-/// cut loose (another round is needed).
+/// vertex into one copy per fan of joined faces ([`split_fans`]), then cut loose (own copies of
+/// the edge's two vertices) every face that still shares an edge with two others. Returns
+/// whether a face was cut loose (another round is needed), and the joins as a twin array
+/// ([`NO_TWIN`] where none) when nothing had to be cut: then the faces after the split are
+/// exactly what the mesh validation accepts with these twins (see [`Mesh::from_twins`]): a
+/// joined pair shares its fans at both ends, so keeps its edge, and every other edge keeps its
+/// one face.
 fn join_and_split(
     tris: &mut [[usize; 3]],
     vertex_source: &mut Vec<usize>,
     conflict_set: &std::collections::HashSet<(usize, usize)>,
     detached: &mut std::collections::BTreeSet<[usize; 2]>,
     extra_copies: &mut std::collections::BTreeMap<usize, usize>,
-) -> bool {
-    let mut copy_of = |v: usize, vertex_source: &mut Vec<usize>| {
-        let s = vertex_source[v];
-        vertex_source.push(s);
-        *extra_copies.entry(s).or_insert(0) += 1;
-        vertex_source.len() - 1
-    };
+) -> (bool, Option<Vec<usize>>) {
     let groups = EdgeGroups::new(tris);
-    let mut pairs: Vec<((usize, usize), (usize, usize))> = Vec::with_capacity(groups.len());
+    let mut twin = vec![NO_TWIN; 3 * tris.len()];
     // Whether some edge has more than two faces or two running the same way: only then can a
     // face still be a third one after the split (splitting vertices only separates groups).
     let mut any_cut = false;
     for members in groups.iter() {
         let edge = key(tris, members[0]);
-        let mut fwd: Option<(usize, usize)> = None;
-        let mut bwd: Option<(usize, usize)> = None;
+        let mut fwd: Option<usize> = None;
+        let mut bwd: Option<usize> = None;
         for &h in members {
-            let (f, l) = (h / 3, h % 3);
-            let slot = if tris[f][l] == edge.0 {
+            let slot = if ends(tris, h).0 == edge.0 {
                 &mut fwd
             } else {
                 &mut bwd
             };
             if slot.is_none() {
-                *slot = Some((f, l));
+                *slot = Some(h);
             }
         }
         let mut cut = members.len() > 2;
         match (fwd, bwd) {
-            (Some((f, l)), Some((h, m))) => {
+            (Some(a), Some(b)) => {
+                let (f, h) = (a / 3, b / 3);
                 if !conflict_set.is_empty() && conflict_set.contains(&(f.min(h), f.max(h))) {
                     cut = true;
                 } else {
-                    pairs.push(((f, l), (h, m)));
+                    twin[a] = b;
+                    twin[b] = a;
                 }
             }
             // Two faces the same way: the walk's conflict of a non-orientable surface.
@@ -724,13 +805,90 @@ fn join_and_split(
         any_cut |= cut;
     }
     drop(groups);
-    // Fans: union corners (f, corner) around each vertex across joined edges. Edge l of f runs
-    // a → b and edge m of h runs b → a: vertex a is corner l of f and corner m + 1 of h, vertex
-    // b is corner l + 1 of f and corner m of h.
+    split_fans(tris, &twin, vertex_source, extra_copies);
+    // Faces still a third (or same-direction second) face on an edge: cut loose.
+    if !any_cut {
+        return (false, Some(twin));
+    }
+    let groups = EdgeGroups::new(tris);
+    let mut forced = false;
+    for members in groups.iter() {
+        let same_direction =
+            members.len() == 2 && ends(tris, members[0]).0 == ends(tris, members[1]).0;
+        if members.len() <= 2 && !same_direction {
+            continue;
+        }
+        // Keep the joined pair (or the first face), cut the others loose.
+        let keep: Vec<usize> = members
+            .iter()
+            .copied()
+            .filter(|&h| twin[h] != NO_TWIN)
+            .collect();
+        let keep = if keep.len() == 2 {
+            keep
+        } else {
+            vec![members[0]]
+        };
+        for &h in members {
+            if keep.contains(&h) {
+                continue;
+            }
+            let (f, l) = (h / 3, h % 3);
+            let (a, b) = (tris[f][l], tris[f][(l + 1) % 3]);
+            let (ca, cb) = (
+                copy_vertex(a, vertex_source, extra_copies),
+                copy_vertex(b, vertex_source, extra_copies),
+            );
+            tris[f][l] = ca;
+            tris[f][(l + 1) % 3] = cb;
+            forced = true;
+        }
+    }
+    (forced, None)
+}
+
+/// A new copy of vertex `v` (same file vertex), counted in `extra_copies`.
+fn copy_vertex(
+    v: usize,
+    vertex_source: &mut Vec<usize>,
+    extra_copies: &mut std::collections::BTreeMap<usize, usize>,
+) -> usize {
+    let s = vertex_source[v];
+    vertex_source.push(s);
+    *extra_copies.entry(s).or_insert(0) += 1;
+    vertex_source.len() - 1
+}
+
+/// Rule 6: every vertex whose corners form several fans across the joins `twin` keeps the
+/// first fan (in face order) and gives each other fan a copy of its own, numbered in the order
+/// the fans first appear. Returns [`copy_vertex`] for the caller's cuts.
+///
+/// The fans are the classes of a union–find over corners (the two corners at each end of a
+/// joined edge are one); only these classes matter, not the order of the unions. Most meshes
+/// have no vertex to split, and that is seen faster: the fan walk around each vertex across
+/// the twins (in parallel) meets all its corners exactly when they are one class, because a
+/// corner is joined to at most two others, across its face's two edges at that vertex, which is
+/// what the walk follows. Then nothing changes and the union–find is skipped.
+fn split_fans(
+    tris: &mut [[usize; 3]],
+    twin: &[usize],
+    vertex_source: &mut Vec<usize>,
+    extra_copies: &mut std::collections::BTreeMap<usize, usize>,
+) {
+    let outgoing = outgoing_half_edges(tris, twin, vertex_source.len());
+    if first_vertex_with_several_fans(tris, twin, &outgoing).is_none() {
+        return;
+    }
+    drop(outgoing);
+    // Edge l of f runs a → b and its twin, edge m of h, runs b → a: vertex a is corner l of f
+    // and corner m + 1 of h, vertex b is corner l + 1 of f and corner m of h.
     let mut dsu = Dsu::new(3 * tris.len());
-    for &((f, l), (h, m)) in &pairs {
-        dsu.union(3 * f + l, 3 * h + (m + 1) % 3);
-        dsu.union(3 * f + (l + 1) % 3, 3 * h + m);
+    for (x, &y) in twin.iter().enumerate() {
+        if y != NO_TWIN && x < y {
+            let (f, l, h, m) = (x / 3, x % 3, y / 3, y % 3);
+            dsu.union(3 * f + l, 3 * h + (m + 1) % 3);
+            dsu.union(3 * f + (l + 1) % 3, 3 * h + m);
+        }
     }
     // The first fan of each vertex keeps it; others get copies.
     let mut fan_vertex: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
@@ -746,7 +904,7 @@ fn join_and_split(
                     *slot = match fan_vertex.get(&fan) {
                         Some(&c) => c,
                         None => {
-                            let c = copy_of(v, vertex_source);
+                            let c = copy_vertex(v, vertex_source, extra_copies);
                             fan_vertex.insert(fan, c);
                             c
                         }
@@ -755,43 +913,6 @@ fn join_and_split(
             }
         }
     }
-    // Faces still a third (or same-direction second) face on an edge: cut loose.
-    if !any_cut {
-        return false;
-    }
-    let mut joined = vec![false; 3 * tris.len()];
-    for &((f, l), (h, m)) in &pairs {
-        joined[3 * f + l] = true;
-        joined[3 * h + m] = true;
-    }
-    let groups = EdgeGroups::new(tris);
-    let mut forced = false;
-    for members in groups.iter() {
-        let same_direction =
-            members.len() == 2 && ends(tris, members[0]).0 == ends(tris, members[1]).0;
-        if members.len() <= 2 && !same_direction {
-            continue;
-        }
-        // Keep the joined pair (or the first face), cut the others loose.
-        let keep: Vec<usize> = members.iter().copied().filter(|&h| joined[h]).collect();
-        let keep = if keep.len() == 2 {
-            keep
-        } else {
-            vec![members[0]]
-        };
-        for &h in members {
-            if keep.contains(&h) {
-                continue;
-            }
-            let (f, l) = (h / 3, h % 3);
-            let (a, b) = (tris[f][l], tris[f][(l + 1) % 3]);
-            let (ca, cb) = (copy_of(a, vertex_source), copy_of(b, vertex_source));
-            tris[f][l] = ca;
-            tris[f][(l + 1) % 3] = cb;
-            forced = true;
-        }
-    }
-    forced
 }
 
 fn symmetric(s: &Matrix3<f64>) -> Matrix3<f64> {
