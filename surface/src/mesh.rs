@@ -334,7 +334,7 @@ pub(crate) fn first_vertex_with_several_fans(
 /// The zero-area test of [`Mesh::new`]: doubled area at most [`DEGENERATE_FACE_SINE`] times
 /// the product of the two longest edges. Coordinates are finite (checked before), so no NaN
 /// reaches the comparison; a face with a NaN area (overflow) counts as degenerate.
-fn is_degenerate([a, b, c]: [Point3<f64>; 3]) -> bool {
+pub(crate) fn is_degenerate([a, b, c]: [Point3<f64>; 3]) -> bool {
     let (e1, e2, e3) = (b - a, c - a, c - b);
     let mut lengths = [e1.norm(), e2.norm(), e3.norm()];
     lengths.sort_by(f64::total_cmp);

@@ -41,8 +41,8 @@ use rayon::prelude::*;
 
 use crate::edge_groups::{ends, key, EdgeGroups};
 use crate::mesh::{
-    first_vertex_with_several_fans, outgoing_half_edges, ExtraFields, Mesh, MeshError, Vertex,
-    NO_TWIN,
+    first_vertex_with_several_fans, is_degenerate, outgoing_half_edges, ExtraFields, Mesh,
+    MeshError, Vertex, NO_TWIN,
 };
 
 /// Rule 9's bound: a mesh that still fails validation after this many faces were dropped is
@@ -343,11 +343,231 @@ fn flip(t: &mut [usize; 3]) {
 }
 
 /// Builds a mesh from a file's raw mesh by the rules of the module docs.
+///
+/// The work is that of applying the rules one after the other, done with fewer passes: the
+/// half-edges are grouped by edge once ([`EdgeGroups`]) for rules 3 to 6, the joins that
+/// rules 4 to 6 establish are handed to the mesh as its twins ([`Mesh::from_twins`]) instead
+/// of being found and checked again, and what does not depend on the faces' orientation or on
+/// which vertices get split (the vertex data, rule 8's zero-area faces) is computed on another
+/// thread meanwhile. Each shortcut states why it gives the same result; whenever one does not
+/// apply (an edge with three faces, a non-orientable component, a face cut loose) the rules run
+/// as written.
 pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, RepairError> {
     let mut report = RepairReport::default();
     let nv = raw.positions.len();
 
     // Rules 1–3: triangles, without repeated vertices or duplicates.
+    let (mut faces, mut source) = triangles(raw, options, &mut report)?;
+    let mut edge_groups = EdgeGroups::new(&faces);
+    let dup = duplicate_faces(&faces, &edge_groups);
+    if !dup.is_empty() {
+        let mut is_dup = vec![false; faces.len()];
+        for f in dup {
+            is_dup[f] = true;
+        }
+        let mut k = 0;
+        faces.retain(|_| {
+            k += 1;
+            !is_dup[k - 1]
+        });
+        let mut k = 0;
+        source.retain(|s| {
+            k += 1;
+            if is_dup[k - 1] {
+                report.duplicate_faces.push(*s);
+            }
+            !is_dup[k - 1]
+        });
+        report.duplicate_faces.dedup();
+        edge_groups = EdgeGroups::new(&faces);
+    }
+    if faces.is_empty() {
+        return Err(RepairError::Empty(format!(
+            "{} faces in the file, none with three distinct vertices",
+            raw.polygons.len()
+        )));
+    }
+    // (Its notes are the only notes, so reading the normals before rule 4 keeps their order.)
+    let given_normals = file_normals(raw, &mut report);
+
+    // Rules 4–6 on this thread; meanwhile, on another, the data of every file vertex and the
+    // zero-area faces (rule 8), which the orientation, the splits and the renumbering do not
+    // change (a split vertex's copies have its data; reversing a face permutes its edges and
+    // negates its area normal, exactly, so the test of `Mesh::is_degenerate_face` gives the
+    // same answer).
+    let (joined, (file_vertices, degenerate)) = rayon::join(
+        || {
+            let oriented = orient(
+                &faces,
+                edge_groups,
+                raw,
+                given_normals.as_deref(),
+                &mut report,
+            );
+            join_faces(&faces, oriented, nv, &mut report)
+        },
+        || {
+            let vertices: Vec<Vertex> = (0..nv)
+                .into_par_iter()
+                .map(|s| file_vertex(raw, given_normals.as_deref(), s))
+                .collect();
+            let degenerate: Vec<usize> = (0..faces.len())
+                .into_par_iter()
+                .filter(|&f| is_degenerate(faces[f].map(|v| raw.positions[v])))
+                .collect();
+            (vertices, degenerate)
+        },
+    );
+    let Joined {
+        mut tris,
+        vertex_source,
+        twin,
+        components,
+    } = joined;
+
+    // Rule 7: drop unused vertices, renumber.
+    let mut used = vec![false; vertex_source.len()];
+    for t in &tris {
+        for &v in t {
+            used[v] = true;
+        }
+    }
+    let mut renumber = vec![usize::MAX; vertex_source.len()];
+    let mut kept_source = Vec::with_capacity(vertex_source.len());
+    for (v, &u) in used.iter().enumerate() {
+        if u {
+            renumber[v] = kept_source.len();
+            kept_source.push(vertex_source[v]);
+        }
+    }
+    report.unused_vertices = (0..nv).filter(|&v| !used[v]).count();
+    if kept_source.len() < vertex_source.len() {
+        // (Otherwise `renumber` is the identity.)
+        tris.par_iter_mut()
+            .for_each(|t| *t = t.map(|v| renumber[v]));
+    }
+    drop((used, renumber));
+    let vertex_source = kept_source;
+    // The mesh's vertices: the file's, or copies of them where some were dropped or split
+    // (built again should rule 9 need them a second time after taking them whole).
+    let mut file_vertices = Some(file_vertices);
+    let mut vertices_of = |vertex_source: &[usize]| -> Vec<Vertex> {
+        match file_vertices.take() {
+            Some(all)
+                if vertex_source.len() == all.len()
+                    && vertex_source.iter().enumerate().all(|(v, &s)| v == s) =>
+            {
+                all
+            }
+            Some(all) => {
+                let copies = vertex_source.par_iter().map(|&s| all[s].clone()).collect();
+                file_vertices = Some(all);
+                copies
+            }
+            None => vertex_source
+                .par_iter()
+                .map(|&s| file_vertex(raw, given_normals.as_deref(), s))
+                .collect(),
+        }
+    };
+
+    // Rule 9: validate; drop what still fails, boundedly (the vertices are copied again for a
+    // retry: a clean mesh is built once).
+    let mut face_source = source;
+    let (mesh, degenerate, components) = if let Some(twin) = twin {
+        // The last round joined every edge with two faces and cut nothing: the validation
+        // would find these twins and nothing to drop (see `Mesh::from_twins`), so rule 9 has
+        // nothing to do but check the vertex data, as the validation does first. No face was
+        // dropped, so the zero-area faces found above keep their numbers.
+        match Mesh::from_twins(vertices_of(&vertex_source), tris, twin) {
+            Ok(m) => (m, Some(degenerate), components),
+            Err(e) => {
+                return Err(RepairError::Invalid {
+                    dropped: 0,
+                    source: e,
+                })
+            }
+        }
+    } else {
+        let mesh = {
+            loop {
+                match Mesh::new_allowing_degenerate(vertices_of(&vertex_source), tris.clone()) {
+                    Ok(m) => break m,
+                    Err(e) => {
+                        let culprit = match &e {
+                            MeshError::NonManifoldEdge { faces, .. } => faces.last().copied(),
+                            MeshError::InconsistentOrientation { faces, .. } => Some(faces[1]),
+                            MeshError::NonManifoldVertex { vertex } => {
+                                tris.iter().rposition(|t| t.contains(vertex))
+                            }
+                            MeshError::RepeatedVertex { face, .. }
+                            | MeshError::ZeroArea { face, .. }
+                            | MeshError::MissingVertex { face, .. } => Some(*face),
+                            _ => None,
+                        };
+                        match culprit {
+                            Some(f)
+                                if report.dropped_faces.len() < MAX_DROPPED_FACES
+                                    && f < tris.len() =>
+                            {
+                                report.dropped_faces.push(face_source[f]);
+                                tris.remove(f);
+                                face_source.remove(f);
+                                if tris.is_empty() {
+                                    return Err(RepairError::Empty(
+                                        "every face had to be dropped".into(),
+                                    ));
+                                }
+                            }
+                            _ => {
+                                return Err(RepairError::Invalid {
+                                    dropped: report.dropped_faces.len(),
+                                    source: e,
+                                })
+                            }
+                        }
+                        // Vertices left unused by a drop stay: an isolated vertex is harmless to a
+                        // mesh, and the numbering stays that of `vertex_source`.
+                    }
+                }
+            }
+        };
+        (mesh, None, None)
+    };
+    let mut mesh = mesh;
+    if raw.has_face_names() {
+        let n: Vec<String> = face_source
+            .iter()
+            .map(|&s| raw.face_name(s).map(|n| n.into_owned()).unwrap_or_default())
+            .collect();
+        mesh = mesh.with_face_names(n);
+    }
+    mesh.extra = raw.mesh_fields.clone();
+    report.degenerate_faces = degenerate.unwrap_or_else(|| {
+        (0..mesh.num_faces())
+            .into_par_iter()
+            .filter(|&f| mesh.is_degenerate_face(f))
+            .collect()
+    });
+    report.components = components.unwrap_or_else(|| count_components(&mesh));
+    report.boundary_edges = mesh.edges().iter().filter(|e| e.is_boundary()).count();
+    Ok(Repaired {
+        normals_given: given_normals.is_some(),
+        mesh,
+        face_source,
+        vertex_source,
+        report,
+    })
+}
+
+/// Rules 1 and 2: the file's polygons as triangles (fans), without those repeating a vertex,
+/// with the polygon each came from.
+fn triangles(
+    raw: &RawMesh,
+    options: &RepairOptions,
+    report: &mut RepairReport,
+) -> Result<(Vec<[usize; 3]>, Vec<usize>), RepairError> {
+    let nv = raw.positions.len();
     let mut faces: Vec<[usize; 3]> = Vec::with_capacity(raw.polygons.corner_count() / 3 + 1);
     let mut source: Vec<usize> = Vec::with_capacity(faces.capacity());
     for (pi, poly) in raw.polygons.iter().enumerate() {
@@ -379,37 +599,100 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
             report.repeated_vertex_faces.push(pi);
         }
     }
-    let mut edge_groups = EdgeGroups::new(&faces);
-    let dup = duplicate_faces(&faces, &edge_groups);
-    if !dup.is_empty() {
-        let mut is_dup = vec![false; faces.len()];
-        for f in dup {
-            is_dup[f] = true;
-        }
-        let mut k = 0;
-        faces.retain(|_| {
-            k += 1;
-            !is_dup[k - 1]
-        });
-        let mut k = 0;
-        source.retain(|s| {
-            k += 1;
-            if is_dup[k - 1] {
-                report.duplicate_faces.push(*s);
-            }
-            !is_dup[k - 1]
-        });
-        report.duplicate_faces.dedup();
-        edge_groups = EdgeGroups::new(&faces);
-    }
-    if faces.is_empty() {
-        return Err(RepairError::Empty(format!(
-            "{} faces in the file, none with three distinct vertices",
-            raw.polygons.len()
-        )));
-    }
+    Ok((faces, source))
+}
 
-    // Rule 4: consistent orientation by a walk across two-face edges.
+/// The file's normals, normalized, when it gave a usable one for every vertex (a note says why
+/// they were discarded otherwise).
+fn file_normals(raw: &RawMesh, report: &mut RepairReport) -> Option<Vec<Vector3<f64>>> {
+    let nv = raw.positions.len();
+    match &raw.normals {
+        Some(ns) if ns.len() == nv => {
+            let unit: Vec<Vector3<f64>> = ns
+                .iter()
+                .map(|n| {
+                    let len = n.norm();
+                    if len > 0.0 && len.is_finite() {
+                        n / len
+                    } else {
+                        Vector3::zeros()
+                    }
+                })
+                .collect();
+            let bad = unit.iter().filter(|n| n.norm_squared() == 0.0).count();
+            if bad > 0 {
+                report.notes.push(format!(
+                    "{bad} of the file's normals are zero or not finite: all normals discarded (to be estimated)"
+                ));
+                None
+            } else {
+                Some(unit)
+            }
+        }
+        Some(_) => {
+            report
+                .notes
+                .push("the file's normals do not match its vertices: discarded".into());
+            None
+        }
+        None => None,
+    }
+}
+
+/// The mesh vertex of file vertex `s`: its position, its normal (unit, or zero when the file's
+/// were not used), its shape tensor (symmetrized) when the file gave them, name and properties.
+fn file_vertex(raw: &RawMesh, given_normals: Option<&[Vector3<f64>]>, s: usize) -> Vertex {
+    let nv = raw.positions.len();
+    let p = raw.positions[s];
+    let n = given_normals
+        .as_ref()
+        .map_or_else(Vector3::zeros, |ns| ns[s]);
+    let mut v = match &raw.shapes {
+        Some(shapes) if shapes.len() == nv => Vertex::new(curves::VertexData::new(p, n, shapes[s])),
+        _ => Vertex::without_curvature(p, n),
+    };
+    if v.curvature_known {
+        v.data.shape = symmetric(&v.data.shape);
+    }
+    if let Some(name) = raw.vertex_name(s) {
+        v.name = Some(name.into_owned());
+    }
+    if !raw.properties.is_empty() {
+        let mut extra = ExtraFields::new();
+        for (k, vals) in &raw.properties {
+            if let Some(x) = vals.get(s) {
+                extra.insert(k.clone(), vec![*x]);
+            }
+        }
+        v.extra = extra;
+    }
+    v
+}
+
+/// The faces after rule 4, and what the walk found.
+struct Oriented {
+    /// The faces, each reversed or not.
+    tris: Vec<[usize; 3]>,
+    /// Each half-edge's mate across an edge with exactly two faces, [`NO_TWIN`] elsewhere (as
+    /// given, before reversals).
+    mate: Vec<usize>,
+    /// Whether some edge has three or more faces.
+    several: bool,
+    /// Pairs of faces `(f, h)`, `f < h`, the walk could not make agree.
+    conflicts: Vec<(usize, usize)>,
+    /// Number of components of the walk.
+    components: usize,
+}
+
+/// Rule 4: consistent orientation by a walk across two-face edges, then whole components by
+/// the majority, the normals or the volume.
+fn orient(
+    faces: &[[usize; 3]],
+    edge_groups: EdgeGroups,
+    raw: &RawMesh,
+    given_normals: Option<&[Vector3<f64>]>,
+    report: &mut RepairReport,
+) -> Oriented {
     // Each half-edge's mate across an edge with exactly two faces (the walk's neighbour).
     let mut mate = vec![NO_TWIN; 3 * faces.len()];
     let mut several = false;
@@ -441,7 +724,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         while let Some(&f) = queue.get(head) {
             head += 1;
             let ff = flipped[f].unwrap_or(false);
-            for (h, same) in neighbours(&faces, &mate, f) {
+            for (h, same) in neighbours(faces, &mate, f) {
                 // Consistent when, after flips, the two run the edge in opposite directions.
                 let want = ff ^ same;
                 match flipped[h] {
@@ -468,44 +751,13 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         }
     }
     let majority_flip: Vec<bool> = votes.iter().map(|(keep, fl)| fl > keep).collect();
-    let mut oriented: Vec<[usize; 3]> = faces.clone();
+    let mut oriented: Vec<[usize; 3]> = faces.to_vec();
     for (f, t) in oriented.iter_mut().enumerate() {
         if flipped[f].unwrap_or(false) ^ majority_flip[component[f]] {
             flip(t);
             report.reoriented_faces += 1;
         }
     }
-    let given_normals: Option<Vec<Vector3<f64>>> = match &raw.normals {
-        Some(ns) if ns.len() == nv => {
-            let unit: Vec<Vector3<f64>> = ns
-                .iter()
-                .map(|n| {
-                    let len = n.norm();
-                    if len > 0.0 && len.is_finite() {
-                        n / len
-                    } else {
-                        Vector3::zeros()
-                    }
-                })
-                .collect();
-            let bad = unit.iter().filter(|n| n.norm_squared() == 0.0).count();
-            if bad > 0 {
-                report.notes.push(format!(
-                    "{bad} of the file's normals are zero or not finite: all normals discarded (to be estimated)"
-                ));
-                None
-            } else {
-                Some(unit)
-            }
-        }
-        Some(_) => {
-            report
-                .notes
-                .push("the file's normals do not match its vertices: discarded".into());
-            None
-        }
-        None => None,
-    };
     {
         let mut agreement = vec![0.0f64; n_components];
         let mut volume = vec![0.0f64; n_components];
@@ -513,7 +765,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         for (f, t) in oriented.iter().enumerate() {
             let [a, b, c] = t.map(|i| raw.positions[i]);
             let an = (b - a).cross(&(c - a));
-            if let Some(ns) = &given_normals {
+            if let Some(ns) = given_normals {
                 agreement[component[f]] += an.dot(&(ns[t[0]] + ns[t[1]] + ns[t[2]]));
             }
             volume[component[f]] += a.coords.dot(&b.coords.cross(&c.coords));
@@ -543,45 +795,73 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
             }
         }
     }
+    Oriented {
+        tris: oriented,
+        mate,
+        several,
+        conflicts,
+        components: n_components,
+    }
+}
 
-    // Rules 4–6: which faces are joined across which edges, then fans around each vertex;
-    // repeated while an edge still has more than two faces (a detached face whose fans did not
-    // separate from the others is then cut loose along that edge with its own vertex copies).
-    let conflict_set: std::collections::HashSet<(usize, usize)> =
-        conflicts.iter().copied().collect();
+/// The faces after rules 4–6, with what the mesh can take over.
+struct Joined {
+    /// The faces, on the vertices of `vertex_source`.
+    tris: Vec<[usize; 3]>,
+    /// The file vertex of each vertex (copies of split vertices at the end).
+    vertex_source: Vec<usize>,
+    /// The joins, when the last round cut nothing ([`join_and_split`]).
+    twin: Option<Vec<usize>>,
+    /// The number of components of the mesh, when known already.
+    components: Option<usize>,
+}
+
+/// Rules 4–6 after the orientation: which faces are joined across which edges, then fans
+/// around each vertex; repeated while an edge still has more than two faces (a detached face
+/// whose fans did not separate from the others is then cut loose along that edge with its own
+/// vertex copies). `faces` are the faces before the orientation.
+fn join_faces(
+    faces: &[[usize; 3]],
+    oriented: Oriented,
+    nv: usize,
+    report: &mut RepairReport,
+) -> Joined {
+    let Oriented {
+        mut tris,
+        mate,
+        several,
+        conflicts,
+        components,
+    } = oriented;
     let mut vertex_source: Vec<usize> = (0..nv).collect();
     let mut extra_copies: std::collections::BTreeMap<usize, usize> = Default::default();
     let mut detached: std::collections::BTreeSet<[usize; 2]> = Default::default();
-    let mut tris = oriented;
-    drop(edge_groups);
-    let twin = if !several && conflicts.is_empty() {
+    let (twin, components) = if !several && conflicts.is_empty() {
         // What the first round of `join_and_split` finds, without grouping the half-edges
         // again: every edge has one face, or two that the walk made run opposite ways (a pair
         // that it could not is a conflict), so every such pair is joined and none is cut. Their
         // half-edges are the mates' with the local edges of reversed faces renumbered (`[a, b,
         // c]` → `[a, c, b]` turns local edge `l` into `2 − l`); splitting the fans then leaves
-        // nothing to cut, so there is no second round.
+        // nothing to cut, so there is no second round. The mesh's faces are then joined across
+        // exactly the edges the walk crossed, so its components are the walk's.
         let mut twin = mate;
-        let turn = |h: usize| {
-            let f = h / 3;
-            if tris[f] == faces[f] {
-                h
-            } else {
-                3 * f + 2 - h % 3
-            }
-        };
+        let turned = |f: usize| tris[f] != faces[f];
         twin.par_chunks_mut(3).enumerate().for_each(|(f, hs)| {
             for h in hs.iter_mut().filter(|h| **h != NO_TWIN) {
-                *h = turn(*h);
+                if turned(*h / 3) {
+                    *h = 3 * (*h / 3) + 2 - *h % 3;
+                }
             }
-            if tris[f] != faces[f] {
+            if turned(f) {
                 hs.swap(0, 2);
             }
         });
         split_fans(&mut tris, &twin, &mut vertex_source, &mut extra_copies);
-        Some(twin)
+        (Some(twin), Some(components))
     } else {
         drop(mate);
+        let conflict_set: std::collections::HashSet<(usize, usize)> =
+            conflicts.iter().copied().collect();
         let mut twin = None;
         for _round in 0..MAX_SPLIT_ROUNDS {
             let (forced, joined) = join_and_split(
@@ -596,153 +876,16 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
                 break;
             }
         }
-        twin
+        (twin, None)
     };
     report.detached_edges = detached.into_iter().collect();
     report.split_vertices = extra_copies.into_iter().collect();
-
-    // Rule 7: drop unused vertices, renumber.
-    let mut used = vec![false; vertex_source.len()];
-    for t in &tris {
-        for &v in t {
-            used[v] = true;
-        }
-    }
-    let mut renumber = vec![usize::MAX; vertex_source.len()];
-    let mut kept_source = Vec::with_capacity(vertex_source.len());
-    for (v, &u) in used.iter().enumerate() {
-        if u {
-            renumber[v] = kept_source.len();
-            kept_source.push(vertex_source[v]);
-        }
-    }
-    report.unused_vertices = (0..nv).filter(|&v| !used[v]).count();
-    if kept_source.len() < vertex_source.len() {
-        // (Otherwise `renumber` is the identity.)
-        tris.par_iter_mut()
-            .for_each(|t| *t = t.map(|v| renumber[v]));
-    }
-    drop((used, renumber));
-    let vertex_source = kept_source;
-
-    let make_vertices = || -> Vec<Vertex> {
-        vertex_source
-            .par_iter()
-            .map(|&s| {
-                let p = raw.positions[s];
-                let n = given_normals
-                    .as_ref()
-                    .map_or_else(Vector3::zeros, |ns| ns[s]);
-                let mut v = match &raw.shapes {
-                    Some(shapes) if shapes.len() == nv => {
-                        Vertex::new(curves::VertexData::new(p, n, shapes[s]))
-                    }
-                    _ => Vertex::without_curvature(p, n),
-                };
-                if v.curvature_known {
-                    v.data.shape = symmetric(&v.data.shape);
-                }
-                if let Some(name) = raw.vertex_name(s) {
-                    v.name = Some(name.into_owned());
-                }
-                if !raw.properties.is_empty() {
-                    let mut extra = ExtraFields::new();
-                    for (k, vals) in &raw.properties {
-                        if let Some(x) = vals.get(s) {
-                            extra.insert(k.clone(), vec![*x]);
-                        }
-                    }
-                    v.extra = extra;
-                }
-                v
-            })
-            .collect()
-    };
-
-    // Rule 9: validate; drop what still fails, boundedly (the vertices are rebuilt for a retry
-    // rather than copied for every attempt: a clean mesh is built once).
-    let mut face_source = source;
-    let mesh = if let Some(twin) = twin {
-        // The last round joined every edge with two faces and cut nothing: the validation
-        // would find these twins and nothing to drop (see `Mesh::from_twins`), so rule 9 has
-        // nothing to do but check the vertex data, as the validation does first.
-        match Mesh::from_twins(make_vertices(), tris, twin) {
-            Ok(m) => m,
-            Err(e) => {
-                return Err(RepairError::Invalid {
-                    dropped: 0,
-                    source: e,
-                })
-            }
-        }
-    } else {
-        loop {
-            match Mesh::new_allowing_degenerate(make_vertices(), tris.clone()) {
-                Ok(m) => break m,
-                Err(e) => {
-                    let culprit = match &e {
-                        MeshError::NonManifoldEdge { faces, .. } => faces.last().copied(),
-                        MeshError::InconsistentOrientation { faces, .. } => Some(faces[1]),
-                        MeshError::NonManifoldVertex { vertex } => {
-                            tris.iter().rposition(|t| t.contains(vertex))
-                        }
-                        MeshError::RepeatedVertex { face, .. }
-                        | MeshError::ZeroArea { face, .. }
-                        | MeshError::MissingVertex { face, .. } => Some(*face),
-                        _ => None,
-                    };
-                    match culprit {
-                        Some(f)
-                            if report.dropped_faces.len() < MAX_DROPPED_FACES && f < tris.len() =>
-                        {
-                            report.dropped_faces.push(face_source[f]);
-                            tris.remove(f);
-                            face_source.remove(f);
-                            if tris.is_empty() {
-                                return Err(RepairError::Empty(
-                                    "every face had to be dropped".into(),
-                                ));
-                            }
-                        }
-                        _ => {
-                            return Err(RepairError::Invalid {
-                                dropped: report.dropped_faces.len(),
-                                source: e,
-                            })
-                        }
-                    }
-                    // Vertices left unused by a drop stay: an isolated vertex is harmless to a
-                    // mesh, and the numbering stays that of `vertex_source`.
-                }
-            }
-        }
-    };
-    let mut mesh = mesh;
-    if raw.has_face_names() {
-        let n: Vec<String> = face_source
-            .iter()
-            .map(|&s| raw.face_name(s).map(|n| n.into_owned()).unwrap_or_default())
-            .collect();
-        mesh = mesh.with_face_names(n);
-    }
-    mesh.extra = raw.mesh_fields.clone();
-    (report.degenerate_faces, report.components) = rayon::join(
-        || {
-            (0..mesh.num_faces())
-                .into_par_iter()
-                .filter(|&f| mesh.is_degenerate_face(f))
-                .collect()
-        },
-        || count_components(&mesh),
-    );
-    report.boundary_edges = mesh.edges().iter().filter(|e| e.is_boundary()).count();
-    Ok(Repaired {
-        normals_given: given_normals.is_some(),
-        mesh,
-        face_source,
+    Joined {
+        tris,
         vertex_source,
-        report,
-    })
+        twin,
+        components,
+    }
 }
 
 /// Rounds of [`join_and_split`] before the remaining defects are left to rule 9: each round
