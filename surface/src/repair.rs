@@ -338,6 +338,32 @@ fn neighbours<'a>(
     })
 }
 
+/// The components of the faces joined across their mates (`mate[h]`, [`NO_TWIN`] where none),
+/// numbered in the order of their lowest face, and how many there are: what the orientation
+/// walk finds, since it starts each component at its lowest face not yet reached and crosses
+/// exactly the mates. The union–find keeps the smaller root, so a root is its set's lowest face,
+/// met before the set's other faces in face order.
+fn components_of_mates(n_faces: usize, mate: &[usize]) -> (Vec<usize>, usize) {
+    let mut dsu = Dsu::new(n_faces);
+    for (h, &m) in mate.iter().enumerate() {
+        if m != NO_TWIN && h < m {
+            dsu.union(h / 3, m / 3);
+        }
+    }
+    let mut component = vec![0usize; n_faces];
+    let mut n = 0;
+    for f in 0..n_faces {
+        let root = dsu.find(f);
+        component[f] = if root == f {
+            n += 1;
+            n - 1
+        } else {
+            component[root]
+        };
+    }
+    (component, n)
+}
+
 fn flip(t: &mut [usize; 3]) {
     t.swap(1, 2);
 }
@@ -706,56 +732,72 @@ fn orient(
             _ => {}
         }
     }
-    let mut flipped: Vec<Option<bool>> = vec![None; faces.len()];
-    let mut component = vec![0usize; faces.len()];
-    let mut conflicts: Vec<(usize, usize)> = Vec::new();
-    let mut n_components = 0;
-    // Breadth first: a queue in a vector (each face enters once), read from `head`.
-    let mut queue: Vec<usize> = Vec::with_capacity(faces.len());
-    for seed in 0..faces.len() {
-        if flipped[seed].is_some() {
-            continue;
-        }
-        flipped[seed] = Some(false);
-        component[seed] = n_components;
-        queue.clear();
-        queue.push(seed);
-        let mut head = 0;
-        while let Some(&f) = queue.get(head) {
-            head += 1;
-            let ff = flipped[f].unwrap_or(false);
-            for (h, same) in neighbours(faces, &mate, f) {
-                // Consistent when, after flips, the two run the edge in opposite directions.
-                let want = ff ^ same;
-                match flipped[h] {
-                    None => {
-                        flipped[h] = Some(want);
-                        component[h] = n_components;
-                        queue.push(h);
+    // Whether the faces already agree across every two-face edge: then the walk reverses no
+    // face and meets no conflict, whatever order it visits the faces in, so only its
+    // components are needed, and a union–find over the mates gives the same ones, numbered the
+    // same way ([`components_of_mates`]).
+    let consistent = mate
+        .par_iter()
+        .enumerate()
+        .all(|(h, &m)| m == NO_TWIN || ends(faces, h).0 != ends(faces, m).0);
+    let (flipped, component, conflicts, n_components) = if consistent {
+        let (component, n_components) = components_of_mates(faces.len(), &mate);
+        (None, component, Vec::new(), n_components)
+    } else {
+        let mut flipped: Vec<Option<bool>> = vec![None; faces.len()];
+        let mut component = vec![0usize; faces.len()];
+        let mut conflicts: Vec<(usize, usize)> = Vec::new();
+        let mut n_components = 0;
+        // Breadth first: a queue in a vector (each face enters once), read from `head`.
+        let mut queue: Vec<usize> = Vec::with_capacity(faces.len());
+        for seed in 0..faces.len() {
+            if flipped[seed].is_some() {
+                continue;
+            }
+            flipped[seed] = Some(false);
+            component[seed] = n_components;
+            queue.clear();
+            queue.push(seed);
+            let mut head = 0;
+            while let Some(&f) = queue.get(head) {
+                head += 1;
+                let ff = flipped[f].unwrap_or(false);
+                for (h, same) in neighbours(faces, &mate, f) {
+                    // Consistent when, after flips, the two run the edge in opposite directions.
+                    let want = ff ^ same;
+                    match flipped[h] {
+                        None => {
+                            flipped[h] = Some(want);
+                            component[h] = n_components;
+                            queue.push(h);
+                        }
+                        Some(got) if got != want && f < h => conflicts.push((f, h)),
+                        Some(_) => {}
                     }
-                    Some(got) if got != want && f < h => conflicts.push((f, h)),
-                    Some(_) => {}
                 }
             }
+            n_components += 1;
         }
-        n_components += 1;
-    }
-    drop(queue);
+        drop(queue);
+        (Some(flipped), component, conflicts, n_components)
+    };
     // Majority orientation per component, then the whole-component rules.
-    let mut votes = vec![(0usize, 0usize); n_components];
-    for (f, fl) in flipped.iter().enumerate() {
-        if fl.unwrap_or(false) {
-            votes[component[f]].1 += 1;
-        } else {
-            votes[component[f]].0 += 1;
-        }
-    }
-    let majority_flip: Vec<bool> = votes.iter().map(|(keep, fl)| fl > keep).collect();
     let mut oriented: Vec<[usize; 3]> = faces.to_vec();
-    for (f, t) in oriented.iter_mut().enumerate() {
-        if flipped[f].unwrap_or(false) ^ majority_flip[component[f]] {
-            flip(t);
-            report.reoriented_faces += 1;
+    if let Some(flipped) = flipped {
+        let mut votes = vec![(0usize, 0usize); n_components];
+        for (f, fl) in flipped.iter().enumerate() {
+            if fl.unwrap_or(false) {
+                votes[component[f]].1 += 1;
+            } else {
+                votes[component[f]].0 += 1;
+            }
+        }
+        let majority_flip: Vec<bool> = votes.iter().map(|(keep, fl)| fl > keep).collect();
+        for (f, t) in oriented.iter_mut().enumerate() {
+            if flipped[f].unwrap_or(false) ^ majority_flip[component[f]] {
+                flip(t);
+                report.reoriented_faces += 1;
+            }
         }
     }
     {
