@@ -21,9 +21,7 @@
 
 use rayon::prelude::*;
 
-/// Below this many half-edges the groups are computed on one thread (the pieces each read
-/// every face; splitting a small mesh costs more than it saves).
-const PARALLEL_MIN_HALF_EDGES: usize = 1 << 16;
+use crate::vertex_pieces::{for_each_half_edge_by_vertex, pieces};
 
 /// Half-edges grouped by undirected edge (see the module docs for the order).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -56,29 +54,16 @@ impl EdgeGroups {
             .flat_map_iter(|t| t.iter().copied())
             .max()
             .map_or(0, |m| m + 1);
-        let pieces = if nh < PARALLEL_MIN_HALF_EDGES {
-            1
-        } else {
-            rayon::current_num_threads().clamp(1, 8)
-        };
-        // Vertices per piece (at least one, so that `chunks` is well defined).
-        let span = n.div_ceil(pieces).max(1);
-        // Bucket sizes: each piece counts the half-edges whose smaller vertex is in its range.
+        // Vertices per piece (at least one, so that `chunks` is well defined): the pieces of
+        // `for_each_half_edge_by_vertex`, which counts the bucket sizes.
+        let span = n.div_ceil(pieces(nh)).max(1);
         let mut counts = vec![0usize; n];
-        counts
-            .par_chunks_mut(span)
-            .enumerate()
-            .for_each(|(i, slots)| {
-                let base = i * span;
-                for t in faces {
-                    for l in 0..3 {
-                        let lo = t[l].min(t[(l + 1) % 3]);
-                        if let Some(c) = lo.checked_sub(base).and_then(|k| slots.get_mut(k)) {
-                            *c += 1;
-                        }
-                    }
-                }
-            });
+        for_each_half_edge_by_vertex(
+            faces,
+            &mut counts,
+            |t, l| t[l].min(t[(l + 1) % 3]),
+            |c, _| *c += 1,
+        );
         // Bucket starts (exclusive prefix sums), in place.
         let mut total = 0;
         for c in counts.iter_mut() {
@@ -89,7 +74,7 @@ impl EdgeGroups {
         let mut next = counts;
         // The output cut where the pieces' vertex ranges start.
         let mut order = vec![0usize; nh];
-        let mut parts: Vec<&mut [usize]> = Vec::with_capacity(pieces);
+        let mut parts: Vec<&mut [usize]> = Vec::with_capacity(n.div_ceil(span));
         let mut rest: &mut [usize] = &mut order;
         let mut taken = 0;
         for i in 1..=next.len().div_ceil(span) {

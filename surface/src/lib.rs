@@ -57,6 +57,7 @@ pub mod stream;
 pub mod tessellate;
 pub mod tessellate_fit;
 pub mod testbed_format;
+mod vertex_pieces;
 
 pub use beztri::{BezTriError, BezierCurve, BezierTriangle, Curvature, Derivatives};
 pub use datasets::{

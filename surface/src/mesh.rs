@@ -35,6 +35,7 @@ use nalgebra::{Matrix3, Point3, Vector3};
 use rayon::prelude::*;
 
 use crate::edge_groups::{ends, key, EdgeGroups};
+use crate::vertex_pieces::for_each_half_edge_by_vertex;
 
 /// A face whose doubled area is below this fraction of the product of its two longest edges
 /// (the sine of its largest angle, in effect) is degenerate: below `1e-12` a face normal has lost
@@ -260,6 +261,93 @@ fn twins(faces: &[[usize; 3]]) -> Result<Vec<usize>, MeshError> {
     Ok(twin)
 }
 
+/// A mesh's half-edge arrays, built from its faces and twins.
+struct Adjacency {
+    twin: Vec<usize>,
+    edge_of: Vec<usize>,
+    edges: Vec<Edge>,
+    outgoing: Vec<Option<usize>>,
+}
+
+impl Adjacency {
+    /// From valid faces and a twin array pairing half-edges that run along the same edge in
+    /// opposite directions ([`NO_TWIN`] on the boundary): numbers the edges in the order of
+    /// their first half-edge ([`number_edges`]) and picks each vertex's outgoing half-edge
+    /// ([`outgoing_half_edges`]), side by side.
+    fn new(faces: &[[usize; 3]], twin: Vec<usize>, vertex_count: usize) -> Self {
+        let ((edge_of, edges), outgoing) = rayon::join(
+            || number_edges(faces, &twin),
+            || outgoing_half_edges(faces, &twin, vertex_count),
+        );
+        Adjacency {
+            twin,
+            edge_of,
+            edges,
+            outgoing,
+        }
+    }
+}
+
+/// The undirected edges of valid faces with twins `twin`, numbered in the order of their first
+/// half-edge, and the edge of every half-edge.
+///
+/// Walking the half-edges in order, a half-edge starts an edge unless its twin came before
+/// it; an edge's number is then the count of starting half-edges before it. That count is
+/// taken per block of half-edges in parallel, summed, and each block then numbers its own
+/// starting half-edges and their twins (every half-edge is written once, by the block of its
+/// edge's first half-edge, hence the atomics, which cost nothing uncontended) and notes the
+/// half-edge each edge starts at; the edges are built from these in parallel.
+fn number_edges(faces: &[[usize; 3]], twin: &[usize]) -> (Vec<usize>, Vec<Edge>) {
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+    let nh = twin.len();
+    let starts = |h: usize| twin[h] == NO_TWIN || twin[h] > h;
+    let block = (nh / (8 * rayon::current_num_threads().max(1))).max(1 << 14);
+    let blocks = nh.div_ceil(block);
+    let range = |b: usize| b * block..((b + 1) * block).min(nh);
+    let counts: Vec<usize> = (0..blocks)
+        .into_par_iter()
+        .map(|b| range(b).filter(|&h| starts(h)).count())
+        .collect();
+    let mut offsets = Vec::with_capacity(blocks);
+    let mut total = 0;
+    for c in counts {
+        offsets.push(total);
+        total += c;
+    }
+    let edge_of: Vec<AtomicUsize> = (0..nh)
+        .into_par_iter()
+        .map(|_| AtomicUsize::new(0))
+        .collect();
+    let first: Vec<AtomicUsize> = (0..total)
+        .into_par_iter()
+        .map(|_| AtomicUsize::new(0))
+        .collect();
+    offsets.into_par_iter().enumerate().for_each(|(b, mut e)| {
+        for h in range(b).filter(|&h| starts(h)) {
+            edge_of[h].store(e, Relaxed);
+            if let Some(t) = twin.get(h).copied().filter(|&t| t != NO_TWIN) {
+                edge_of[t].store(e, Relaxed);
+            }
+            first[e].store(h, Relaxed);
+            e += 1;
+        }
+    });
+    let edge_of = edge_of.into_iter().map(AtomicUsize::into_inner).collect();
+    let edges = first
+        .into_par_iter()
+        .map(|h| {
+            let h = h.into_inner();
+            let (f, l, t) = (h / 3, h % 3, twin[h]);
+            Edge {
+                vertices: [faces[f][l], faces[f][(l + 1) % 3]],
+                first: (f, l),
+                second: (t != NO_TWIN).then_some((t / 3, t % 3)),
+            }
+        })
+        .collect();
+    (edge_of, edges)
+}
+
 /// One half-edge leaving each of `vertex_count` vertices (`None` for a vertex in no face):
 /// the last one on the boundary, else the first. Preferring the boundary is not needed for
 /// correctness (queries rotate to the boundary), but makes the common case cheap.
@@ -269,12 +357,16 @@ pub(crate) fn outgoing_half_edges(
     vertex_count: usize,
 ) -> Vec<Option<usize>> {
     let mut outgoing = vec![None; vertex_count];
-    for (h, &t) in twin.iter().enumerate() {
-        let v = faces[h / 3][h % 3];
-        if outgoing[v].is_none() || t == NO_TWIN {
-            outgoing[v] = Some(h);
-        }
-    }
+    for_each_half_edge_by_vertex(
+        faces,
+        &mut outgoing,
+        |t, l| t[l],
+        |slot, h| {
+            if slot.is_none() || twin[h] == NO_TWIN {
+                *slot = Some(h);
+            }
+        },
+    );
     outgoing
 }
 
@@ -314,11 +406,7 @@ pub(crate) fn first_vertex_with_several_fans(
     outgoing: &[Option<usize>],
 ) -> Option<usize> {
     let mut incident = vec![0usize; outgoing.len()];
-    for face in faces {
-        for &v in face {
-            incident[v] += 1;
-        }
-    }
+    for_each_half_edge_by_vertex(faces, &mut incident, |t, l| t[l], |c, _| *c += 1);
     let fan_len = |v: usize| {
         let mut len = 0;
         if let Some(start) = outgoing[v] {
@@ -431,7 +519,8 @@ impl Mesh {
         }
 
         let twin = twins(&faces)?;
-        let mesh = Self::assemble(vertices, faces, twin);
+        let adjacency = Adjacency::new(&faces, twin, count);
+        let mesh = Self::assemble(vertices, faces, adjacency);
         match mesh.first_non_manifold_vertex() {
             Some(vertex) => Err(MeshError::NonManifoldVertex { vertex }),
             None => Ok(mesh),
@@ -450,38 +539,26 @@ impl Mesh {
         faces: Vec<[usize; 3]>,
         twin: Vec<usize>,
     ) -> Result<Self, MeshError> {
-        check_vertices(&vertices)?;
         debug_assert_eq!(twins(&faces).as_ref(), Ok(&twin));
-        let mesh = Self::assemble(vertices, faces, twin);
+        // The vertex check and the adjacency side by side (they share nothing).
+        let (checked, adjacency) = rayon::join(
+            || check_vertices(&vertices),
+            || Adjacency::new(&faces, twin, vertices.len()),
+        );
+        checked?;
+        let mesh = Self::assemble(vertices, faces, adjacency);
         debug_assert_eq!(mesh.first_non_manifold_vertex(), None);
         Ok(mesh)
     }
 
-    /// The mesh of valid vertices and faces and a twin array pairing half-edges that run along
-    /// the same edge in opposite directions ([`NO_TWIN`] on the boundary): numbers the edges in
-    /// the order of their first half-edge and picks each vertex's outgoing half-edge. Nothing
-    /// is checked.
-    fn assemble(vertices: Vec<Vertex>, faces: Vec<[usize; 3]>, twin: Vec<usize>) -> Self {
-        let nh = twin.len();
-        // Edges numbered in the order of their first half-edge: walking the half-edges in
-        // order, a half-edge starts an edge unless its twin came before it.
-        let mut edge_of = vec![0; nh];
-        let mut edges: Vec<Edge> = Vec::with_capacity(nh / 2 + 1);
-        for h in 0..nh {
-            let t = twin[h];
-            if t != NO_TWIN && t < h {
-                edge_of[h] = edge_of[t];
-                continue;
-            }
-            edge_of[h] = edges.len();
-            let (f, l) = (h / 3, h % 3);
-            edges.push(Edge {
-                vertices: [faces[f][l], faces[f][(l + 1) % 3]],
-                first: (f, l),
-                second: (t != NO_TWIN).then_some((t / 3, t % 3)),
-            });
-        }
-        let outgoing = outgoing_half_edges(&faces, &twin, vertices.len());
+    /// The mesh of valid vertices and faces with their adjacency. Nothing is checked.
+    fn assemble(vertices: Vec<Vertex>, faces: Vec<[usize; 3]>, adjacency: Adjacency) -> Self {
+        let Adjacency {
+            twin,
+            edge_of,
+            edges,
+            outgoing,
+        } = adjacency;
         Mesh {
             face_names: Vec::new(),
             vertices,
