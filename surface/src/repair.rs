@@ -35,6 +35,8 @@
 //! (a note says so) and the caller estimates them. Shape tensors given by the file (the testbed
 //! format) are kept and make the curvature known.
 
+use std::borrow::Cow;
+
 use meshio::RawMesh;
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
@@ -445,11 +447,16 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         },
     );
     let Joined {
-        mut tris,
+        tris,
         vertex_source,
         twin,
         components,
     } = joined;
+    let mut tris: Vec<[usize; 3]> = match tris {
+        Cow::Owned(tris) => tris,
+        // Unchanged: the faces themselves (no copy).
+        Cow::Borrowed(_) => faces,
+    };
 
     // Rule 7: drop unused vertices, renumber.
     let mut used = vec![false; vertex_source.len()];
@@ -696,9 +703,9 @@ fn file_vertex(raw: &RawMesh, given_normals: Option<&[Vector3<f64>]>, s: usize) 
 }
 
 /// The faces after rule 4, and what the walk found.
-struct Oriented {
-    /// The faces, each reversed or not.
-    tris: Vec<[usize; 3]>,
+struct Oriented<'a> {
+    /// The faces, each reversed or not (borrowed while none is).
+    tris: Cow<'a, [[usize; 3]]>,
     /// Each half-edge's mate across an edge with exactly two faces, [`NO_TWIN`] elsewhere (as
     /// given, before reversals).
     mate: Vec<usize>,
@@ -712,13 +719,13 @@ struct Oriented {
 
 /// Rule 4: consistent orientation by a walk across two-face edges, then whole components by
 /// the majority, the normals or the volume.
-fn orient(
-    faces: &[[usize; 3]],
+fn orient<'a>(
+    faces: &'a [[usize; 3]],
     edge_groups: EdgeGroups,
     raw: &RawMesh,
     given_normals: Option<&[Vector3<f64>]>,
     report: &mut RepairReport,
-) -> Oriented {
+) -> Oriented<'a> {
     // Each half-edge's mate across an edge with exactly two faces (the walk's neighbour).
     let mut mate = vec![NO_TWIN; 3 * faces.len()];
     let mut several = false;
@@ -782,7 +789,8 @@ fn orient(
         (Some(flipped), component, conflicts, n_components)
     };
     // Majority orientation per component, then the whole-component rules.
-    let mut oriented: Vec<[usize; 3]> = faces.to_vec();
+    // The faces as given until one is reversed.
+    let mut oriented: Cow<'_, [[usize; 3]]> = Cow::Borrowed(faces);
     if let Some(flipped) = flipped {
         let mut votes = vec![(0usize, 0usize); n_components];
         for (f, fl) in flipped.iter().enumerate() {
@@ -793,7 +801,7 @@ fn orient(
             }
         }
         let majority_flip: Vec<bool> = votes.iter().map(|(keep, fl)| fl > keep).collect();
-        for (f, t) in oriented.iter_mut().enumerate() {
+        for (f, t) in oriented.to_mut().iter_mut().enumerate() {
             if flipped[f].unwrap_or(false) ^ majority_flip[component[f]] {
                 flip(t);
                 report.reoriented_faces += 1;
@@ -831,9 +839,11 @@ fn orient(
                 report.reversed_components.push((c, Reversal::Inward));
             }
         }
-        for (f, t) in oriented.iter_mut().enumerate() {
-            if reverse[component[f]] {
-                flip(t);
+        if reverse.contains(&true) {
+            for (f, t) in oriented.to_mut().iter_mut().enumerate() {
+                if reverse[component[f]] {
+                    flip(t);
+                }
             }
         }
     }
@@ -847,9 +857,9 @@ fn orient(
 }
 
 /// The faces after rules 4–6, with what the mesh can take over.
-struct Joined {
-    /// The faces, on the vertices of `vertex_source`.
-    tris: Vec<[usize; 3]>,
+struct Joined<'a> {
+    /// The faces, on the vertices of `vertex_source` (borrowed while unchanged).
+    tris: Cow<'a, [[usize; 3]]>,
     /// The file vertex of each vertex (copies of split vertices at the end).
     vertex_source: Vec<usize>,
     /// The joins, when the last round cut nothing ([`join_and_split`]).
@@ -862,12 +872,12 @@ struct Joined {
 /// around each vertex; repeated while an edge still has more than two faces (a detached face
 /// whose fans did not separate from the others is then cut loose along that edge with its own
 /// vertex copies). `faces` are the faces before the orientation.
-fn join_faces(
-    faces: &[[usize; 3]],
-    oriented: Oriented,
+fn join_faces<'a>(
+    faces: &'a [[usize; 3]],
+    oriented: Oriented<'a>,
     nv: usize,
     report: &mut RepairReport,
-) -> Joined {
+) -> Joined<'a> {
     let Oriented {
         mut tris,
         mate,
@@ -887,18 +897,22 @@ fn join_faces(
         // nothing to cut, so there is no second round. The mesh's faces are then joined across
         // exactly the edges the walk crossed, so its components are the walk's.
         let mut twin = mate;
-        let turned = |f: usize| tris[f] != faces[f];
-        twin.par_chunks_mut(3).enumerate().for_each(|(f, hs)| {
-            for h in hs.iter_mut().filter(|h| **h != NO_TWIN) {
-                if turned(*h / 3) {
-                    *h = 3 * (*h / 3) + 2 - *h % 3;
+        if let Cow::Owned(turned_tris) = &tris {
+            let turned = |f: usize| turned_tris[f] != faces[f];
+            twin.par_chunks_mut(3).enumerate().for_each(|(f, hs)| {
+                for h in hs.iter_mut().filter(|h| **h != NO_TWIN) {
+                    if turned(*h / 3) {
+                        *h = 3 * (*h / 3) + 2 - *h % 3;
+                    }
                 }
-            }
-            if turned(f) {
-                hs.swap(0, 2);
-            }
-        });
-        split_fans(&mut tris, &twin, &mut vertex_source, &mut extra_copies);
+                if turned(f) {
+                    hs.swap(0, 2);
+                }
+            });
+        }
+        if several_fans(&tris, &twin, vertex_source.len()) {
+            split_fans(tris.to_mut(), &twin, &mut vertex_source, &mut extra_copies);
+        }
         (Some(twin), Some(components))
     } else {
         drop(mate);
@@ -907,7 +921,7 @@ fn join_faces(
         let mut twin = None;
         for _round in 0..MAX_SPLIT_ROUNDS {
             let (forced, joined) = join_and_split(
-                &mut tris,
+                tris.to_mut(),
                 &mut vertex_source,
                 &conflict_set,
                 &mut detached,
@@ -990,7 +1004,9 @@ fn join_and_split(
         any_cut |= cut;
     }
     drop(groups);
-    split_fans(tris, &twin, vertex_source, extra_copies);
+    if several_fans(tris, &twin, vertex_source.len()) {
+        split_fans(tris, &twin, vertex_source, extra_copies);
+    }
     // Faces still a third (or same-direction second) face on an edge: cut loose.
     if !any_cut {
         return (false, Some(twin));
@@ -1044,27 +1060,27 @@ fn copy_vertex(
     vertex_source.len() - 1
 }
 
+/// Whether some vertex's corners form several fans across the joins `twin`, so that
+/// [`split_fans`] has something to do. Faster than its union–find, and in parallel: the fan
+/// walk around each vertex across the twins meets all its corners exactly when they are one
+/// class of that union–find, because a corner is joined to at most two others, across its
+/// face's two edges at that vertex, which is what the walk follows.
+fn several_fans(tris: &[[usize; 3]], twin: &[usize], vertex_count: usize) -> bool {
+    let outgoing = outgoing_half_edges(tris, twin, vertex_count);
+    first_vertex_with_several_fans(tris, twin, &outgoing).is_some()
+}
+
 /// Rule 6: every vertex whose corners form several fans across the joins `twin` keeps the
 /// first fan (in face order) and gives each other fan a copy of its own, numbered in the order
-/// the fans first appear. Returns [`copy_vertex`] for the caller's cuts.
-///
-/// The fans are the classes of a union–find over corners (the two corners at each end of a
-/// joined edge are one); only these classes matter, not the order of the unions. Most meshes
-/// have no vertex to split, and that is seen faster: the fan walk around each vertex across
-/// the twins (in parallel) meets all its corners exactly when they are one class, because a
-/// corner is joined to at most two others, across its face's two edges at that vertex, which is
-/// what the walk follows. Then nothing changes and the union–find is skipped.
+/// the fans first appear. The fans are the classes of a union–find over corners (the two
+/// corners at each end of a joined edge are one); only these classes matter, not the order of
+/// the unions. (Nothing changes when [`several_fans`] is false.)
 fn split_fans(
     tris: &mut [[usize; 3]],
     twin: &[usize],
     vertex_source: &mut Vec<usize>,
     extra_copies: &mut std::collections::BTreeMap<usize, usize>,
 ) {
-    let outgoing = outgoing_half_edges(tris, twin, vertex_source.len());
-    if first_vertex_with_several_fans(tris, twin, &outgoing).is_none() {
-        return;
-    }
-    drop(outgoing);
     // Edge l of f runs a → b and its twin, edge m of h, runs b → a: vertex a is corner l of f
     // and corner m + 1 of h, vertex b is corner l + 1 of f and corner m of h.
     let mut dsu = Dsu::new(3 * tris.len());
