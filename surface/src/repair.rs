@@ -583,7 +583,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
             .collect()
     });
     report.components = components.unwrap_or_else(|| count_components(&mesh));
-    report.boundary_edges = mesh.edges().iter().filter(|e| e.is_boundary()).count();
+    report.boundary_edges = mesh.edges().par_iter().filter(|e| e.is_boundary()).count();
     Ok(Repaired {
         normals_given: given_normals.is_some(),
         mesh,
@@ -601,6 +601,20 @@ fn triangles(
     report: &mut RepairReport,
 ) -> Result<(Vec<[usize; 3]>, Vec<usize>), RepairError> {
     let nv = raw.positions.len();
+    // The common case first, in parallel: every polygon a triangle of three distinct existing
+    // vertices, kept as it is (what the loop below does with such polygons).
+    let n = raw.polygons.len();
+    let triangle = |f: usize| match *raw.polygons.get(f) {
+        [a, b, c] if a != b && b != c && a != c && a.max(b).max(c) < nv => Some([a, b, c]),
+        _ => None,
+    };
+    if raw.polygons.all_triangles() && (0..n).into_par_iter().all(|f| triangle(f).is_some()) {
+        let faces = (0..n)
+            .into_par_iter()
+            .map(|f| triangle(f).unwrap_or_default())
+            .collect();
+        return Ok((faces, (0..n).collect()));
+    }
     let mut faces: Vec<[usize; 3]> = Vec::with_capacity(raw.polygons.corner_count() / 3 + 1);
     let mut source: Vec<usize> = Vec::with_capacity(faces.capacity());
     for (pi, poly) in raw.polygons.iter().enumerate() {
