@@ -73,8 +73,9 @@ fn main() {
         show(&walls)
     );
     println!(
-        "repair CPU:  median {:.2} s [{}]",
+        "repair CPU:  median {:.2} s, mean {:.4} s [{}]",
         median(cpus.clone()),
+        cpus.iter().sum::<f64>() / cpus.len().max(1) as f64,
         show(&cpus)
     );
     println!(
