@@ -36,7 +36,9 @@ use nalgebra::{Point3, Vector3};
 use crate::error::{ReadError, WriteError};
 use crate::format::{MeshFormat, WriteOptions};
 use crate::raw::{Polygons, RawMesh};
-use crate::util::{lines, parse_f64, show, skip_space_and_comments, tokens, validate_for_write};
+use crate::util::{
+    lines, parse_f64, parse_i64, show, skip_space_and_comments, tokens, validate_for_write,
+};
 
 const NAME: &str = "obj";
 
@@ -93,19 +95,16 @@ fn resolve(
     line: usize,
     corner: usize,
 ) -> Result<usize, ReadError> {
-    let i: i64 = std::str::from_utf8(tok)
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .ok_or_else(|| {
-            err(
-                line,
-                format!(
-                    "face corner {}: `{}` is not a {what} index",
-                    corner + 1,
-                    show(tok)
-                ),
-            )
-        })?;
+    let i: i64 = parse_i64(tok).ok_or_else(|| {
+        err(
+            line,
+            format!(
+                "face corner {}: `{}` is not a {what} index",
+                corner + 1,
+                show(tok)
+            ),
+        )
+    })?;
     let resolved = if i > 0 {
         usize::try_from(i - 1).ok()
     } else if i < 0 {

@@ -40,6 +40,32 @@ pub(crate) fn parse_f64(tok: &[u8]) -> Result<f64, String> {
     }
 }
 
+/// The integer `i64::from_str` reads from the token (an optional sign, then decimal digits),
+/// without going through `str`: the same value, and `None` where it fails (empty, a stray
+/// character, overflow). Face corners are most of an OBJ file, so this is its hot path.
+pub(crate) fn parse_i64(tok: &[u8]) -> Option<i64> {
+    let (negative, digits) = match tok {
+        [b'-', rest @ ..] => (true, rest),
+        [b'+', rest @ ..] => (false, rest),
+        _ => (false, tok),
+    };
+    if digits.is_empty() {
+        return None;
+    }
+    let mut x: i64 = 0;
+    for &d in digits {
+        let d = i64::from(d.checked_sub(b'0').filter(|d| *d < 10)?);
+        // Negative numbers are accumulated negatively, so that i64::MIN reads too.
+        x = x.checked_mul(10)?;
+        x = if negative {
+            x.checked_sub(d)?
+        } else {
+            x.checked_add(d)?
+        };
+    }
+    Some(x)
+}
+
 /// A non-negative integer, or what is wrong with the token.
 pub(crate) fn parse_usize(tok: &[u8]) -> Result<usize, String> {
     std::str::from_utf8(tok)
@@ -169,4 +195,57 @@ pub(crate) fn fan_count(mesh: &RawMesh) -> usize {
 /// A colour component 0–1 as a byte (rounded, clamped).
 pub(crate) fn color_byte(c: f32) -> u8 {
     (c.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_i64_reads_what_from_str_reads() {
+        let mut cases: Vec<String> = [
+            "",
+            "-",
+            "+",
+            "0",
+            "-0",
+            "+0",
+            "7",
+            "-7",
+            "+7",
+            "0012",
+            "-0012",
+            "1a",
+            "a1",
+            "1 ",
+            " 1",
+            "--1",
+            "+-1",
+            "1.0",
+            "1e3",
+            "9223372036854775807",
+            "9223372036854775808",
+            "-9223372036854775808",
+            "-9223372036854775809",
+            "99999999999999999999",
+            "١",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let mut state = 1u64;
+        for _ in 0..2000 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let len = (state >> 60) as usize;
+            let s: String = (0..len)
+                .map(|k| b"0123456789-+/x9"[((state >> (4 * k)) % 15) as usize] as char)
+                .collect();
+            cases.push(s);
+        }
+        for s in cases {
+            assert_eq!(parse_i64(s.as_bytes()), s.parse::<i64>().ok(), "{s:?}");
+        }
+    }
 }

@@ -38,6 +38,7 @@
 pub mod beztri;
 pub mod curve_stats;
 pub mod datasets;
+mod edge_groups;
 pub mod fairing;
 pub mod fallback;
 pub mod fit;
@@ -56,6 +57,7 @@ pub mod stream;
 pub mod tessellate;
 pub mod tessellate_fit;
 pub mod testbed_format;
+mod vertex_pieces;
 
 pub use beztri::{BezTriError, BezierCurve, BezierTriangle, Curvature, Derivatives};
 pub use datasets::{

@@ -34,6 +34,9 @@ use curves::VertexData;
 use nalgebra::{Matrix3, Point3, Vector3};
 use rayon::prelude::*;
 
+use crate::edge_groups::{ends, key, EdgeGroups};
+use crate::vertex_pieces::for_each_half_edge_by_vertex;
+
 /// A face whose doubled area is below this fraction of the product of its two longest edges
 /// (the sine of its largest angle, in effect) is degenerate: below `1e-12` a face normal has lost
 /// most of its digits to cancellation.
@@ -43,49 +46,8 @@ pub const DEGENERATE_FACE_SINE: f64 = 1e-12;
 /// a writer can put them back (the testbed's extensibility rule).
 pub type ExtraFields = BTreeMap<String, Vec<f64>>;
 
-/// Half-edges `h = 3f + l` (running from corner `l` of face `f` to corner `l + 1`) as `(min,
-/// max, h)` with `min, max` the edge's two vertices, in the order a full sort of these triples
-/// gives — grouped by undirected edge, each group in half-edge order — by a counting sort on
-/// `min` and a small sort per bucket (about the valence): linear in practice, deterministic.
-pub(crate) fn half_edges_by_key(faces: &[[usize; 3]]) -> Vec<(usize, usize, usize)> {
-    let n = faces
-        .iter()
-        .flat_map(|t| t.iter().copied())
-        .max()
-        .map_or(0, |m| m + 1);
-    let mut next = vec![0usize; n + 1];
-    for t in faces {
-        for l in 0..3 {
-            next[t[l].min(t[(l + 1) % 3]) + 1] += 1;
-        }
-    }
-    for v in 0..n {
-        next[v + 1] += next[v];
-    }
-    let bounds = next.clone();
-    let mut out = vec![(0usize, 0usize, 0usize); 3 * faces.len()];
-    for (f, t) in faces.iter().enumerate() {
-        for l in 0..3 {
-            let (a, b) = (t[l], t[(l + 1) % 3]);
-            let lo = a.min(b);
-            out[next[lo]] = (lo, a.max(b), 3 * f + l);
-            next[lo] += 1;
-        }
-    }
-    drop(next);
-    for w in bounds.windows(2) {
-        if w[1] - w[0] > 1 {
-            // Scattered in half-edge order already: a stable sort by `max` keeps it.
-            if let Some(bucket) = out.get_mut(w[0]..w[1]) {
-                bucket.sort_by_key(|x| x.1);
-            }
-        }
-    }
-    out
-}
-
 /// [`Mesh`]'s twin of a boundary half-edge.
-const NO_TWIN: usize = usize::MAX;
+pub(crate) const NO_TWIN: usize = usize::MAX;
 
 /// One vertex: position, normal and shape tensor, whether the curvature is known, a name and
 /// extra fields.
@@ -251,16 +213,236 @@ pub struct Mesh {
     pub extra: ExtraFields,
 }
 
+/// The twin of every half-edge of valid faces ([`NO_TWIN`] on the boundary), or the first
+/// error in half-edge order (the one a half-edge-by-half-edge construction meets first): a
+/// second half-edge running the same way along an edge, or a third half-edge on it.
+fn twins(faces: &[[usize; 3]]) -> Result<Vec<usize>, MeshError> {
+    let groups = EdgeGroups::new(faces);
+    let dir = |h: usize| faces[h / 3][h % 3];
+    let mut first_error: Option<(usize, MeshError)> = None;
+    for hs in groups.iter() {
+        let trigger = if hs.len() >= 2 && dir(hs[0]) == dir(hs[1]) {
+            let (a, b) = ends(faces, hs[1]);
+            Some((
+                hs[1],
+                MeshError::InconsistentOrientation {
+                    vertices: [a, b],
+                    faces: [hs[0] / 3, hs[1] / 3],
+                },
+            ))
+        } else if hs.len() >= 3 {
+            let (lo, hi) = key(faces, hs[0]);
+            Some((
+                hs[2],
+                MeshError::NonManifoldEdge {
+                    vertices: [lo, hi],
+                    faces: hs[..3].iter().map(|h| h / 3).collect(),
+                },
+            ))
+        } else {
+            None
+        };
+        if let Some((h, e)) = trigger {
+            if first_error.as_ref().is_none_or(|(h0, _)| h < *h0) {
+                first_error = Some((h, e));
+            }
+        }
+    }
+    if let Some((_, e)) = first_error {
+        return Err(e);
+    }
+    let mut twin = vec![NO_TWIN; 3 * faces.len()];
+    for hs in groups.iter() {
+        if let [h0, h1] = *hs {
+            twin[h0] = h1;
+            twin[h1] = h0;
+        }
+    }
+    Ok(twin)
+}
+
+/// A mesh's half-edge arrays, built from its faces and twins.
+struct Adjacency {
+    twin: Vec<usize>,
+    edge_of: Vec<usize>,
+    edges: Vec<Edge>,
+    outgoing: Vec<Option<usize>>,
+}
+
+impl Adjacency {
+    /// From valid faces and a twin array pairing half-edges that run along the same edge in
+    /// opposite directions ([`NO_TWIN`] on the boundary): numbers the edges in the order of
+    /// their first half-edge ([`number_edges`]) and picks each vertex's outgoing half-edge
+    /// ([`outgoing_half_edges`]), side by side.
+    fn new(faces: &[[usize; 3]], twin: Vec<usize>, vertex_count: usize) -> Self {
+        let ((edge_of, edges), outgoing) = rayon::join(
+            || number_edges(faces, &twin),
+            || outgoing_half_edges(faces, &twin, vertex_count),
+        );
+        Adjacency {
+            twin,
+            edge_of,
+            edges,
+            outgoing,
+        }
+    }
+}
+
+/// The undirected edges of valid faces with twins `twin`, numbered in the order of their first
+/// half-edge, and the edge of every half-edge.
+///
+/// Walking the half-edges in order, a half-edge starts an edge unless its twin came before
+/// it; an edge's number is then the count of starting half-edges before it. That count is
+/// taken per block of half-edges in parallel, summed, and each block then numbers its own
+/// starting half-edges and their twins (every half-edge is written once, by the block of its
+/// edge's first half-edge, hence the atomics, which cost nothing uncontended) and notes the
+/// half-edge each edge starts at; the edges are built from these in parallel.
+fn number_edges(faces: &[[usize; 3]], twin: &[usize]) -> (Vec<usize>, Vec<Edge>) {
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+    let nh = twin.len();
+    let starts = |h: usize| twin[h] == NO_TWIN || twin[h] > h;
+    let block = (nh / (8 * rayon::current_num_threads().max(1))).max(1 << 14);
+    let blocks = nh.div_ceil(block);
+    let range = |b: usize| b * block..((b + 1) * block).min(nh);
+    let counts: Vec<usize> = (0..blocks)
+        .into_par_iter()
+        .map(|b| range(b).filter(|&h| starts(h)).count())
+        .collect();
+    let mut offsets = Vec::with_capacity(blocks);
+    let mut total = 0;
+    for c in counts {
+        offsets.push(total);
+        total += c;
+    }
+    let edge_of: Vec<AtomicUsize> = (0..nh)
+        .into_par_iter()
+        .map(|_| AtomicUsize::new(0))
+        .collect();
+    let first: Vec<AtomicUsize> = (0..total)
+        .into_par_iter()
+        .map(|_| AtomicUsize::new(0))
+        .collect();
+    offsets.into_par_iter().enumerate().for_each(|(b, mut e)| {
+        for h in range(b).filter(|&h| starts(h)) {
+            edge_of[h].store(e, Relaxed);
+            if let Some(t) = twin.get(h).copied().filter(|&t| t != NO_TWIN) {
+                edge_of[t].store(e, Relaxed);
+            }
+            first[e].store(h, Relaxed);
+            e += 1;
+        }
+    });
+    let edge_of = edge_of.into_iter().map(AtomicUsize::into_inner).collect();
+    let edges = first
+        .into_par_iter()
+        .map(|h| {
+            let h = h.into_inner();
+            let (f, l, t) = (h / 3, h % 3, twin[h]);
+            Edge {
+                vertices: [faces[f][l], faces[f][(l + 1) % 3]],
+                first: (f, l),
+                second: (t != NO_TWIN).then_some((t / 3, t % 3)),
+            }
+        })
+        .collect();
+    (edge_of, edges)
+}
+
+/// One half-edge leaving each of `vertex_count` vertices (`None` for a vertex in no face):
+/// the last one on the boundary, else the first. Preferring the boundary is not needed for
+/// correctness (queries rotate to the boundary), but makes the common case cheap.
+pub(crate) fn outgoing_half_edges(
+    faces: &[[usize; 3]],
+    twin: &[usize],
+    vertex_count: usize,
+) -> Vec<Option<usize>> {
+    let mut outgoing = vec![None; vertex_count];
+    for_each_half_edge_by_vertex(
+        faces,
+        &mut outgoing,
+        |t, l| t[l],
+        |slot, h| {
+            if slot.is_none() || twin[h] == NO_TWIN {
+                *slot = Some(h);
+            }
+        },
+    );
+    outgoing
+}
+
+/// Walks the fan of half-edge `start`'s vertex across `twin` ([`NO_TWIN`] on the boundary):
+/// first clockwise (`h → next(twin(h))`) until a boundary or back at the start, then
+/// counter-clockwise (`h → twin(prev(h))`), calling `visit` with each half-edge of that second
+/// pass (one per face, in order).
+fn walk_fan(twin: &[usize], start: usize, mut visit: impl FnMut(usize)) {
+    let nh = twin.len();
+    let twin_of = |h: usize| twin.get(h).copied().filter(|&t| t != NO_TWIN);
+    let mut h = start;
+    for _ in 0..nh {
+        match twin_of(h) {
+            Some(t) if Mesh::next(t) != start => h = Mesh::next(t),
+            _ => break,
+        }
+    }
+    let first = h;
+    visit(h);
+    for _ in 0..nh {
+        match twin_of(Mesh::prev(h)) {
+            Some(t) if t != first => {
+                h = t;
+                visit(h);
+            }
+            _ => break,
+        }
+    }
+}
+
+/// The lowest vertex whose faces form more than one fan across `twin`, in parallel: one
+/// whose fan walk from `outgoing[v]` ([`outgoing_half_edges`]) does not meet every half-edge
+/// leaving it. `None` when every vertex is manifold.
+pub(crate) fn first_vertex_with_several_fans(
+    faces: &[[usize; 3]],
+    twin: &[usize],
+    outgoing: &[Option<usize>],
+) -> Option<usize> {
+    let mut incident = vec![0usize; outgoing.len()];
+    for_each_half_edge_by_vertex(faces, &mut incident, |t, l| t[l], |c, _| *c += 1);
+    let fan_len = |v: usize| {
+        let mut len = 0;
+        if let Some(start) = outgoing[v] {
+            walk_fan(twin, start, |_| len += 1);
+        }
+        len
+    };
+    (0..outgoing.len())
+        .into_par_iter()
+        .find_first(|&v| fan_len(v) != incident[v])
+}
+
 /// The zero-area test of [`Mesh::new`]: doubled area at most [`DEGENERATE_FACE_SINE`] times
 /// the product of the two longest edges. Coordinates are finite (checked before), so no NaN
 /// reaches the comparison; a face with a NaN area (overflow) counts as degenerate.
-fn is_degenerate([a, b, c]: [Point3<f64>; 3]) -> bool {
+pub(crate) fn is_degenerate([a, b, c]: [Point3<f64>; 3]) -> bool {
     let (e1, e2, e3) = (b - a, c - a, c - b);
     let mut lengths = [e1.norm(), e2.norm(), e3.norm()];
     lengths.sort_by(f64::total_cmp);
     let area2 = e1.cross(&e2).norm();
     let limit = DEGENERATE_FACE_SINE * lengths[1] * lengths[2];
     area2.partial_cmp(&limit) != Some(std::cmp::Ordering::Greater)
+}
+
+/// The first vertex with non-finite data, in parallel (`find_first`: the lowest index, as a
+/// loop finds).
+fn check_vertices(vertices: &[Vertex]) -> Result<(), MeshError> {
+    match vertices
+        .par_iter()
+        .enumerate()
+        .map(|(i, v)| check_vertex(i, v))
+        .find_first(Result::is_err)
+    {
+        Some(Err(e)) => Err(e),
+        _ => Ok(()),
+    }
 }
 
 fn check_vertex(i: usize, v: &Vertex) -> Result<(), MeshError> {
@@ -308,15 +490,7 @@ impl Mesh {
         allow_degenerate: bool,
     ) -> Result<Self, MeshError> {
         let count = vertices.len();
-        // The first bad vertex, in parallel (`find_first`: the lowest index, as a loop finds).
-        if let Some(Err(e)) = vertices
-            .par_iter()
-            .enumerate()
-            .map(|(i, v)| check_vertex(i, v))
-            .find_first(Result::is_err)
-        {
-            return Err(e);
-        }
+        check_vertices(&vertices)?;
         for (f, face) in faces.iter().enumerate() {
             for (corner, &vertex) in face.iter().enumerate() {
                 if vertex >= count {
@@ -344,98 +518,48 @@ impl Mesh {
             }
         }
 
-        let nh = 3 * faces.len();
-        let mut twin = vec![NO_TWIN; nh];
-        let mut edge_of = vec![0; nh];
-        // Half-edges grouped by undirected key (no hashing, no comparison sort of the whole
-        // list: a counting sort on the smaller vertex, small sorts per bucket); within a group, in
-        // half-edge order.
-        let order = half_edges_by_key(&faces);
-        // Groups as ranges of `order`, then the first error in half-edge order (the one the
-        // half-edge-by-half-edge construction meets first): a second half-edge running the same
-        // way, or a third half-edge.
-        let mut groups: Vec<std::ops::Range<usize>> = Vec::with_capacity(nh / 2 + 1);
-        let mut start = 0;
-        for k in 1..=order.len() {
-            if k == order.len() || (order[k].0, order[k].1) != (order[start].0, order[start].1) {
-                groups.push(start..k);
-                start = k;
-            }
+        let twin = twins(&faces)?;
+        let adjacency = Adjacency::new(&faces, twin, count);
+        let mesh = Self::assemble(vertices, faces, adjacency);
+        match mesh.first_non_manifold_vertex() {
+            Some(vertex) => Err(MeshError::NonManifoldVertex { vertex }),
+            None => Ok(mesh),
         }
-        let dir = |h: usize| faces[h / 3][h % 3];
-        let mut first_error: Option<(usize, MeshError)> = None;
-        for g in &groups {
-            let hs = &order[g.clone()];
-            let trigger = if hs.len() >= 2 && dir(hs[0].2) == dir(hs[1].2) {
-                Some((
-                    hs[1].2,
-                    MeshError::InconsistentOrientation {
-                        vertices: [dir(hs[1].2), faces[hs[1].2 / 3][(hs[1].2 % 3 + 1) % 3]],
-                        faces: [hs[0].2 / 3, hs[1].2 / 3],
-                    },
-                ))
-            } else if hs.len() >= 3 {
-                Some((
-                    hs[2].2,
-                    MeshError::NonManifoldEdge {
-                        vertices: [hs[0].0, hs[0].1],
-                        faces: hs[..3].iter().map(|x| x.2 / 3).collect(),
-                    },
-                ))
-            } else {
-                None
-            };
-            if let Some((h, e)) = trigger {
-                if first_error.as_ref().is_none_or(|(h0, _)| h < *h0) {
-                    first_error = Some((h, e));
-                }
-            }
-        }
-        if let Some((_, e)) = first_error {
-            return Err(e);
-        }
-        // Edges numbered in the order of their first half-edge: mark each group's leader, then
-        // walk the half-edges in order (linear; no sort of the groups).
-        let mut leader = vec![usize::MAX; nh];
-        for (gi, g) in groups.iter().enumerate() {
-            leader[order[g.start].2] = gi;
-        }
-        let mut edges: Vec<Edge> = Vec::with_capacity(groups.len());
-        for &gi in leader.iter().filter(|&&gi| gi != usize::MAX) {
-            let e = edges.len();
-            let hs = &order[groups[gi].clone()];
-            let h0 = hs[0].2;
-            let (f, l) = (h0 / 3, h0 % 3);
-            edge_of[h0] = e;
-            let mut edge = Edge {
-                vertices: [faces[f][l], faces[f][(l + 1) % 3]],
-                first: (f, l),
-                second: None,
-            };
-            if let Some(&(_, _, h1)) = hs.get(1) {
-                edge_of[h1] = e;
-                twin[h0] = h1;
-                twin[h1] = h0;
-                edge.second = Some((h1 / 3, h1 % 3));
-            }
-            edges.push(edge);
-        }
-        drop(leader);
-        drop(groups);
-        drop(order);
+    }
 
-        let mut outgoing = vec![None; count];
-        let mut incident = vec![0usize; count];
-        for (h, &t) in twin.iter().enumerate() {
-            let v = faces[h / 3][h % 3];
-            incident[v] += 1;
-            // Prefer an outgoing half-edge on the boundary: not needed for correctness (queries
-            // rotate to the boundary), but makes the common case cheap.
-            if outgoing[v].is_none() || t == NO_TWIN {
-                outgoing[v] = Some(h);
-            }
-        }
-        let mesh = Mesh {
+    /// The mesh of faces whose adjacency the repair ([`crate::repair`]) has established: every
+    /// corner a vertex of `vertices`, no repeated vertex in a face, `twin` pairing the
+    /// half-edges of every edge with two faces running opposite ways ([`NO_TWIN`] on the
+    /// boundary), no edge with a third face, and the faces around every vertex one fan across
+    /// these twins. The validation of [`Mesh::new_allowing_degenerate`] would find exactly these
+    /// twins and nothing to reject, so only the vertex data is checked (the same
+    /// [`MeshError::NonFinite`] as there); debug builds check the rest too.
+    pub(crate) fn from_twins(
+        vertices: Vec<Vertex>,
+        faces: Vec<[usize; 3]>,
+        twin: Vec<usize>,
+    ) -> Result<Self, MeshError> {
+        debug_assert_eq!(twins(&faces).as_ref(), Ok(&twin));
+        // The vertex check and the adjacency side by side (they share nothing).
+        let (checked, adjacency) = rayon::join(
+            || check_vertices(&vertices),
+            || Adjacency::new(&faces, twin, vertices.len()),
+        );
+        checked?;
+        let mesh = Self::assemble(vertices, faces, adjacency);
+        debug_assert_eq!(mesh.first_non_manifold_vertex(), None);
+        Ok(mesh)
+    }
+
+    /// The mesh of valid vertices and faces with their adjacency. Nothing is checked.
+    fn assemble(vertices: Vec<Vertex>, faces: Vec<[usize; 3]>, adjacency: Adjacency) -> Self {
+        let Adjacency {
+            twin,
+            edge_of,
+            edges,
+            outgoing,
+        } = adjacency;
+        Mesh {
             face_names: Vec::new(),
             vertices,
             faces,
@@ -444,15 +568,12 @@ impl Mesh {
             edges,
             outgoing,
             extra: ExtraFields::new(),
-        };
-        // Every vertex's faces form one fan (in parallel; the lowest bad vertex is named).
-        if let Some(v) = (0..count)
-            .into_par_iter()
-            .find_first(|&v| mesh.fan_len(v) != incident[v])
-        {
-            return Err(MeshError::NonManifoldVertex { vertex: v });
         }
-        Ok(mesh)
+    }
+
+    /// The lowest vertex whose faces form more than one fan (in parallel).
+    fn first_non_manifold_vertex(&self) -> Option<usize> {
+        first_vertex_with_several_fans(&self.faces, &self.twin, &self.outgoing)
     }
 
     /// The same mesh with face names (for writers and messages); `names` shorter than the face
@@ -606,29 +727,9 @@ impl Mesh {
         3 * (h / 3) + (h % 3 + 2) % 3
     }
 
-    /// Walks the fan of half-edge `start`'s vertex: first clockwise (`h → next(twin(h))`) until
-    /// a boundary or back at the start, then counter-clockwise (`h → twin(prev(h))`), calling
-    /// `visit` with each half-edge of that second pass (one per face, in order).
-    fn walk_fan(&self, start: usize, mut visit: impl FnMut(usize)) {
-        let nh = self.twin.len();
-        let mut h = start;
-        for _ in 0..nh {
-            match self.twin_of(h) {
-                Some(t) if Self::next(t) != start => h = Self::next(t),
-                _ => break,
-            }
-        }
-        let first = h;
-        visit(h);
-        for _ in 0..nh {
-            match self.twin_of(Self::prev(h)) {
-                Some(t) if t != first => {
-                    h = t;
-                    visit(h);
-                }
-                _ => break,
-            }
-        }
+    /// [`walk_fan`] on this mesh's twins.
+    fn walk_fan(&self, start: usize, visit: impl FnMut(usize)) {
+        walk_fan(&self.twin, start, visit);
     }
 
     fn faces_around_vertex_from(&self, v: usize, start: usize) -> Vec<usize> {
@@ -646,17 +747,6 @@ impl Mesh {
             Some(h) => self.faces_around_vertex_from(v, h),
             None => Vec::new(),
         }
-    }
-
-    /// `faces_around_vertex(v).len()` without building the list (the validation of a mesh asks
-    /// it of every vertex).
-    fn fan_len(&self, v: usize) -> usize {
-        let Some(start) = self.outgoing.get(v).copied().flatten() else {
-            return 0;
-        };
-        let mut len = 0;
-        self.walk_fan(start, |_| len += 1);
-        len
     }
 
     /// The vertices adjacent to `v` in the same counter-clockwise order as

@@ -35,11 +35,17 @@
 //! (a note says so) and the caller estimates them. Shape tensors given by the file (the testbed
 //! format) are kept and make the curvature known.
 
+use std::borrow::Cow;
+
 use meshio::RawMesh;
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 
-use crate::mesh::{ExtraFields, Mesh, MeshError, Vertex};
+use crate::edge_groups::{ends, key, EdgeGroups};
+use crate::mesh::{
+    first_vertex_with_several_fans, is_degenerate, outgoing_half_edges, ExtraFields, Mesh,
+    MeshError, Vertex, NO_TWIN,
+};
 
 /// Rule 9's bound: a mesh that still fails validation after this many faces were dropped is
 /// refused (each drop costs a full validation, so the bound keeps the work linear in practice).
@@ -279,26 +285,85 @@ impl Dsu {
     }
 }
 
-/// Half-edges grouped by undirected edge: `(key, face, local edge)` sorted by key, then face and
-/// local edge (a counting sort, [`crate::mesh::half_edges_by_key`]).
-fn sorted_half_edges(faces: &[[usize; 3]]) -> Vec<((usize, usize), usize, usize)> {
-    crate::mesh::half_edges_by_key(faces)
-        .into_iter()
-        .map(|(a, b, h)| ((a, b), h / 3, h % 3))
+/// Rule 3 on faces without a repeated vertex: the faces (indices, possibly repeated) with the
+/// same three vertices as an earlier face.
+///
+/// Found in the edge groups rather than by sorting the faces: two faces with the same three
+/// vertices are together in the group of each of their edges with the same third vertex, and
+/// two faces in one edge's group with the same third vertex have the same three vertices. So
+/// within every group, each face whose third vertex an earlier (lower) face of the group has
+/// too is a duplicate, and these are exactly all but the first face of every set of faces with
+/// the same vertices, which is what the sort kept.
+fn duplicate_faces(faces: &[[usize; 3]], groups: &EdgeGroups) -> Vec<usize> {
+    let third = |h: usize| faces[h / 3][(h % 3 + 2) % 3];
+    groups
+        .par_iter()
+        .flat_map_iter(|g| -> Vec<usize> {
+            match *g {
+                [_] => Vec::new(),
+                [h0, h1] => {
+                    if third(h0) == third(h1) {
+                        vec![h1 / 3]
+                    } else {
+                        Vec::new()
+                    }
+                }
+                _ => {
+                    let mut by_third: Vec<(usize, usize)> =
+                        g.iter().map(|&h| (third(h), h / 3)).collect();
+                    by_third.sort_unstable();
+                    by_third
+                        .windows(2)
+                        .filter(|w| w[0].0 == w[1].0)
+                        .map(|w| w[1].1)
+                        .collect()
+                }
+            }
+        })
         .collect()
 }
 
-/// Groups of equal keys in a sorted half-edge list, as index ranges.
-fn groups(hs: &[((usize, usize), usize, usize)]) -> Vec<std::ops::Range<usize>> {
-    let mut out = Vec::new();
-    let mut start = 0;
-    for i in 1..=hs.len() {
-        if i == hs.len() || hs[i].0 != hs[start].0 {
-            out.push(start..i);
-            start = i;
+/// The faces across the edges of face `f` that have exactly two faces (`mate`, [`NO_TWIN`]
+/// elsewhere), each with whether it runs that edge the same way as `f`: in the order of the
+/// edges' keys (the order of the edge groups, which the orientation walk visited them in).
+fn neighbours<'a>(
+    faces: &'a [[usize; 3]],
+    mate: &'a [usize],
+    f: usize,
+) -> impl Iterator<Item = (usize, bool)> + 'a {
+    let t = faces[f];
+    let mut ls = [0, 1, 2];
+    ls.sort_unstable_by_key(|&l| key(faces, 3 * f + l));
+    ls.into_iter().filter_map(move |l| {
+        let m = mate[3 * f + l];
+        (m != NO_TWIN).then(|| (m / 3, t[l] == faces[m / 3][m % 3]))
+    })
+}
+
+/// The components of the faces joined across their mates (`mate[h]`, [`NO_TWIN`] where none),
+/// numbered in the order of their lowest face, and how many there are: what the orientation
+/// walk finds, since it starts each component at its lowest face not yet reached and crosses
+/// exactly the mates. The union–find keeps the smaller root, so a root is its set's lowest face,
+/// met before the set's other faces in face order.
+fn components_of_mates(n_faces: usize, mate: &[usize]) -> (Vec<usize>, usize) {
+    let mut dsu = Dsu::new(n_faces);
+    for (h, &m) in mate.iter().enumerate() {
+        if m != NO_TWIN && h < m {
+            dsu.union(h / 3, m / 3);
         }
     }
-    out
+    let mut component = vec![0usize; n_faces];
+    let mut n = 0;
+    for f in 0..n_faces {
+        let root = dsu.find(f);
+        component[f] = if root == f {
+            n += 1;
+            n - 1
+        } else {
+            component[root]
+        };
+    }
+    (component, n)
 }
 
 fn flip(t: &mut [usize; 3]) {
@@ -306,11 +371,250 @@ fn flip(t: &mut [usize; 3]) {
 }
 
 /// Builds a mesh from a file's raw mesh by the rules of the module docs.
+///
+/// The work is that of applying the rules one after the other, done with fewer passes: the
+/// half-edges are grouped by edge once ([`EdgeGroups`]) for rules 3 to 6, the joins that
+/// rules 4 to 6 establish are handed to the mesh as its twins ([`Mesh::from_twins`]) instead
+/// of being found and checked again, and what does not depend on the faces' orientation or on
+/// which vertices get split (the vertex data, rule 8's zero-area faces) is computed on another
+/// thread meanwhile. Each shortcut states why it gives the same result; whenever one does not
+/// apply (an edge with three faces, a non-orientable component, a face cut loose) the rules run
+/// as written.
 pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, RepairError> {
     let mut report = RepairReport::default();
     let nv = raw.positions.len();
 
     // Rules 1–3: triangles, without repeated vertices or duplicates.
+    let (mut faces, mut source) = triangles(raw, options, &mut report)?;
+    let mut edge_groups = EdgeGroups::new(&faces);
+    let dup = duplicate_faces(&faces, &edge_groups);
+    if !dup.is_empty() {
+        let mut is_dup = vec![false; faces.len()];
+        for f in dup {
+            is_dup[f] = true;
+        }
+        let mut k = 0;
+        faces.retain(|_| {
+            k += 1;
+            !is_dup[k - 1]
+        });
+        let mut k = 0;
+        source.retain(|s| {
+            k += 1;
+            if is_dup[k - 1] {
+                report.duplicate_faces.push(*s);
+            }
+            !is_dup[k - 1]
+        });
+        report.duplicate_faces.dedup();
+        edge_groups = EdgeGroups::new(&faces);
+    }
+    if faces.is_empty() {
+        return Err(RepairError::Empty(format!(
+            "{} faces in the file, none with three distinct vertices",
+            raw.polygons.len()
+        )));
+    }
+    // (Its notes are the only notes, so reading the normals before rule 4 keeps their order.)
+    let given_normals = file_normals(raw, &mut report);
+
+    // Rules 4–6 on this thread; meanwhile, on another, the data of every file vertex and the
+    // zero-area faces (rule 8), which the orientation, the splits and the renumbering do not
+    // change (a split vertex's copies have its data; reversing a face permutes its edges and
+    // negates its area normal, exactly, so the test of `Mesh::is_degenerate_face` gives the
+    // same answer).
+    let (joined, (file_vertices, degenerate)) = rayon::join(
+        || {
+            let oriented = orient(
+                &faces,
+                edge_groups,
+                raw,
+                given_normals.as_deref(),
+                &mut report,
+            );
+            join_faces(&faces, oriented, nv, &mut report)
+        },
+        || {
+            let vertices: Vec<Vertex> = (0..nv)
+                .into_par_iter()
+                .map(|s| file_vertex(raw, given_normals.as_deref(), s))
+                .collect();
+            let degenerate: Vec<usize> = (0..faces.len())
+                .into_par_iter()
+                .filter(|&f| is_degenerate(faces[f].map(|v| raw.positions[v])))
+                .collect();
+            (vertices, degenerate)
+        },
+    );
+    let Joined {
+        tris,
+        vertex_source,
+        twin,
+        components,
+    } = joined;
+    let mut tris: Vec<[usize; 3]> = match tris {
+        Cow::Owned(tris) => tris,
+        // Unchanged: the faces themselves (no copy).
+        Cow::Borrowed(_) => faces,
+    };
+
+    // Rule 7: drop unused vertices, renumber.
+    let mut used = vec![false; vertex_source.len()];
+    for t in &tris {
+        for &v in t {
+            used[v] = true;
+        }
+    }
+    let mut renumber = vec![usize::MAX; vertex_source.len()];
+    let mut kept_source = Vec::with_capacity(vertex_source.len());
+    for (v, &u) in used.iter().enumerate() {
+        if u {
+            renumber[v] = kept_source.len();
+            kept_source.push(vertex_source[v]);
+        }
+    }
+    report.unused_vertices = (0..nv).filter(|&v| !used[v]).count();
+    if kept_source.len() < vertex_source.len() {
+        // (Otherwise `renumber` is the identity.)
+        tris.par_iter_mut()
+            .for_each(|t| *t = t.map(|v| renumber[v]));
+    }
+    drop((used, renumber));
+    let vertex_source = kept_source;
+    // The mesh's vertices: the file's, or copies of them where some were dropped or split
+    // (built again should rule 9 need them a second time after taking them whole).
+    let mut file_vertices = Some(file_vertices);
+    let mut vertices_of = |vertex_source: &[usize]| -> Vec<Vertex> {
+        match file_vertices.take() {
+            Some(all)
+                if vertex_source.len() == all.len()
+                    && vertex_source.iter().enumerate().all(|(v, &s)| v == s) =>
+            {
+                all
+            }
+            Some(all) => {
+                let copies = vertex_source.par_iter().map(|&s| all[s].clone()).collect();
+                file_vertices = Some(all);
+                copies
+            }
+            None => vertex_source
+                .par_iter()
+                .map(|&s| file_vertex(raw, given_normals.as_deref(), s))
+                .collect(),
+        }
+    };
+
+    // Rule 9: validate; drop what still fails, boundedly (the vertices are copied again for a
+    // retry: a clean mesh is built once).
+    let mut face_source = source;
+    let (mesh, degenerate, components) = if let Some(twin) = twin {
+        // The last round joined every edge with two faces and cut nothing: the validation
+        // would find these twins and nothing to drop (see `Mesh::from_twins`), so rule 9 has
+        // nothing to do but check the vertex data, as the validation does first. No face was
+        // dropped, so the zero-area faces found above keep their numbers.
+        match Mesh::from_twins(vertices_of(&vertex_source), tris, twin) {
+            Ok(m) => (m, Some(degenerate), components),
+            Err(e) => {
+                return Err(RepairError::Invalid {
+                    dropped: 0,
+                    source: e,
+                })
+            }
+        }
+    } else {
+        let mesh = {
+            loop {
+                match Mesh::new_allowing_degenerate(vertices_of(&vertex_source), tris.clone()) {
+                    Ok(m) => break m,
+                    Err(e) => {
+                        let culprit = match &e {
+                            MeshError::NonManifoldEdge { faces, .. } => faces.last().copied(),
+                            MeshError::InconsistentOrientation { faces, .. } => Some(faces[1]),
+                            MeshError::NonManifoldVertex { vertex } => {
+                                tris.iter().rposition(|t| t.contains(vertex))
+                            }
+                            MeshError::RepeatedVertex { face, .. }
+                            | MeshError::ZeroArea { face, .. }
+                            | MeshError::MissingVertex { face, .. } => Some(*face),
+                            _ => None,
+                        };
+                        match culprit {
+                            Some(f)
+                                if report.dropped_faces.len() < MAX_DROPPED_FACES
+                                    && f < tris.len() =>
+                            {
+                                report.dropped_faces.push(face_source[f]);
+                                tris.remove(f);
+                                face_source.remove(f);
+                                if tris.is_empty() {
+                                    return Err(RepairError::Empty(
+                                        "every face had to be dropped".into(),
+                                    ));
+                                }
+                            }
+                            _ => {
+                                return Err(RepairError::Invalid {
+                                    dropped: report.dropped_faces.len(),
+                                    source: e,
+                                })
+                            }
+                        }
+                        // Vertices left unused by a drop stay: an isolated vertex is harmless to a
+                        // mesh, and the numbering stays that of `vertex_source`.
+                    }
+                }
+            }
+        };
+        (mesh, None, None)
+    };
+    let mut mesh = mesh;
+    if raw.has_face_names() {
+        let n: Vec<String> = face_source
+            .iter()
+            .map(|&s| raw.face_name(s).map(|n| n.into_owned()).unwrap_or_default())
+            .collect();
+        mesh = mesh.with_face_names(n);
+    }
+    mesh.extra = raw.mesh_fields.clone();
+    report.degenerate_faces = degenerate.unwrap_or_else(|| {
+        (0..mesh.num_faces())
+            .into_par_iter()
+            .filter(|&f| mesh.is_degenerate_face(f))
+            .collect()
+    });
+    report.components = components.unwrap_or_else(|| count_components(&mesh));
+    report.boundary_edges = mesh.edges().par_iter().filter(|e| e.is_boundary()).count();
+    Ok(Repaired {
+        normals_given: given_normals.is_some(),
+        mesh,
+        face_source,
+        vertex_source,
+        report,
+    })
+}
+
+/// Rules 1 and 2: the file's polygons as triangles (fans), without those repeating a vertex,
+/// with the polygon each came from.
+fn triangles(
+    raw: &RawMesh,
+    options: &RepairOptions,
+    report: &mut RepairReport,
+) -> Result<(Vec<[usize; 3]>, Vec<usize>), RepairError> {
+    let nv = raw.positions.len();
+    // The common case first, in parallel: every polygon a triangle of three distinct existing
+    // vertices, kept as it is (what the loop below does with such polygons).
+    let n = raw.polygons.len();
+    let triangle = |f: usize| match *raw.polygons.get(f) {
+        [a, b, c] if a != b && b != c && a != c && a.max(b).max(c) < nv => Some([a, b, c]),
+        _ => None,
+    };
+    if raw.polygons.all_triangles() && (0..n).into_par_iter().all(|f| triangle(f).is_some()) {
+        let faces = (0..n)
+            .into_par_iter()
+            .map(|f| triangle(f).unwrap_or_default())
+            .collect();
+        return Ok((faces, (0..n).collect()));
+    }
     let mut faces: Vec<[usize; 3]> = Vec::with_capacity(raw.polygons.corner_count() / 3 + 1);
     let mut source: Vec<usize> = Vec::with_capacity(faces.capacity());
     for (pi, poly) in raw.polygons.iter().enumerate() {
@@ -342,140 +646,14 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
             report.repeated_vertex_faces.push(pi);
         }
     }
-    {
-        // Faces grouped by their sorted corners: a counting sort on the smallest corner, then
-        // small sorts per bucket (the first face of each group is kept).
-        let sorted: Vec<[usize; 3]> = faces
-            .iter()
-            .map(|t| {
-                let mut k = *t;
-                k.sort_unstable();
-                k
-            })
-            .collect();
-        let mut next = vec![0usize; nv + 1];
-        for k in &sorted {
-            next[k[0] + 1] += 1;
-        }
-        for v in 0..nv {
-            next[v + 1] += next[v];
-        }
-        let bounds = next.clone();
-        let mut keys: Vec<([usize; 3], usize)> = vec![([0; 3], 0); faces.len()];
-        for (f, k) in sorted.iter().enumerate() {
-            keys[next[k[0]]] = (*k, f);
-            next[k[0]] += 1;
-        }
-        drop((next, sorted));
-        for w in bounds.windows(2) {
-            if w[1] - w[0] > 1 {
-                if let Some(bucket) = keys.get_mut(w[0]..w[1]) {
-                    bucket.sort_unstable();
-                }
-            }
-        }
-        let mut dup = vec![false; faces.len()];
-        for w in keys.windows(2) {
-            if w[0].0 == w[1].0 {
-                dup[w[1].1] = true;
-            }
-        }
-        if dup.iter().any(|d| *d) {
-            let mut k = 0;
-            faces.retain(|_| {
-                k += 1;
-                !dup[k - 1]
-            });
-            let mut k = 0;
-            source.retain(|s| {
-                k += 1;
-                if dup[k - 1] {
-                    report.duplicate_faces.push(*s);
-                }
-                !dup[k - 1]
-            });
-            report.duplicate_faces.dedup();
-        }
-    }
-    if faces.is_empty() {
-        return Err(RepairError::Empty(format!(
-            "{} faces in the file, none with three distinct vertices",
-            raw.polygons.len()
-        )));
-    }
+    Ok((faces, source))
+}
 
-    // Rule 4: consistent orientation by a walk across two-face edges.
-    let hs = sorted_half_edges(&faces);
-    let edge_groups = groups(&hs);
-    // Neighbours across two-face edges: (neighbour, same direction as given?), at most one per
-    // local edge, so three slots a face (filled in the order of the edge groups).
-    let mut adj: Vec<[(usize, bool); 3]> = vec![[(usize::MAX, false); 3]; faces.len()];
-    let mut adj_len: Vec<u8> = vec![0; faces.len()];
-    for g in &edge_groups {
-        if g.len() == 2 {
-            let (_, f, l) = hs[g.start];
-            let (_, h, m) = hs[g.start + 1];
-            if f == h {
-                continue;
-            }
-            let same = faces[f][l] == faces[h][m];
-            for (x, y) in [(f, h), (h, f)] {
-                let k = usize::from(adj_len[x]);
-                if let Some(slot) = adj[x].get_mut(k) {
-                    *slot = (y, same);
-                    adj_len[x] += 1;
-                }
-            }
-        }
-    }
-    let mut flipped: Vec<Option<bool>> = vec![None; faces.len()];
-    let mut component = vec![0usize; faces.len()];
-    let mut conflicts: Vec<(usize, usize)> = Vec::new();
-    let mut n_components = 0;
-    let mut queue = std::collections::VecDeque::new();
-    for seed in 0..faces.len() {
-        if flipped[seed].is_some() {
-            continue;
-        }
-        flipped[seed] = Some(false);
-        component[seed] = n_components;
-        queue.push_back(seed);
-        while let Some(f) = queue.pop_front() {
-            let ff = flipped[f].unwrap_or(false);
-            for &(h, same) in &adj[f][..usize::from(adj_len[f])] {
-                // Consistent when, after flips, the two run the edge in opposite directions.
-                let want = ff ^ same;
-                match flipped[h] {
-                    None => {
-                        flipped[h] = Some(want);
-                        component[h] = n_components;
-                        queue.push_back(h);
-                    }
-                    Some(got) if got != want && f < h => conflicts.push((f, h)),
-                    Some(_) => {}
-                }
-            }
-        }
-        n_components += 1;
-    }
-    // Majority orientation per component, then the whole-component rules.
-    let mut votes = vec![(0usize, 0usize); n_components];
-    for (f, fl) in flipped.iter().enumerate() {
-        if fl.unwrap_or(false) {
-            votes[component[f]].1 += 1;
-        } else {
-            votes[component[f]].0 += 1;
-        }
-    }
-    let majority_flip: Vec<bool> = votes.iter().map(|(keep, fl)| fl > keep).collect();
-    let mut oriented: Vec<[usize; 3]> = faces.clone();
-    for (f, t) in oriented.iter_mut().enumerate() {
-        if flipped[f].unwrap_or(false) ^ majority_flip[component[f]] {
-            flip(t);
-            report.reoriented_faces += 1;
-        }
-    }
-    let given_normals: Option<Vec<Vector3<f64>>> = match &raw.normals {
+/// The file's normals, normalized, when it gave a usable one for every vertex (a note says why
+/// they were discarded otherwise).
+fn file_normals(raw: &RawMesh, report: &mut RepairReport) -> Option<Vec<Vector3<f64>>> {
+    let nv = raw.positions.len();
+    match &raw.normals {
         Some(ns) if ns.len() == nv => {
             let unit: Vec<Vector3<f64>> = ns
                 .iter()
@@ -505,7 +683,145 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
             None
         }
         None => None,
+    }
+}
+
+/// The mesh vertex of file vertex `s`: its position, its normal (unit, or zero when the file's
+/// were not used), its shape tensor (symmetrized) when the file gave them, name and properties.
+fn file_vertex(raw: &RawMesh, given_normals: Option<&[Vector3<f64>]>, s: usize) -> Vertex {
+    let nv = raw.positions.len();
+    let p = raw.positions[s];
+    let n = given_normals
+        .as_ref()
+        .map_or_else(Vector3::zeros, |ns| ns[s]);
+    let mut v = match &raw.shapes {
+        Some(shapes) if shapes.len() == nv => Vertex::new(curves::VertexData::new(p, n, shapes[s])),
+        _ => Vertex::without_curvature(p, n),
     };
+    if v.curvature_known {
+        v.data.shape = symmetric(&v.data.shape);
+    }
+    if let Some(name) = raw.vertex_name(s) {
+        v.name = Some(name.into_owned());
+    }
+    if !raw.properties.is_empty() {
+        let mut extra = ExtraFields::new();
+        for (k, vals) in &raw.properties {
+            if let Some(x) = vals.get(s) {
+                extra.insert(k.clone(), vec![*x]);
+            }
+        }
+        v.extra = extra;
+    }
+    v
+}
+
+/// The faces after rule 4, and what the walk found.
+struct Oriented<'a> {
+    /// The faces, each reversed or not (borrowed while none is).
+    tris: Cow<'a, [[usize; 3]]>,
+    /// Each half-edge's mate across an edge with exactly two faces, [`NO_TWIN`] elsewhere (as
+    /// given, before reversals).
+    mate: Vec<usize>,
+    /// Whether some edge has three or more faces.
+    several: bool,
+    /// Pairs of faces `(f, h)`, `f < h`, the walk could not make agree.
+    conflicts: Vec<(usize, usize)>,
+    /// Number of components of the walk.
+    components: usize,
+}
+
+/// Rule 4: consistent orientation by a walk across two-face edges, then whole components by
+/// the majority, the normals or the volume.
+fn orient<'a>(
+    faces: &'a [[usize; 3]],
+    edge_groups: EdgeGroups,
+    raw: &RawMesh,
+    given_normals: Option<&[Vector3<f64>]>,
+    report: &mut RepairReport,
+) -> Oriented<'a> {
+    // Each half-edge's mate across an edge with exactly two faces (the walk's neighbour).
+    let mut mate = vec![NO_TWIN; 3 * faces.len()];
+    let mut several = false;
+    for g in edge_groups.iter() {
+        match *g {
+            [h0, h1] if h0 / 3 != h1 / 3 => {
+                mate[h0] = h1;
+                mate[h1] = h0;
+            }
+            [_, _, _, ..] => several = true,
+            _ => {}
+        }
+    }
+    // Whether the faces already agree across every two-face edge: then the walk reverses no
+    // face and meets no conflict, whatever order it visits the faces in, so only its
+    // components are needed, and a union–find over the mates gives the same ones, numbered the
+    // same way ([`components_of_mates`]).
+    let consistent = mate
+        .par_iter()
+        .enumerate()
+        .all(|(h, &m)| m == NO_TWIN || ends(faces, h).0 != ends(faces, m).0);
+    let (flipped, component, conflicts, n_components) = if consistent {
+        let (component, n_components) = components_of_mates(faces.len(), &mate);
+        (None, component, Vec::new(), n_components)
+    } else {
+        let mut flipped: Vec<Option<bool>> = vec![None; faces.len()];
+        let mut component = vec![0usize; faces.len()];
+        let mut conflicts: Vec<(usize, usize)> = Vec::new();
+        let mut n_components = 0;
+        // Breadth first: a queue in a vector (each face enters once), read from `head`.
+        let mut queue: Vec<usize> = Vec::with_capacity(faces.len());
+        for seed in 0..faces.len() {
+            if flipped[seed].is_some() {
+                continue;
+            }
+            flipped[seed] = Some(false);
+            component[seed] = n_components;
+            queue.clear();
+            queue.push(seed);
+            let mut head = 0;
+            while let Some(&f) = queue.get(head) {
+                head += 1;
+                let ff = flipped[f].unwrap_or(false);
+                for (h, same) in neighbours(faces, &mate, f) {
+                    // Consistent when, after flips, the two run the edge in opposite directions.
+                    let want = ff ^ same;
+                    match flipped[h] {
+                        None => {
+                            flipped[h] = Some(want);
+                            component[h] = n_components;
+                            queue.push(h);
+                        }
+                        Some(got) if got != want && f < h => conflicts.push((f, h)),
+                        Some(_) => {}
+                    }
+                }
+            }
+            n_components += 1;
+        }
+        drop(queue);
+        (Some(flipped), component, conflicts, n_components)
+    };
+    // Majority orientation per component, then the whole-component rules.
+    // The faces as given until one is reversed.
+    let mut oriented: Cow<'_, [[usize; 3]]> = Cow::Borrowed(faces);
+    if let Some(flipped) = flipped {
+        let mut votes = vec![(0usize, 0usize); n_components];
+        for (f, fl) in flipped.iter().enumerate() {
+            if fl.unwrap_or(false) {
+                votes[component[f]].1 += 1;
+            } else {
+                votes[component[f]].0 += 1;
+            }
+        }
+        let majority_flip: Vec<bool> = votes.iter().map(|(keep, fl)| fl > keep).collect();
+        for (f, t) in oriented.to_mut().iter_mut().enumerate() {
+            if flipped[f].unwrap_or(false) ^ majority_flip[component[f]] {
+                flip(t);
+                report.reoriented_faces += 1;
+            }
+        }
+    }
     {
         let mut agreement = vec![0.0f64; n_components];
         let mut volume = vec![0.0f64; n_components];
@@ -513,15 +829,14 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         for (f, t) in oriented.iter().enumerate() {
             let [a, b, c] = t.map(|i| raw.positions[i]);
             let an = (b - a).cross(&(c - a));
-            if let Some(ns) = &given_normals {
+            if let Some(ns) = given_normals {
                 agreement[component[f]] += an.dot(&(ns[t[0]] + ns[t[1]] + ns[t[2]]));
             }
             volume[component[f]] += a.coords.dot(&b.coords.cross(&c.coords));
         }
-        for g in &edge_groups {
+        for g in edge_groups.iter() {
             if g.len() != 2 {
-                let (_, f, _) = hs[g.start];
-                closed[component[f]] = false;
+                closed[component[g[0] / 3]] = false;
             }
         }
         let mut reverse = vec![false; n_components];
@@ -538,153 +853,109 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
                 report.reversed_components.push((c, Reversal::Inward));
             }
         }
-        for (f, t) in oriented.iter_mut().enumerate() {
-            if reverse[component[f]] {
-                flip(t);
+        if reverse.contains(&true) {
+            for (f, t) in oriented.to_mut().iter_mut().enumerate() {
+                if reverse[component[f]] {
+                    flip(t);
+                }
             }
         }
     }
+    Oriented {
+        tris: oriented,
+        mate,
+        several,
+        conflicts,
+        components: n_components,
+    }
+}
 
-    // Rules 4–6: which faces are joined across which edges, then fans around each vertex;
-    // repeated while an edge still has more than two faces (a detached face whose fans did not
-    // separate from the others is then cut loose along that edge with its own vertex copies).
-    let conflict_set: std::collections::HashSet<(usize, usize)> =
-        conflicts.iter().copied().collect();
+/// The faces after rules 4–6, with what the mesh can take over.
+struct Joined<'a> {
+    /// The faces, on the vertices of `vertex_source` (borrowed while unchanged).
+    tris: Cow<'a, [[usize; 3]]>,
+    /// The file vertex of each vertex (copies of split vertices at the end).
+    vertex_source: Vec<usize>,
+    /// The joins, when the last round cut nothing ([`join_and_split`]).
+    twin: Option<Vec<usize>>,
+    /// The number of components of the mesh, when known already.
+    components: Option<usize>,
+}
+
+/// Rules 4–6 after the orientation: which faces are joined across which edges, then fans
+/// around each vertex; repeated while an edge still has more than two faces (a detached face
+/// whose fans did not separate from the others is then cut loose along that edge with its own
+/// vertex copies). `faces` are the faces before the orientation.
+fn join_faces<'a>(
+    faces: &'a [[usize; 3]],
+    oriented: Oriented<'a>,
+    nv: usize,
+    report: &mut RepairReport,
+) -> Joined<'a> {
+    let Oriented {
+        mut tris,
+        mate,
+        several,
+        conflicts,
+        components,
+    } = oriented;
     let mut vertex_source: Vec<usize> = (0..nv).collect();
     let mut extra_copies: std::collections::BTreeMap<usize, usize> = Default::default();
     let mut detached: std::collections::BTreeSet<[usize; 2]> = Default::default();
-    let mut tris = oriented;
-    for _round in 0..MAX_SPLIT_ROUNDS {
-        let forced = join_and_split(
-            &mut tris,
-            &mut vertex_source,
-            &conflict_set,
-            &mut detached,
-            &mut extra_copies,
-        );
-        if !forced {
-            break;
+    let (twin, components) = if !several && conflicts.is_empty() {
+        // What the first round of `join_and_split` finds, without grouping the half-edges
+        // again: every edge has one face, or two that the walk made run opposite ways (a pair
+        // that it could not is a conflict), so every such pair is joined and none is cut. Their
+        // half-edges are the mates' with the local edges of reversed faces renumbered (`[a, b,
+        // c]` → `[a, c, b]` turns local edge `l` into `2 − l`); splitting the fans then leaves
+        // nothing to cut, so there is no second round. The mesh's faces are then joined across
+        // exactly the edges the walk crossed, so its components are the walk's.
+        let mut twin = mate;
+        if let Cow::Owned(turned_tris) = &tris {
+            let turned = |f: usize| turned_tris[f] != faces[f];
+            twin.par_chunks_mut(3).enumerate().for_each(|(f, hs)| {
+                for h in hs.iter_mut().filter(|h| **h != NO_TWIN) {
+                    if turned(*h / 3) {
+                        *h = 3 * (*h / 3) + 2 - *h % 3;
+                    }
+                }
+                if turned(f) {
+                    hs.swap(0, 2);
+                }
+            });
         }
-    }
-    report.detached_edges = detached.into_iter().collect();
-    report.split_vertices = extra_copies.into_iter().collect();
-
-    // Rule 7: drop unused vertices, renumber.
-    let mut used = vec![false; vertex_source.len()];
-    for t in &tris {
-        for &v in t {
-            used[v] = true;
+        if several_fans(&tris, &twin, vertex_source.len()) {
+            split_fans(tris.to_mut(), &twin, &mut vertex_source, &mut extra_copies);
         }
-    }
-    let mut renumber = vec![usize::MAX; vertex_source.len()];
-    let mut kept_source = Vec::with_capacity(vertex_source.len());
-    for (v, &u) in used.iter().enumerate() {
-        if u {
-            renumber[v] = kept_source.len();
-            kept_source.push(vertex_source[v]);
-        }
-    }
-    report.unused_vertices = (0..nv).filter(|&v| !used[v]).count();
-    for t in &mut tris {
-        *t = t.map(|v| renumber[v]);
-    }
-    let vertex_source = kept_source;
-
-    let make_vertices = || -> Vec<Vertex> {
-        vertex_source
-            .iter()
-            .map(|&s| {
-                let p = raw.positions[s];
-                let n = given_normals
-                    .as_ref()
-                    .map_or_else(Vector3::zeros, |ns| ns[s]);
-                let mut v = match &raw.shapes {
-                    Some(shapes) if shapes.len() == nv => {
-                        Vertex::new(curves::VertexData::new(p, n, shapes[s]))
-                    }
-                    _ => Vertex::without_curvature(p, n),
-                };
-                if v.curvature_known {
-                    v.data.shape = symmetric(&v.data.shape);
-                }
-                if let Some(name) = raw.vertex_name(s) {
-                    v.name = Some(name.into_owned());
-                }
-                if !raw.properties.is_empty() {
-                    let mut extra = ExtraFields::new();
-                    for (k, vals) in &raw.properties {
-                        if let Some(x) = vals.get(s) {
-                            extra.insert(k.clone(), vec![*x]);
-                        }
-                    }
-                    v.extra = extra;
-                }
-                v
-            })
-            .collect()
-    };
-
-    // Rule 9: validate; drop what still fails, boundedly (the vertices are rebuilt for a retry
-    // rather than copied for every attempt: a clean mesh is built once).
-    let mut face_source = source;
-    let mesh = loop {
-        match Mesh::new_allowing_degenerate(make_vertices(), tris.clone()) {
-            Ok(m) => break m,
-            Err(e) => {
-                let culprit = match &e {
-                    MeshError::NonManifoldEdge { faces, .. } => faces.last().copied(),
-                    MeshError::InconsistentOrientation { faces, .. } => Some(faces[1]),
-                    MeshError::NonManifoldVertex { vertex } => {
-                        tris.iter().rposition(|t| t.contains(vertex))
-                    }
-                    MeshError::RepeatedVertex { face, .. }
-                    | MeshError::ZeroArea { face, .. }
-                    | MeshError::MissingVertex { face, .. } => Some(*face),
-                    _ => None,
-                };
-                match culprit {
-                    Some(f) if report.dropped_faces.len() < MAX_DROPPED_FACES && f < tris.len() => {
-                        report.dropped_faces.push(face_source[f]);
-                        tris.remove(f);
-                        face_source.remove(f);
-                        if tris.is_empty() {
-                            return Err(RepairError::Empty("every face had to be dropped".into()));
-                        }
-                    }
-                    _ => {
-                        return Err(RepairError::Invalid {
-                            dropped: report.dropped_faces.len(),
-                            source: e,
-                        })
-                    }
-                }
-                // Vertices left unused by a drop stay: an isolated vertex is harmless to a
-                // mesh, and the numbering stays that of `vertex_source`.
+        (Some(twin), Some(components))
+    } else {
+        drop(mate);
+        let conflict_set: std::collections::HashSet<(usize, usize)> =
+            conflicts.iter().copied().collect();
+        let mut twin = None;
+        for _round in 0..MAX_SPLIT_ROUNDS {
+            let (forced, joined) = join_and_split(
+                tris.to_mut(),
+                &mut vertex_source,
+                &conflict_set,
+                &mut detached,
+                &mut extra_copies,
+            );
+            twin = joined;
+            if !forced {
+                break;
             }
         }
+        (twin, None)
     };
-    let mut mesh = mesh;
-    if raw.has_face_names() {
-        let n: Vec<String> = face_source
-            .iter()
-            .map(|&s| raw.face_name(s).map(|n| n.into_owned()).unwrap_or_default())
-            .collect();
-        mesh = mesh.with_face_names(n);
-    }
-    mesh.extra = raw.mesh_fields.clone();
-    report.degenerate_faces = (0..mesh.num_faces())
-        .into_par_iter()
-        .filter(|&f| mesh.is_degenerate_face(f))
-        .collect();
-    report.boundary_edges = mesh.edges().iter().filter(|e| e.is_boundary()).count();
-    report.components = count_components(&mesh);
-    Ok(Repaired {
-        normals_given: given_normals.is_some(),
-        mesh,
-        face_source,
+    report.detached_edges = detached.into_iter().collect();
+    report.split_vertices = extra_copies.into_iter().collect();
+    Joined {
+        tris,
         vertex_source,
-        report,
-    })
+        twin,
+        components,
+    }
 }
 
 /// Rounds of [`join_and_split`] before the remaining defects are left to rule 9: each round
@@ -694,67 +965,145 @@ const MAX_SPLIT_ROUNDS: usize = 4;
 
 /// One round of rules 4–6 on `tris` (vertex indices into `vertex_source`, which maps them to
 /// the file's vertices): join the first face running each way along every edge, split every
-/// vertex into one copy per fan of joined faces, then cut loose (own copies of the edge's two
-/// vertices) every face that still shares an edge with two others. Returns true when a face was
-/// cut loose (another round is needed).
+/// vertex into one copy per fan of joined faces ([`split_fans`]), then cut loose (own copies of
+/// the edge's two vertices) every face that still shares an edge with two others. Returns
+/// whether a face was cut loose (another round is needed), and the joins as a twin array
+/// ([`NO_TWIN`] where none) when nothing had to be cut: then the faces after the split are
+/// exactly what the mesh validation accepts with these twins (see [`Mesh::from_twins`]): a
+/// joined pair shares its fans at both ends, so keeps its edge, and every other edge keeps its
+/// one face.
 fn join_and_split(
     tris: &mut [[usize; 3]],
     vertex_source: &mut Vec<usize>,
     conflict_set: &std::collections::HashSet<(usize, usize)>,
     detached: &mut std::collections::BTreeSet<[usize; 2]>,
     extra_copies: &mut std::collections::BTreeMap<usize, usize>,
-) -> bool {
-    let mut copy_of = |v: usize, vertex_source: &mut Vec<usize>| {
-        let s = vertex_source[v];
-        vertex_source.push(s);
-        *extra_copies.entry(s).or_insert(0) += 1;
-        vertex_source.len() - 1
-    };
-    let hs = sorted_half_edges(tris);
-    let mut pairs: Vec<((usize, usize), (usize, usize))> = Vec::with_capacity(hs.len() / 2);
+) -> (bool, Option<Vec<usize>>) {
+    let groups = EdgeGroups::new(tris);
+    let mut twin = vec![NO_TWIN; 3 * tris.len()];
     // Whether some edge has more than two faces or two running the same way: only then can a
     // face still be a third one after the split (splitting vertices only separates groups).
     let mut any_cut = false;
-    for g in groups(&hs) {
-        let members = &hs[g];
-        let (key, _, _) = members[0];
-        let mut fwd: Option<(usize, usize)> = None;
-        let mut bwd: Option<(usize, usize)> = None;
-        for &(_, f, l) in members {
-            let slot = if tris[f][l] == key.0 {
+    for members in groups.iter() {
+        let edge = key(tris, members[0]);
+        let mut fwd: Option<usize> = None;
+        let mut bwd: Option<usize> = None;
+        for &h in members {
+            let slot = if ends(tris, h).0 == edge.0 {
                 &mut fwd
             } else {
                 &mut bwd
             };
             if slot.is_none() {
-                *slot = Some((f, l));
+                *slot = Some(h);
             }
         }
         let mut cut = members.len() > 2;
         match (fwd, bwd) {
-            (Some((f, l)), Some((h, m))) => {
+            (Some(a), Some(b)) => {
+                let (f, h) = (a / 3, b / 3);
                 if !conflict_set.is_empty() && conflict_set.contains(&(f.min(h), f.max(h))) {
                     cut = true;
                 } else {
-                    pairs.push(((f, l), (h, m)));
+                    twin[a] = b;
+                    twin[b] = a;
                 }
             }
             // Two faces the same way: the walk's conflict of a non-orientable surface.
             _ => cut |= members.len() == 2,
         }
         if cut {
-            detached.insert([vertex_source[key.0], vertex_source[key.1]]);
+            detached.insert([vertex_source[edge.0], vertex_source[edge.1]]);
         }
         any_cut |= cut;
     }
-    drop(hs);
-    // Fans: union corners (f, corner) around each vertex across joined edges. Edge l of f runs
-    // a → b and edge m of h runs b → a: vertex a is corner l of f and corner m + 1 of h, vertex
-    // b is corner l + 1 of f and corner m of h.
+    drop(groups);
+    if several_fans(tris, &twin, vertex_source.len()) {
+        split_fans(tris, &twin, vertex_source, extra_copies);
+    }
+    // Faces still a third (or same-direction second) face on an edge: cut loose.
+    if !any_cut {
+        return (false, Some(twin));
+    }
+    let groups = EdgeGroups::new(tris);
+    let mut forced = false;
+    for members in groups.iter() {
+        let same_direction =
+            members.len() == 2 && ends(tris, members[0]).0 == ends(tris, members[1]).0;
+        if members.len() <= 2 && !same_direction {
+            continue;
+        }
+        // Keep the joined pair (or the first face), cut the others loose.
+        let keep: Vec<usize> = members
+            .iter()
+            .copied()
+            .filter(|&h| twin[h] != NO_TWIN)
+            .collect();
+        let keep = if keep.len() == 2 {
+            keep
+        } else {
+            vec![members[0]]
+        };
+        for &h in members {
+            if keep.contains(&h) {
+                continue;
+            }
+            let (f, l) = (h / 3, h % 3);
+            let (a, b) = (tris[f][l], tris[f][(l + 1) % 3]);
+            let (ca, cb) = (
+                copy_vertex(a, vertex_source, extra_copies),
+                copy_vertex(b, vertex_source, extra_copies),
+            );
+            tris[f][l] = ca;
+            tris[f][(l + 1) % 3] = cb;
+            forced = true;
+        }
+    }
+    (forced, None)
+}
+
+/// A new copy of vertex `v` (same file vertex), counted in `extra_copies`.
+fn copy_vertex(
+    v: usize,
+    vertex_source: &mut Vec<usize>,
+    extra_copies: &mut std::collections::BTreeMap<usize, usize>,
+) -> usize {
+    let s = vertex_source[v];
+    vertex_source.push(s);
+    *extra_copies.entry(s).or_insert(0) += 1;
+    vertex_source.len() - 1
+}
+
+/// Whether some vertex's corners form several fans across the joins `twin`, so that
+/// [`split_fans`] has something to do. Faster than its union–find, and in parallel: the fan
+/// walk around each vertex across the twins meets all its corners exactly when they are one
+/// class of that union–find, because a corner is joined to at most two others, across its
+/// face's two edges at that vertex, which is what the walk follows.
+fn several_fans(tris: &[[usize; 3]], twin: &[usize], vertex_count: usize) -> bool {
+    let outgoing = outgoing_half_edges(tris, twin, vertex_count);
+    first_vertex_with_several_fans(tris, twin, &outgoing).is_some()
+}
+
+/// Rule 6: every vertex whose corners form several fans across the joins `twin` keeps the
+/// first fan (in face order) and gives each other fan a copy of its own, numbered in the order
+/// the fans first appear. The fans are the classes of a union–find over corners (the two
+/// corners at each end of a joined edge are one); only these classes matter, not the order of
+/// the unions. (Nothing changes when [`several_fans`] is false.)
+fn split_fans(
+    tris: &mut [[usize; 3]],
+    twin: &[usize],
+    vertex_source: &mut Vec<usize>,
+    extra_copies: &mut std::collections::BTreeMap<usize, usize>,
+) {
+    // Edge l of f runs a → b and its twin, edge m of h, runs b → a: vertex a is corner l of f
+    // and corner m + 1 of h, vertex b is corner l + 1 of f and corner m of h.
     let mut dsu = Dsu::new(3 * tris.len());
-    for &((f, l), (h, m)) in &pairs {
-        dsu.union(3 * f + l, 3 * h + (m + 1) % 3);
-        dsu.union(3 * f + (l + 1) % 3, 3 * h + m);
+    for (x, &y) in twin.iter().enumerate() {
+        if y != NO_TWIN && x < y {
+            let (f, l, h, m) = (x / 3, x % 3, y / 3, y % 3);
+            dsu.union(3 * f + l, 3 * h + (m + 1) % 3);
+            dsu.union(3 * f + (l + 1) % 3, 3 * h + m);
+        }
     }
     // The first fan of each vertex keeps it; others get copies.
     let mut fan_vertex: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
@@ -770,7 +1119,7 @@ fn join_and_split(
                     *slot = match fan_vertex.get(&fan) {
                         Some(&c) => c,
                         None => {
-                            let c = copy_of(v, vertex_source);
+                            let c = copy_vertex(v, vertex_source, extra_copies);
                             fan_vertex.insert(fan, c);
                             c
                         }
@@ -779,50 +1128,6 @@ fn join_and_split(
             }
         }
     }
-    // Faces still a third (or same-direction second) face on an edge: cut loose.
-    if !any_cut {
-        return false;
-    }
-    let mut joined = vec![false; 3 * tris.len()];
-    for &((f, l), (h, m)) in &pairs {
-        joined[3 * f + l] = true;
-        joined[3 * h + m] = true;
-    }
-    let hs = sorted_half_edges(tris);
-    let mut forced = false;
-    for g in groups(&hs) {
-        let members = &hs[g];
-        let same_direction = members.len() == 2 && {
-            let (_, f, l) = members[0];
-            let (_, h, m) = members[1];
-            tris[f][l] == tris[h][m]
-        };
-        if members.len() <= 2 && !same_direction {
-            continue;
-        }
-        // Keep the joined pair (or the first face), cut the others loose.
-        let keep: Vec<(usize, usize)> = members
-            .iter()
-            .map(|&(_, f, l)| (f, l))
-            .filter(|&(f, l)| joined[3 * f + l])
-            .collect();
-        let keep = if keep.len() == 2 {
-            keep
-        } else {
-            vec![(members[0].1, members[0].2)]
-        };
-        for &(_, f, l) in members {
-            if keep.contains(&(f, l)) {
-                continue;
-            }
-            let (a, b) = (tris[f][l], tris[f][(l + 1) % 3]);
-            let (ca, cb) = (copy_of(a, vertex_source), copy_of(b, vertex_source));
-            tris[f][l] = ca;
-            tris[f][(l + 1) % 3] = cb;
-            forced = true;
-        }
-    }
-    forced
 }
 
 fn symmetric(s: &Matrix3<f64>) -> Matrix3<f64> {
