@@ -87,14 +87,40 @@ fn err(line: usize, message: impl Into<String>) -> ReadError {
     ReadError::line(NAME, line, message)
 }
 
+/// What a face corner's index refers to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Indexed {
+    /// A `v` line.
+    Vertex,
+    /// A `vn` line.
+    Normal,
+}
+
+impl Indexed {
+    fn name(self) -> &'static str {
+        match self {
+            Indexed::Vertex => "vertex",
+            Indexed::Normal => "normal",
+        }
+    }
+
+    fn plural(self) -> &'static str {
+        match self {
+            Indexed::Vertex => "vertices",
+            Indexed::Normal => "normals",
+        }
+    }
+}
+
 /// Resolves a 1-based or negative OBJ index against `count` elements read so far.
 fn resolve(
     tok: &[u8],
     count: usize,
-    what: &str,
+    indexed: Indexed,
     line: usize,
     corner: usize,
 ) -> Result<usize, ReadError> {
+    let (what, plural) = (indexed.name(), indexed.plural());
     let i: i64 = parse_i64(tok).ok_or_else(|| {
         err(
             line,
@@ -119,7 +145,7 @@ fn resolve(
         _ => Err(err(
             line,
             format!(
-                "face corner {}: {what} index {i} is out of range ({count} {what}s read so far)",
+                "face corner {}: {what} index {i} is out of range ({count} {plural} read so far)",
                 corner + 1
             ),
         )),
@@ -190,9 +216,11 @@ fn read_obj(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                             format!("face corner {}: `{}` has more than 3 parts", c + 1, show(t)),
                         ));
                     }
-                    corners.push(resolve(p, positions.len(), "vertex", ln, c)?);
+                    corners.push(resolve(p, positions.len(), Indexed::Vertex, ln, c)?);
                     cnormals.push(match nrm {
-                        Some(nt) if !nt.is_empty() => resolve(nt, vnormals.len(), "normal", ln, c)?,
+                        Some(nt) if !nt.is_empty() => {
+                            resolve(nt, vnormals.len(), Indexed::Normal, ln, c)?
+                        }
                         _ => usize::MAX,
                     });
                 }

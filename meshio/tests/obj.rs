@@ -98,7 +98,11 @@ fn partial_normals_are_dropped_with_a_note() {
 fn errors_name_the_line() {
     let e = err("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
     assert_eq!(e.location, Location::Line(4));
-    assert!(e.message.contains("vertex index 4 is out of range"), "{e}");
+    assert!(
+        e.message
+            .contains("vertex index 4 is out of range (3 vertices read so far)"),
+        "{e}"
+    );
     assert_eq!(err("v 0 0 0\nv 1 0 0\nf 1 2\n").location, Location::Line(3));
     assert!(err("v 0 0 0\nv 1 0 0\nf 1 2\n")
         .message
