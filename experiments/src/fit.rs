@@ -100,6 +100,13 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             limits::dataset_faces(&args.input.data, r) * limits::FIT_BYTES_PER_FACE as u128,
         )?;
     }
+    if let Some(out) = &args.out {
+        crate::output::refuse_unwritable("--out", out, &args.input.data)?;
+    }
+    if let Some(out) = &args.mesh_out {
+        crate::output::refuse_unwritable("--mesh-out", out, &args.input.data)?;
+        crate::output::mesh_format_for("--mesh-out", out)?;
+    }
     let t0 = Instant::now();
     let loaded = load(&args.input)?;
     for note in &loaded.notes {

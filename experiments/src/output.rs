@@ -60,6 +60,20 @@ pub fn ensure_dir(dir: &Path) -> Result<(), ExperimentError> {
     })
 }
 
+/// Refuses, before any work is done, an output `out` (given by `option`) that could not be
+/// written at the end: a path that exists and is not a regular file or a link to one (a
+/// directory, a device …: [`render::io::writable_target`]), or the input file itself
+/// ([`refuse_overwriting_input`]). A run over a large mesh then fails in milliseconds instead
+/// of after its whole computation.
+pub fn refuse_unwritable(
+    option: &'static str,
+    out: &Path,
+    input: &str,
+) -> Result<(), ExperimentError> {
+    render::io::writable_target(out)?;
+    refuse_overwriting_input(option, out, input)
+}
+
 /// Refuses to write `out` (given by `option`, such as `--out`) when it is the input file `input`
 /// (the same file, by any path): a conversion or fit would otherwise destroy its own input.
 pub fn refuse_overwriting_input(

@@ -155,6 +155,22 @@ fn outputs_that_are_not_regular_files_are_refused() {
         let (code, err) = run(&["fit", "--data", "octa", "--out", "/dev/null"]);
         assert_ne!(code, 0);
         assert!(err.contains("a device"), "{err}");
+        // `fit` refuses an unwritable output before it reads or fits anything (no stage times
+        // printed), for the patches and for the tessellation alike.
+        for option in ["--out", "--mesh-out"] {
+            let out = dir.path().join(format!("{option}.ply"));
+            std::fs::create_dir(&out).unwrap();
+            let (code, err) = run(&["fit", "--data", "octa", option, out.to_str().unwrap()]);
+            assert_ne!(code, 0, "{option}");
+            assert!(
+                err.contains("a directory, not a regular file"),
+                "{option}: {err}"
+            );
+            assert!(
+                !err.contains("time:"),
+                "{option}: refused only after the work: {err}"
+            );
+        }
         // A link to a regular file writes through to the file and keeps the link.
         let target = dir.path().join("target.jsonl");
         std::fs::write(&target, "old\n").unwrap();
