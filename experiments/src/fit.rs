@@ -42,9 +42,10 @@ pub struct FitArgs {
     #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_C)]
     c: f64,
     /// Where to write the patches: JSON Lines, or the compact binary form when the name ends in
-    /// `.bzp` (`surface::patch_io`); none are written when absent. Without `--mesh-out` and
-    /// `--interior`, the patches are streamed: built, measured and written a window of faces at
-    /// a time, never all held (`surface::stream`; the same report and file).
+    /// `.bzp` (`surface::patch_io`); none are written when absent. Without `--interior`, the
+    /// patches are streamed: built, measured and written a window of faces at a time, never all
+    /// held (`surface::stream`; the same report and file); a `--mesh-out` tessellation then
+    /// builds each face's patches again where it samples them (the same mesh).
     #[arg(long)]
     out: Option<PathBuf>,
     /// Tessellate the patches at this many segments per patch edge (the testbed's `Tess -s`)
@@ -148,7 +149,11 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     // Streamed when nothing needs the whole fit's nets afterwards (no tessellation, no interior
     // optimization, which refits from a first fit): the same report and file, bit for bit,
     // without the nets in memory (`surface::stream`).
-    let stream = args.mesh_out.is_none() && args.fit.interior.choice == InteriorChoice::Default;
+    // With `--mesh-out` too, when the layout is welded by topology: the tessellation then
+    // builds each face's nets again where it evaluates them (`tessellate_fit_rebuilt`, the
+    // same mesh), so the whole fit's nets are never held.
+    let stream = args.fit.interior.choice == InteriorChoice::Default
+        && (args.mesh_out.is_none() || surface::welds_by_topology(&scheme.layout(), args.tess));
     let (fitted, g1, stats, t_fit, t_g1) = if stream {
         if let Some(out) = &args.out {
             crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
@@ -277,14 +282,21 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     if let Some(path) = &args.mesh_out {
         check_memory(
             &format!("--tess {}", args.tess),
-            limits::tessellation_bytes(fitted.num_patches() as u128, args.tess),
+            // Patches counted from the mesh: a streamed fit holds no nets to count.
+            limits::tessellation_bytes(
+                (mesh.num_faces() * fitted.layout.patches_per_face()) as u128,
+                args.tess,
+            ),
         )?;
         let t3 = Instant::now();
-        let mut tess = surface::tessellate_fit(&mesh, &fitted, args.tess).map_err(|source| {
-            ExperimentError::Tessellate {
-                subject: args.input.data.clone(),
-                source,
-            }
+        let tessellated = if stream {
+            surface::tessellate_fit_rebuilt(&mesh, &fitted, scheme.as_ref(), args.tess)
+        } else {
+            surface::tessellate_fit(&mesh, &fitted, args.tess)
+        };
+        let mut tess = tessellated.map_err(|source| ExperimentError::Tessellate {
+            subject: args.input.data.clone(),
+            source,
         })?;
         let tessellate_time = t3.elapsed().as_secs_f64();
         frame.tessellation_to_world(&mut tess);

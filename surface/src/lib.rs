@@ -81,7 +81,7 @@ pub use shirman_sequin::{
     SchemeError,
 };
 pub use tessellate::{tessellate, TessError, Tessellation};
-pub use tessellate_fit::tessellate_fit;
+pub use tessellate_fit::{tessellate_fit, tessellate_fit_rebuilt, welds_by_topology};
 pub use testbed_format::{
     read_testbed, read_testbed_file, write_testbed, write_testbed_file, TestbedError,
 };

@@ -55,6 +55,10 @@ pub enum TessError {
     /// Converting to a [`Mesh`] failed (degenerate or non-manifold output).
     #[error("tessellation is not a valid mesh: {0}")]
     Mesh(#[from] MeshError),
+    /// A tessellation that builds the nets again ([`crate::tessellate_fit::tessellate_fit_rebuilt`])
+    /// could not: the layout is not welded by topology, or a face could not be built.
+    #[error("tessellating without the nets: {0}")]
+    Rebuild(String),
 }
 
 /// One welded triangle mesh with per-vertex differential geometry.

@@ -28,14 +28,15 @@
 //!
 //! A layout whose corners are not on the sixths lattice is tessellated by the positional weld.
 
+use curves::CubicBez3;
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 
 use crate::beztri::{curvature_of, BezierTriangle, Curvature};
-use crate::fit::Fit;
+use crate::fit::{build_face, Fit};
 use crate::mesh::Mesh;
 use crate::patch::{self, Prepared};
-use crate::scheme::Layout;
+use crate::scheme::{Layout, Scheme};
 use crate::tessellate::{flat_curvature, nudged_geometry, tessellate, TessError, Tessellation};
 
 /// Where a sample of a face goes.
@@ -287,13 +288,82 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
     let Some(plan) = Plan::new(&layout, s) else {
         return tessellate(&fit.bezier_patches(), s);
     };
+    let per_face = layout.patches_per_face() * layout.points_per_patch();
+    if fit.points.len() != mesh.num_faces() * per_face {
+        return tessellate(&fit.bezier_patches(), s);
+    }
+    tessellate_by_topology(mesh, &layout, &plan, s, Nets::Whole(&fit.points))
+}
+
+/// Whether [`tessellate_fit`] welds `layout`'s patches at `s` segments by topology (its corners
+/// on the lattice of sixths), which is what [`tessellate_fit_rebuilt`] needs.
+pub fn welds_by_topology(layout: &Layout, s: usize) -> bool {
+    s > 0 && Plan::new(layout, s).is_some()
+}
+
+/// [`tessellate_fit`] for a fit whose nets are not held ([`crate::stream`] leaves
+/// [`Fit::points`] empty): each face's patches are built again from `fit`'s curves by
+/// `scheme` ([`build_face`]) just before its samples are evaluated, in the task that evaluates
+/// them, so no more than a face's nets per thread are held. A face's patches depend only on
+/// its own corners, its curves and the scheme, so this is the tessellation [`tessellate_fit`]
+/// gives for the whole fit, bit for bit, for one more build of every face (about 0.45 µs a
+/// face of three quartics); the whole fit's nets (1.08 kB a face) are never held. Errors
+/// ([`TessError::Rebuild`]) where the layout is not welded by topology
+/// ([`welds_by_topology`]) or a face cannot be built.
+pub fn tessellate_fit_rebuilt(
+    mesh: &Mesh,
+    fit: &Fit,
+    scheme: &dyn Scheme,
+    s: usize,
+) -> Result<Tessellation, TessError> {
+    if s == 0 {
+        return Err(TessError::ZeroDensity);
+    }
+    let layout = fit.layout;
+    let Some(plan) = Plan::new(&layout, s) else {
+        return Err(TessError::Rebuild(format!(
+            "the layout of `{}` is not welded by topology at {s} segments",
+            fit.scheme
+        )));
+    };
+    tessellate_by_topology(
+        mesh,
+        &layout,
+        &plan,
+        s,
+        Nets::Rebuilt {
+            scheme,
+            curves: &fit.curves,
+        },
+    )
+}
+
+/// Where the tessellation reads a face's nets.
+#[derive(Clone, Copy)]
+enum Nets<'a> {
+    /// A whole fit's points, face after face.
+    Whole(&'a [Point3<f64>]),
+    /// Built again per face from the fit's curves.
+    Rebuilt {
+        scheme: &'a dyn Scheme,
+        curves: &'a [CubicBez3],
+    },
+}
+
+/// The tessellation welded by topology (module docs), each face's nets from `nets`.
+fn tessellate_by_topology(
+    mesh: &Mesh,
+    layout: &Layout,
+    plan: &Plan,
+    s: usize,
+    nets: Nets<'_>,
+) -> Result<Tessellation, TessError> {
+    debug_assert!(s > 0);
+    let layout = *layout;
     let faces = mesh.faces();
     let nf = faces.len();
     let ppf = layout.patches_per_face();
     let np = layout.points_per_patch();
-    if fit.points.len() != nf * ppf * np {
-        return tessellate(&fit.bezier_patches(), s);
-    }
     // Owners: a vertex belongs to the lowest-numbered face around it, an edge to its first face.
     let mut vertex_owner = vec![usize::MAX; mesh.num_vertices()];
     let mut owned_corners = vec![[false; 3]; nf];
@@ -381,10 +451,19 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
             |(chunk, (((((ps, ns), ks), hs), ss), nu))| -> Result<(), TessError> {
                 let mut at = 0;
                 let first = chunk * FACES_PER_TASK;
+                let mut built = Vec::new();
                 for f in first..(first + FACES_PER_TASK).min(nf) {
+                    let face_nets: &[Point3<f64>] = match nets {
+                        Nets::Whole(points) => &points[f * ppf * np..(f + 1) * ppf * np],
+                        Nets::Rebuilt { scheme, curves } => {
+                            built.resize(ppf * np, Point3::origin());
+                            build_face(mesh, scheme, curves, f, &mut built)
+                                .map_err(|e| TessError::Rebuild(format!("face {f}: {e}")))?;
+                            &built
+                        }
+                    };
                     let mut put = |(p, li): (usize, usize)| {
-                        let patch = f * ppf + p;
-                        let net = &fit.points[patch * np..(patch + 1) * np];
+                        let net = &face_nets[p * np..(p + 1) * np];
                         let x = evaluate(&layout, net, &plan.weights[li], plan.local[li]);
                         ps[at] = x.p;
                         ns[at] = x.c.normal;

@@ -4,7 +4,8 @@
 //! noisy torus, with every registered scheme, chord and optimized curves, windows from one face
 //! (every exterior edge crosses a border: its other face is built again) to the default, the
 //! fit's bookkeeping, the G1 report and the written bytes are **identical** — not close: the
-//! same bits, the same maxima at the same places (ties included), the same file.
+//! same bits, the same maxima at the same places (ties included), the same file — and the
+//! tessellation from the streamed fit (nets built again per face) is the whole fit's.
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
@@ -14,7 +15,10 @@ use meshio::RawMesh;
 use nalgebra::Point3;
 use surface::patch_io::{write_patches, PatchFormat};
 use surface::stream::{fit_streamed_with, Output, WINDOW_FACES};
-use surface::{fit_scheme, measure_g1, scheme_by_name, Fit, Mesh, SchemeOptions};
+use surface::{
+    fit_scheme, measure_g1, scheme_by_name, tessellate_fit, tessellate_fit_rebuilt,
+    welds_by_topology, Fit, Mesh, SchemeOptions,
+};
 
 /// G1 is measured at 9 samples per boundary, as `fit` does.
 const SAMPLES: usize = 9;
@@ -81,6 +85,25 @@ fn check(label: &str, mesh: &Mesh, scheme: &str, curves: &str, windows: &[usize]
     // Without output: the same report.
     let s = fit_streamed_with(mesh, scheme.as_ref(), method.as_ref(), SAMPLES, None, 5).unwrap();
     assert_eq!(s.g1, g1, "{label}: G1 without output");
+    // The tessellation from the streamed fit, each face's nets built again where its samples
+    // are evaluated, is the whole fit's (what `fit --mesh-out` writes without holding the nets).
+    assert!(
+        whole.scheme != "shirman-sequin" || welds_by_topology(&whole.layout, 1),
+        "{label}: the split-domain layout is welded by topology"
+    );
+    for density in [1, 3] {
+        if !welds_by_topology(&whole.layout, density) {
+            continue;
+        }
+        let expected = tessellate_fit(mesh, &whole, density).unwrap();
+        let rebuilt = tessellate_fit_rebuilt(mesh, &s.fit, scheme.as_ref(), density)
+            .unwrap_or_else(|e| panic!("{label}: {e}"));
+        assert!(
+            rebuilt == expected,
+            "{label}/{}: the tessellation at s = {density} differs",
+            whole.scheme
+        );
+    }
     whole.face_fallbacks.len()
 }
 
