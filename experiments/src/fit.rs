@@ -104,10 +104,14 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     if let Some(out) = &args.out {
         crate::output::refuse_unwritable("--out", out, &args.input.data)?;
     }
-    if let Some(out) = &args.mesh_out {
-        crate::output::refuse_unwritable("--mesh-out", out, &args.input.data)?;
-        crate::output::mesh_format_for("--mesh-out", out)?;
-    }
+    // The tessellation's format, checked with its path before any work.
+    let mesh_format = match &args.mesh_out {
+        Some(out) => {
+            crate::output::refuse_unwritable("--mesh-out", out, &args.input.data)?;
+            Some(crate::output::mesh_format_for("--mesh-out", out)?)
+        }
+        None => None,
+    };
     let t0 = Instant::now();
     let loaded = load(&args.input)?;
     for note in &loaded.notes {
@@ -155,9 +159,6 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     let stream = args.fit.interior.choice == InteriorChoice::Default
         && (args.mesh_out.is_none() || surface::welds_by_topology(&scheme.layout(), args.tess));
     let (fitted, g1, stats, t_fit, t_g1) = if stream {
-        if let Some(out) = &args.out {
-            crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
-        }
         let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
         let mut streamed: Option<Result<surface::stream::Streamed, surface::stream::StreamError>> =
             None;
@@ -252,7 +253,6 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         let t_g1 = t2.elapsed().as_secs_f64();
         peak_after("G1");
         if let Some(out) = &args.out {
-            crate::output::refuse_overwriting_input("--out", out, &args.input.data)?;
             let t_out = Instant::now();
             let format = surface::patch_io::PatchFormat::for_path(out);
             let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
@@ -279,7 +279,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             stats.energy_chosen
         );
     }
-    if let Some(path) = &args.mesh_out {
+    if let (Some(path), Some(format)) = (&args.mesh_out, mesh_format) {
         check_memory(
             &format!("--tess {}", args.tess),
             // Patches counted from the mesh: a streamed fit holds no nets to count.
@@ -300,8 +300,6 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
         })?;
         let tessellate_time = t3.elapsed().as_secs_f64();
         frame.tessellation_to_world(&mut tess);
-        crate::output::refuse_overwriting_input("--mesh-out", path, &args.input.data)?;
-        let format = crate::output::mesh_format_for("--mesh-out", path)?;
         let raw = tessellation_to_raw(&tess);
         let bytes =
             meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|source| {

@@ -451,12 +451,15 @@ fn tessellate_by_topology(
             |(chunk, (((((ps, ns), ks), hs), ss), nu))| -> Result<(), TessError> {
                 let mut at = 0;
                 let first = chunk * FACES_PER_TASK;
-                let mut built = Vec::new();
+                // One face's nets, reused by the task's faces (rebuilt nets only).
+                let mut built = match nets {
+                    Nets::Whole(_) => Vec::new(),
+                    Nets::Rebuilt { .. } => vec![Point3::origin(); ppf * np],
+                };
                 for f in first..(first + FACES_PER_TASK).min(nf) {
                     let face_nets: &[Point3<f64>] = match nets {
                         Nets::Whole(points) => &points[f * ppf * np..(f + 1) * ppf * np],
                         Nets::Rebuilt { scheme, curves } => {
-                            built.resize(ppf * np, Point3::origin());
                             build_face(mesh, scheme, curves, f, &mut built)
                                 .map_err(|e| TessError::Rebuild(format!("face {f}: {e}")))?;
                             &built
