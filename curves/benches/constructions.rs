@@ -4,8 +4,8 @@
 //! the reported time by 384 for the time per edge.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use curves::analytic::{torus_grid_edges, torus_point};
 use curves::{BoundaryProblem, CurveMethod, UnitProblem};
+use mesh::analytic::{torus_grid_edges, torus_point};
 use std::hint::black_box;
 
 fn torus_problems() -> Vec<(curves::VertexData, curves::VertexData)> {

@@ -16,7 +16,6 @@
 //! plane curve turns left (about the plane normal `w`), normal curvature `κn(d) = dᵀ S d` is
 //! positive where the surface bends towards its normal, `α = 1` is one third of the chord.
 
-pub mod analytic;
 pub mod chord;
 pub mod cubicbez;
 pub mod dbhs;

@@ -27,9 +27,10 @@
 //!   tangents are directions and stay unit, curvatures multiply by `|d|`. A unit solution
 //!   `(α0, α1)` maps back to `P1 = p_a + α0 |d| t_a / 3`, `P2 = p_b − α1 |d| t_b / 3`.
 
-use nalgebra::{Matrix3, Point2, Point3, Vector2, Vector3};
+use nalgebra::{Point2, Point3, Vector2, Vector3};
 
 use crate::cubicbez::{cross2, CubicBez2, CubicBez3};
+pub use mesh::VertexData;
 
 /// Sine of an angle below which a construction step is treated as degenerate: below
 /// `√ε ≈ 1.5e-8` a normalized cross product of two unit vectors has lost half its digits, and the
@@ -40,30 +41,6 @@ pub const DEGENERATE_SINE: f64 = 1e-8;
 /// normalized: a hand-typed `[0.7071, 0.7071]` passes, a vector that is not meant to be a
 /// direction does not.
 pub const UNIT_TANGENT_TOLERANCE: f64 = 1e-4;
-
-/// Data at one end of a boundary curve: a point of the surface with its normal and second
-/// fundamental form.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct VertexData {
-    /// Position.
-    pub p: Point3<f64>,
-    /// Normal (normalized by [`BoundaryProblem::new`]; need not be unit on input).
-    pub n: Vector3<f64>,
-    /// Shape tensor `S` in world coordinates: `κn(d) = dᵀ S d` for unit tangent `d`.
-    pub shape: Matrix3<f64>,
-}
-
-impl VertexData {
-    /// Data from position, normal and shape tensor.
-    pub fn new(p: Point3<f64>, n: Vector3<f64>, shape: Matrix3<f64>) -> Self {
-        VertexData { p, n, shape }
-    }
-
-    /// Normal curvature `dᵀ S d` in the unit direction `d`.
-    pub fn normal_curvature(&self, d: &Vector3<f64>) -> f64 {
-        d.dot(&(self.shape * d))
-    }
-}
 
 /// Which end of an edge a degeneracy concerns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -398,6 +375,7 @@ impl BoundaryProblem {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Matrix3;
 
     /// Round trips between frames are exact up to a few roundings.
     const ROUND_TRIP: f64 = 1e-12;

@@ -20,11 +20,11 @@ const SAME_CURVE: f64 = 1e-9;
 const SAME_CURVE_SOLVED: f64 = 1e-7;
 
 fn sphere_vertex(p: Vector3<f64>) -> VertexData {
-    curves::analytic::sphere_point(&p, 1.0)
+    mesh::analytic::sphere_point(&p, 1.0)
 }
 
 fn torus_vertex(u: f64, v: f64, big: f64, small: f64) -> VertexData {
-    curves::analytic::torus_point(u, v, big, small)
+    mesh::analytic::torus_point(u, v, big, small)
 }
 
 #[test]

@@ -309,7 +309,7 @@ fn torus_16x8_solution_counts() {
     // The ring of the seeds, sampled 16 × 8 (R = 1, r = 0.4). The 32 edges along the top and
     // bottom circles of the tube have both tangents along the chord and non-zero curvature:
     // no cubic matches them (one edge in twelve). Most other edges have three solutions.
-    use curves::analytic::{torus_grid_edges, torus_point};
+    use mesh::analytic::{torus_grid_edges, torus_point};
     let mut counts = [0usize; 5];
     for ((ua, va), (ub, vb)) in torus_grid_edges(16, 8) {
         let (a, b) = (torus_point(ua, va, 1.0, 0.4), torus_point(ub, vb, 1.0, 0.4));

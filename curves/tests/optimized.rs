@@ -3,8 +3,8 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
-use curves::analytic::{torus_grid_edges, torus_point};
 use curves::{dbhs, BoundaryProblem, CurveMethod, MethodOptions, Optimized, UnitProblem};
+use mesh::analytic::{torus_grid_edges, torus_point};
 use solver::SolverKind;
 
 /// Exact penalty and Levenberg–Marquardt stop on the gradient test at 1e-10; on these

@@ -1,5 +1,5 @@
 //! Estimation speed: every registered estimator on rings of about 10⁵ and 10⁶ triangles
-//! (`surface::datasets::ring(nu, nv)` has `2 nu nv` triangles), all cores (rayon over vertices).
+//! (`mesh::datasets::ring(nu, nv)` has `2 nu nv` triangles), all cores (rayon over vertices).
 //! Throughput is reported in triangles per second.
 //!
 //! Measured 2026-11-29 on the 2-core build machine, shared with other builds (load 2–3, so
@@ -31,7 +31,7 @@ fn bench(c: &mut Criterion) {
     g.warm_up_time(Duration::from_millis(500));
     g.measurement_time(Duration::from_secs(3));
     for (nu, nv) in [(316usize, 158usize), (1000, 500)] {
-        let data = surface::datasets::ring(nu, nv).expect("valid resolution");
+        let data = mesh::datasets::ring(nu, nv).expect("valid resolution");
         let faces = data.mesh.num_faces();
         g.throughput(Throughput::Elements(faces as u64));
         for est in ESTIMATORS {
@@ -55,7 +55,7 @@ fn stages(c: &mut Criterion) {
     g.sample_size(10);
     g.warm_up_time(Duration::from_millis(500));
     g.measurement_time(Duration::from_secs(2));
-    let data = surface::datasets::ring(1000, 500).expect("valid resolution");
+    let data = mesh::datasets::ring(1000, 500).expect("valid resolution");
     let faces = data.mesh.num_faces();
     g.throughput(Throughput::Elements(faces as u64));
     g.bench_function(BenchmarkId::new("topology", faces), |b| {

@@ -21,10 +21,10 @@
 use std::time::Instant;
 
 use estimate::{estimator_by_name, vertex_normals, Estimate, NormalWeighting, ESTIMATORS};
+use mesh::repair::{repair, RepairOptions};
+use mesh::Mesh;
 use meshio::RawMesh;
 use nalgebra::Vector3;
-use surface::repair::{repair, RepairOptions};
-use surface::Mesh;
 
 /// The mesh of `spec`: a file, or `torus:NU:NV`.
 fn raw_mesh(spec: &str) -> RawMesh {
@@ -41,7 +41,7 @@ fn raw_mesh(spec: &str) -> RawMesh {
 
 /// What `estimate::prepare_owned` does before estimating: the working frame, then the repair.
 fn prepared(mut raw: RawMesh) -> Mesh {
-    let frame = surface::Frame::of_points(&raw.positions).expect("finite extent");
+    let frame = mesh::Frame::of_points(&raw.positions).expect("finite extent");
     for p in &mut raw.positions {
         *p = frame.to_work(p);
     }

@@ -37,8 +37,8 @@
 //! below [`NORMAL_EQUATIONS_CONDITION`] (squared: `1e4 ε` relative error); otherwise the pivoted
 //! QR decides. Both paths solve the same least-squares problem.
 
+use mesh::Mesh;
 use nalgebra::{Matrix2, Matrix3, Vector3};
-use surface::Mesh;
 
 use crate::Topology;
 

@@ -30,9 +30,9 @@
 //! vertex gives there, and no second full estimate is held (about 35 MB less at the peak at
 //! 10⁶ triangles).
 
+use mesh::Mesh;
 use nalgebra::Vector3;
 use rayon::prelude::*;
-use surface::Mesh;
 
 use crate::fit::Workspace;
 use crate::jet::{fit_at, FIRST_WEIGHTING};

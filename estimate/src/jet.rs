@@ -31,9 +31,9 @@
 //! the tests the symmetric neighbourhoods cancel a further order for even `d` (see
 //! `tests/jet.rs` for the measured orders).
 
+use mesh::Mesh;
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
-use surface::Mesh;
 
 use crate::fit::{fit_vertex, num_coeffs, FitFailure, FitSpec, RingRule, Workspace};
 use crate::normals::{vertex_normals_with, NormalWeighting, Normals};

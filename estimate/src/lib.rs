@@ -31,9 +31,9 @@
 
 use std::collections::BTreeMap;
 
+use mesh::Mesh;
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
-use surface::Mesh;
 
 pub mod fit;
 pub mod hybrid;

@@ -12,7 +12,7 @@
 //!   normals from facet normals*, JGT 4(2), 1999): exact for vertices of a sphere; the weighting
 //!   Rusinkiewicz (2004) uses.
 //!
-//! A face whose doubled area is at most [`surface::mesh::DEGENERATE_FACE_SINE`] times the
+//! A face whose doubled area is at most [`mesh::mesh::DEGENERATE_FACE_SINE`] times the
 //! product of its two longest edges (the mesh's own zero-area test) contributes nothing.
 //!
 //! **Fallbacks.** A vertex with no faces gets `+z` ([`FallbackKind::Isolated`]). A vertex whose
@@ -22,10 +22,10 @@
 //! component); when its whole component has none it gets `+z`
 //! ([`FallbackKind::DefaultNormal`]).
 
+use mesh::mesh::DEGENERATE_FACE_SINE;
+use mesh::Mesh;
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
-use surface::mesh::DEGENERATE_FACE_SINE;
-use surface::Mesh;
 
 use crate::{given_normal, Fallback, FallbackKind, Topology};
 
@@ -239,7 +239,7 @@ mod tests {
 
     #[test]
     fn max_weights_are_exact_on_the_sphere() {
-        let data = surface::datasets::sphere(2).expect("valid");
+        let data = mesh::datasets::sphere(2).expect("valid");
         /// Max's weights reproduce sphere normals up to rounding.
         const TOL: f64 = 1e-13;
         let n = vertex_normals(&data.mesh, NormalWeighting::Max);

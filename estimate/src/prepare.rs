@@ -1,5 +1,5 @@
 //! From a file's raw mesh to a mesh ready to fit: moved into a working frame (unit bounding box,
-//! [`surface::Frame`]: coordinates from 1e-100 to 1e100 work), repaired ([`surface::repair`])
+//! [`mesh::Frame`]: coordinates from 1e-100 to 1e100 work), repaired ([`mesh::repair`])
 //! and completed by an estimator where the file lacks normals or shape tensors.
 //!
 //! # What is kept and what is estimated
@@ -12,9 +12,9 @@
 //!   scheme can fit it), and one without shape tensors leaves the curvature unknown (the
 //!   curvature-based curve constructions refuse it, `chord` runs).
 
+use mesh::repair::{repair, RepairError, RepairOptions, RepairReport, Repaired};
+use mesh::Mesh;
 use meshio::RawMesh;
-use surface::repair::{repair, RepairError, RepairOptions, RepairReport, Repaired};
-use surface::Mesh;
 
 use crate::{apply, estimator_by_name, EstimateSummary, Estimator, UnknownEstimator};
 
@@ -62,7 +62,7 @@ pub enum PrepareError {
     Repair(#[from] RepairError),
     /// The coordinates cannot be brought into a working frame.
     #[error(transparent)]
-    Frame(#[from] surface::FrameError),
+    Frame(#[from] mesh::FrameError),
     /// The file has no (usable) normals and no estimation was asked for.
     #[error("the file gives no usable vertex normals and `--estimate none` was asked: name an estimator (jet, quadric, rusinkiewicz, …)")]
     NoNormals,
@@ -75,7 +75,7 @@ pub struct Prepared {
     /// largest side 1): map results back with the frame for output.
     pub mesh: Mesh,
     /// The working frame: `world = frame.center + frame.scale · working`.
-    pub frame: surface::Frame,
+    pub frame: mesh::Frame,
     /// What the repair did.
     pub report: RepairReport,
     /// True when every vertex's normal came from the file.
@@ -137,7 +137,7 @@ pub fn prepare_owned(
     replace_normals: bool,
 ) -> Result<Prepared, PrepareError> {
     let t0 = std::time::Instant::now();
-    let frame = surface::Frame::of_points(&raw.positions)?;
+    let frame = mesh::Frame::of_points(&raw.positions)?;
     // What `Frame::raw_to_work` does, in place.
     let mut work = raw;
     for p in &mut work.positions {

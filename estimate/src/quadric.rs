@@ -22,8 +22,8 @@
 //! **Fallbacks.** Fewer than 5 neighbours, rank deficiency or a condition number above
 //! [`crate::fit::MAX_CONDITION`]: `S = 0` ([`crate::FallbackKind::Planar`]).
 
+use mesh::Mesh;
 use nalgebra::Vector3;
-use surface::Mesh;
 
 use crate::fit::{FitSpec, RingRule};
 use crate::jet::estimate_by_fitting;

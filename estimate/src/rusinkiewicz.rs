@@ -26,9 +26,9 @@
 //! **Order.** Curvature errors are `O(h)` on irregular meshes and `O(h²)` on the regular data
 //! sets (measured in `tests/rusinkiewicz.rs`), the normal error that of the Max normals.
 
+use mesh::Mesh;
 use nalgebra::{Matrix3, Point3, Vector3};
 use rayon::prelude::*;
-use surface::Mesh;
 
 use crate::normals::{face_unit_normal, vertex_normals_with, NormalWeighting, Normals};
 use crate::{finish, Estimate, Estimator, Fallback, FallbackKind, PlanarReason, Topology};

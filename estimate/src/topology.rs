@@ -4,7 +4,7 @@
 //! estimators visit every vertex (and its rings) and use these flat arrays instead, so that the
 //! hot loop allocates nothing.
 
-use surface::Mesh;
+use mesh::Mesh;
 
 /// Faces around and neighbours of every vertex, in compressed-row form.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -224,7 +224,7 @@ mod tests {
 
     #[test]
     fn rings_of_the_octahedron() {
-        let data = surface::datasets::octa().expect("built-in");
+        let data = mesh::datasets::octa().expect("built-in");
         let t = Topology::new(&data.mesh);
         let mut out = Vec::new();
         for v in 0..6 {

@@ -59,7 +59,7 @@ fn a_single_triangle() {
         vx(Point3::new(1.0, 0.0, 1.0)),
         vx(Point3::new(0.0, 1.0, 1.0)),
     ];
-    let mesh = surface::Mesh::new(verts, vec![[0, 1, 2]]).expect("valid");
+    let mesh = mesh::Mesh::new(verts, vec![[0, 1, 2]]).expect("valid");
     for est in ESTIMATORS {
         let e = run(*est, &mesh, None);
         for v in 0..3 {
@@ -116,7 +116,7 @@ fn a_vertex_with_only_zero_area_faces_takes_its_neighbours_normal() {
 fn given_normals_are_kept_and_shapes_are_tangent_to_them() {
     /// `P S P` leaves `S n` at rounding level relative to `|S|`.
     const TANGENT: f64 = 1e-14;
-    let data = surface::datasets::ring(24, 12).expect("valid");
+    let data = mesh::datasets::ring(24, 12).expect("valid");
     // Perturbed given normals: kept as given, whatever the estimator would say.
     let given: Vec<Vector3<f64>> = exact_normals(&data.mesh)
         .iter()
@@ -159,7 +159,7 @@ fn open_hemisphere_boundary_vertices_are_sensible() {
     const RIM_H: f64 = 0.3;
     /// Normals at the rim within 5° (observed < 1°).
     const RIM_NORMAL_DEG: f64 = 5.0;
-    let full = surface::datasets::sphere(4).expect("valid");
+    let full = mesh::datasets::sphere(4).expect("valid");
     let mesh = sub_mesh(&full.mesh, |c| c.z > 0.0);
     let rim: Vec<usize> = mesh
         .boundary_edges()
@@ -251,7 +251,7 @@ fn noisy_sphere_stays_finite_and_close() {
     /// noise/h² ≈ 0.1: H within 0.5 RMS (observed 0.05–0.2), normals within 3° RMS.
     const NOISY_H_RMS: f64 = 0.5;
     const NOISY_NORMAL_RMS_DEG: f64 = 3.0;
-    let data = surface::datasets::sphere(4).expect("valid");
+    let data = mesh::datasets::sphere(4).expect("valid");
     let mut mesh = data.mesh.clone();
     for (i, v) in mesh.vertices_mut().iter_mut().enumerate() {
         let t = i as f64;
@@ -270,7 +270,7 @@ fn noisy_sphere_stays_finite_and_close() {
 fn capsule_is_finite_and_caps_are_spheres() {
     /// Cap vertices away from the seams: `H = −2` within 5 % at n = 64 (observed < 1 %).
     const CAP_H: f64 = 0.1;
-    let data = surface::datasets::capsule(64).expect("valid");
+    let data = mesh::datasets::capsule(64).expect("valid");
     for est in ESTIMATORS {
         let e = run(*est, &data.mesh, None);
         for (v, vert) in data.mesh.vertices().iter().enumerate() {
@@ -285,7 +285,7 @@ fn capsule_is_finite_and_caps_are_spheres() {
 
 #[test]
 fn apply_writes_the_estimate() {
-    let data = surface::datasets::sphere(2).expect("valid");
+    let data = mesh::datasets::sphere(2).expect("valid");
     for est in ESTIMATORS {
         let mut mesh = data.mesh.clone();
         for v in mesh.vertices_mut() {
@@ -328,7 +328,7 @@ proptest! {
         prop_assume!(axis.norm() > 1e-3);
         let r = Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle);
         let s = log_s.exp();
-        let data = surface::datasets::ring(12, 6).expect("valid");
+        let data = mesh::datasets::ring(12, 6).expect("valid");
         let moved = transformed(&data.mesh, &r, &Vector3::from(t), s);
         for est in ESTIMATORS {
             let a = est.estimate(&data.mesh, None);

@@ -4,7 +4,7 @@
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
 use estimate::{Estimator, HYBRID, JET4, RUSINKIEWICZ};
-use surface::Mesh;
+use mesh::Mesh;
 
 /// Positions only reach the estimators.
 fn positions_only(mut mesh: Mesh) -> Mesh {
@@ -37,14 +37,14 @@ fn split(mesh: &Mesh) -> (usize, usize) {
 #[test]
 fn the_coarse_ring_takes_rusinkiewicz_everywhere() {
     // 16 × 8 ring: one edge turns the tube's normal by about 0.4 · 2.5 = 1 rad.
-    let mesh = positions_only(surface::datasets::ring(16, 8).unwrap().mesh);
+    let mesh = positions_only(mesh::datasets::ring(16, 8).unwrap().mesh);
     assert_eq!(split(&mesh), (0, mesh.num_vertices()));
 }
 
 #[test]
 fn a_fine_sphere_takes_jet4_everywhere() {
     // Level 5: edges of 0.06 on the unit sphere turn the normal by 0.06 rad.
-    let mesh = positions_only(surface::datasets::sphere(5).unwrap().mesh);
+    let mesh = positions_only(mesh::datasets::sphere(5).unwrap().mesh);
     assert_eq!(split(&mesh), (mesh.num_vertices(), 0));
 }
 
@@ -53,7 +53,7 @@ fn a_middle_ring_mixes_by_curvature() {
     // 64 × 32: the largest principal curvature is the tube's, 1/r = 2.5, everywhere, but the
     // edges around the axis are 2π(R ∓ r)/64 long, 0.06 inside and 0.14 outside: the inner
     // vertices are resolved (ρ ≈ 0.15–0.2), the outer ones not.
-    let mesh = positions_only(surface::datasets::ring(64, 32).unwrap().mesh);
+    let mesh = positions_only(mesh::datasets::ring(64, 32).unwrap().mesh);
     let (nj, nr) = split(&mesh);
     assert!(nj > 0 && nr > 0, "jet4 {nj}, rusinkiewicz {nr}");
 }
@@ -63,7 +63,7 @@ fn zoo_meshes() -> Vec<(&'static str, Mesh)> {
     fixtures::zoo()
         .into_iter()
         .filter_map(|(name, raw)| {
-            let repaired = surface::repair::repair(&raw, &Default::default()).ok()?;
+            let repaired = mesh::repair::repair(&raw, &Default::default()).ok()?;
             Some((name, positions_only(repaired.mesh)))
         })
         .collect()

@@ -40,7 +40,7 @@ fn jets_reproduce_a_quartic_jet_of_degree_4_exactly() {
 fn sphere_sign_convention() {
     /// Level 4: curvature errors ≈ 0.04 (jet2), tensor error per vertex below 0.2.
     const SIGN_TENSOR: f64 = 0.2;
-    let d = surface::datasets::sphere(4).expect("valid");
+    let d = mesh::datasets::sphere(4).expect("valid");
     let e = run(&JET, &d.mesh, None);
     for v in 0..d.mesh.num_vertices() {
         let n = e.normals[v];
@@ -102,7 +102,7 @@ fn jets_converge_at_the_observed_orders() {
 #[test]
 fn jet_is_the_degree_2_jet() {
     assert_eq!(JET.degree, 2);
-    let d = surface::datasets::ring(16, 8).expect("valid");
+    let d = mesh::datasets::ring(16, 8).expect("valid");
     assert_eq!(JET.estimate(&d.mesh, None), JET2.estimate(&d.mesh, None));
 }
 

@@ -15,7 +15,7 @@ fn weightings_on_the_ring_converge() {
         let errs: Vec<f64> = [32, 64, 128]
             .iter()
             .map(|&n| {
-                let d = surface::datasets::ring(n, n / 2).expect("valid");
+                let d = mesh::datasets::ring(n, n / 2).expect("valid");
                 let est = vertex_normals(&d.mesh, w);
                 let s: f64 = est
                     .normals
@@ -62,7 +62,7 @@ fn several_weightings_in_one_pass_are_each_one_to_the_bit() {
         NormalWeighting::Area,
     ];
     for (name, raw) in fixtures::zoo() {
-        let Ok(repaired) = surface::repair::repair(&raw, &Default::default()) else {
+        let Ok(repaired) = mesh::repair::repair(&raw, &Default::default()) else {
             continue;
         };
         let mesh = repaired.mesh;

@@ -14,7 +14,7 @@ fn quadric_reproduces_a_quadric_exactly() {
 
 #[test]
 fn quadric_keeps_the_angle_weighted_normal() {
-    let d = surface::datasets::ring(20, 10).expect("valid");
+    let d = mesh::datasets::ring(20, 10).expect("valid");
     let e = run(&QUADRIC, &d.mesh, None);
     let n = vertex_normals(&d.mesh, NormalWeighting::Angle);
     assert_eq!(e.normals, n.normals);

@@ -13,7 +13,7 @@ fn exact_on_the_sphere() {
     /// Max normals and face tensors are exact on the sphere: rounding only (observed 1e-14).
     const EXACT: f64 = 1e-11;
     for l in [1, 3, 5] {
-        let d = surface::datasets::sphere(l).expect("valid");
+        let d = mesh::datasets::sphere(l).expect("valid");
         let e = run(&RUSINKIEWICZ, &d.mesh, None);
         for (v, vert) in d.mesh.vertices().iter().enumerate() {
             let n = e.normals[v];

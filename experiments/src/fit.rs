@@ -299,7 +299,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             source,
         })?;
         let tessellate_time = t3.elapsed().as_secs_f64();
-        frame.tessellation_to_world(&mut tess);
+        tess.to_world(&frame);
         let raw = tessellation_to_raw(&tess);
         let bytes =
             meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|source| {

@@ -1,18 +1,10 @@
-//! Surfaces: triangle meshes with adjacency and per-vertex data (position, normal, shape
-//! tensor), the testbed's mesh format read strictly (through `meshio`), the repair of user files,
-//! analytic data sets (sphere, ring, capsule, the octahedron of the testbed's Figure 2),
-//! triangular Bézier patches, the split-domain scheme with its per-face fallback, and
-//! tessellation with differential geometry.
+//! Surfaces on a mesh: triangular Bézier patches, the surface schemes with their per-face
+//! fallback, the fit of a whole mesh, G1 and error measures, and tessellation with
+//! differential geometry. The mesh itself (adjacency, repair, working frame, the `.m` format,
+//! the analytic data sets) is the `mesh` crate's, re-exported here under the same paths
+//! ([`mesh`](mod@mesh), [`repair`], [`frame`], [`testbed_format`], [`datasets`]).
 //!
-//! * [`mesh`] — [`Mesh`]: validated triangle meshes with half-edge adjacency, stable edge
-//!   indices, vertex fans, walks;
-//! * [`repair`] — a file's raw mesh to a valid mesh by stated, counted rules;
 //! * [`fallback`] — the C0 macro-patch of a face the scheme cannot fit;
-//! * [`frame`] — the working frame of a user's mesh (unit bounding box), and the way back;
-//! * [`testbed_format`] — the testbed's "semi-dstruct" mesh format (Lounsbery et al. 1990,
-//!   Figure 2), read and written;
-//! * [`datasets`] — analytic reference surfaces with exact closest points and curvatures, and
-//!   the named data sets sampled from them ([`dataset_by_name`]);
 //! * [`beztri`] — triangular Bézier patches of any degree ([`BezierTriangle`]);
 //! * [`scheme`] — surface schemes as a plug-in family ([`Scheme`], [`scheme::REGISTRY`]):
 //!   `flat`, `shirman-sequin`, `pn-triangles`, `phong`, …;
@@ -35,42 +27,42 @@
 //! bends towards its normal, so the unit sphere with outward normals has `κn = −1`, Gaussian
 //! curvature `K = +1` and mean curvature `H = (κ1 + κ2)/2 = −1`.
 
+// The mesh layer this crate builds on, re-exported under the paths it had here, so that
+// `surface::Mesh`, `surface::repair` and `surface::frame` keep naming the same items.
+pub use ::mesh::{analytic, datasets, frame, mesh, repair, testbed_format, vertex};
+
 pub mod beztri;
 pub mod curve_stats;
-pub mod datasets;
-mod edge_groups;
 pub mod fairing;
 pub mod fallback;
 pub mod fit;
-pub mod frame;
 pub mod g1;
 pub mod interior;
-pub mod mesh;
 pub mod metrics;
 pub mod patch;
 pub mod patch_io;
-pub mod repair;
 pub mod scheme;
 pub mod shirman_sequin;
 pub mod side_vertex;
 pub mod stream;
 pub mod tessellate;
 pub mod tessellate_fit;
-pub mod testbed_format;
-mod vertex_pieces;
 
-pub use beztri::{BezTriError, BezierCurve, BezierTriangle, Curvature, Derivatives};
-pub use datasets::{
+pub use ::mesh::datasets::{
     dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,
     DATASET_NAMES,
 };
+pub use ::mesh::{
+    read_testbed, read_testbed_file, write_testbed, write_testbed_file, TestbedError,
+};
+pub use ::mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
+pub use ::mesh::{Frame, FrameError, VertexData};
+pub use beztri::{BezTriError, BezierCurve, BezierTriangle, Curvature, Derivatives};
 pub use fit::{
     face_curves, fit, fit_into, fit_scheme, fit_scheme_into, DegenerateEdge, FaceFallback,
     FaceFallbackReason, Fit, FitError,
 };
-pub use frame::{Frame, FrameError};
 pub use g1::{measure as measure_g1, Boundary, G1Report};
-pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
 pub use metrics::{compare as compare_with_truth, SurfaceErrors};
 pub use scheme::{
     scheme_by_name, scheme_names, Continuity, Layout, Scheme, SchemeOptions, UnknownScheme,
@@ -82,6 +74,3 @@ pub use shirman_sequin::{
 };
 pub use tessellate::{tessellate, TessError, Tessellation};
 pub use tessellate_fit::{tessellate_fit, tessellate_fit_rebuilt, welds_by_topology};
-pub use testbed_format::{
-    read_testbed, read_testbed_file, write_testbed, write_testbed_file, TestbedError,
-};

@@ -105,6 +105,22 @@ impl Tessellation {
         Mesh::new(vertices, self.faces.clone())
     }
 
+    /// The tessellation mapped back from a working frame to world coordinates in place
+    /// (positions, `K / scale²`, `H / scale`, shape tensors `/ scale`).
+    pub fn to_world(&mut self, frame: &mesh::Frame) {
+        frame.points_to_world(&mut self.positions);
+        let s = frame.scale;
+        for k in &mut self.gaussian {
+            *k /= s * s;
+        }
+        for h in &mut self.mean {
+            *h /= s;
+        }
+        for m in &mut self.shapes {
+            *m /= s;
+        }
+    }
+
     /// The tessellation as a raw mesh for `meshio`'s writers: positions, normals, triangles, and
     /// the Gaussian and mean curvature as vertex properties `gaussian`, `mean`.
     pub fn to_raw(&self) -> meshio::RawMesh {

@@ -136,7 +136,7 @@ pub fn fit<W: std::io::Write>(
             return Err(FilterError::Usage("fit --sample must be at least 1".into()));
         }
         let mut t = surface::tessellate_fit(&input.mesh, &fitted, s)?;
-        input.frame.tessellation_to_world(&mut t);
+        t.to_world(&input.frame);
         if options.mesh {
             for v in patch_meshes(&t, per_face, &scheme_name, options.fields) {
                 at.record += 1;

@@ -3,8 +3,8 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
-use curves::analytic::{torus_grid_edges, torus_point};
 use curves::{method_by_name, BoundaryProblem, MethodOptions, REGISTRY};
+use surface::analytic::{torus_grid_edges, torus_point};
 
 /// Interpolation of positions and tangent directions is exact up to rounding.
 const INTERPOLATION: f64 = 1e-12;

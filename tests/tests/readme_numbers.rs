@@ -3,8 +3,8 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
-use curves::analytic::{torus_grid_edges, torus_point};
 use curves::{dbhs, method_by_name, BoundaryProblem, MethodOptions};
+use surface::analytic::{torus_grid_edges, torus_point};
 use surface::{compare_with_truth, fit, measure_g1, tessellate, InteriorParameters};
 
 /// The README prints two or three significant digits: agreement to half a unit in the last one.

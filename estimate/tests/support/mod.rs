@@ -6,8 +6,8 @@
 #![allow(clippy::expect_used)] // test fixtures built from fixed valid data
 
 use estimate::{principal_curvatures, Estimate, Estimator};
+use mesh::{Mesh, Vertex};
 use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
-use surface::{Mesh, Vertex};
 
 /// Normals that are exact by symmetry or construction (a flat triangle's, a symmetric fan's)
 /// come out to rounding.
@@ -191,7 +191,7 @@ pub fn cylinder(r: f64, nu: usize, nz: usize, dz: f64) -> Mesh {
             let n = Vector3::new(t.cos(), t.sin(), 0.0);
             let e = Vector3::new(-t.sin(), t.cos(), 0.0);
             let p = Point3::new(r * t.cos(), r * t.sin(), (j as f64 - nz as f64 / 2.0) * dz);
-            verts.push(Vertex::new(curves::VertexData::new(
+            verts.push(Vertex::new(mesh::VertexData::new(
                 p,
                 n,
                 -(e * e.transpose()) / r,
@@ -320,14 +320,14 @@ pub fn convergence(est: &dyn Estimator) -> (Vec<Errors>, Vec<Errors>) {
     let sphere = [3, 4, 5]
         .iter()
         .map(|&l| {
-            let d = surface::datasets::sphere(l).expect("valid");
+            let d = mesh::datasets::sphere(l).expect("valid");
             errors(&run(est, &d.mesh, None), &d.mesh)
         })
         .collect();
     let ring = [32, 64, 128]
         .iter()
         .map(|&n| {
-            let d = surface::datasets::ring(n, n / 2).expect("valid");
+            let d = mesh::datasets::ring(n, n / 2).expect("valid");
             errors(&run(est, &d.mesh, None), &d.mesh)
         })
         .collect();

@@ -5,8 +5,8 @@
 
 use std::time::Instant;
 
-use curves::analytic::torus_point;
 use curves::{method_by_name, BoundaryProblem, MethodOptions};
+use surface::analytic::torus_point;
 use surface::curve_stats::CurveStats;
 use surface::fairing::InteriorChoice;
 use surface::{

@@ -9,8 +9,8 @@
 
 use std::time::Instant;
 
-use surface::repair::{repair, RepairOptions};
-use surface::Mesh;
+use mesh::repair::{repair, RepairOptions};
+use mesh::Mesh;
 
 /// CPU time of the process so far (user + system, all threads), seconds, from
 /// `/proc/self/stat` (clock ticks of 1/100 s); 0 where that file cannot be read.

@@ -1,5 +1,5 @@
 //! How the speed of each stage scales from 10³ to 10⁶ faces, and what a user gets per second at
-//! each: `cargo run --release -p estimate --example scaling [--features mimalloc] [MAX_FACES]`
+//! each: `cargo run --release -p surface --example scaling [--features mimalloc] [MAX_FACES]`
 //! (default 10⁶).
 //!
 //! The meshes are the irregular noisy tori of `fixtures --example big_mesh`

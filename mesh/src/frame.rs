@@ -103,7 +103,7 @@ impl Frame {
 
     /// A mesh's vertex data mapped back to world coordinates in place (positions, shape
     /// tensors; normals are unchanged).
-    pub fn mesh_to_world(&self, mesh: &mut crate::Mesh) {
+    pub fn mesh_to_world(&self, mesh: &mut crate::mesh::Mesh) {
         for v in mesh.vertices_mut() {
             v.data.p = self.to_world(&v.data.p);
             v.data.shape = self.shape_to_world(&v.data.shape);
@@ -114,22 +114,6 @@ impl Frame {
     pub fn points_to_world(&self, points: &mut [Point3<f64>]) {
         for p in points {
             *p = self.to_world(p);
-        }
-    }
-
-    /// A tessellation mapped back to world coordinates in place (positions, `K / scale²`,
-    /// `H / scale`, shape tensors `/ scale`).
-    pub fn tessellation_to_world(&self, t: &mut crate::Tessellation) {
-        self.points_to_world(&mut t.positions);
-        let s = self.scale;
-        for k in &mut t.gaussian {
-            *k /= s * s;
-        }
-        for h in &mut t.mean {
-            *h /= s;
-        }
-        for m in &mut t.shapes {
-            *m /= s;
         }
     }
 }

@@ -695,7 +695,7 @@ fn file_vertex(raw: &RawMesh, given_normals: Option<&[Vector3<f64>]>, s: usize) 
         .as_ref()
         .map_or_else(Vector3::zeros, |ns| ns[s]);
     let mut v = match &raw.shapes {
-        Some(shapes) if shapes.len() == nv => Vertex::new(curves::VertexData::new(p, n, shapes[s])),
+        Some(shapes) if shapes.len() == nv => Vertex::new(crate::VertexData::new(p, n, shapes[s])),
         _ => Vertex::without_curvature(p, n),
     };
     if v.curvature_known {

@@ -30,7 +30,7 @@
 
 use std::collections::BTreeMap;
 
-use curves::VertexData;
+use crate::vertex::VertexData;
 use nalgebra::{Matrix3, Point3, Vector3};
 use rayon::prelude::*;
 

@@ -106,7 +106,7 @@ fn strict(raw: RawMesh) -> Result<Mesh, TestbedError> {
                 .as_ref()
                 .map_or_else(nalgebra::Vector3::zeros, |ns| ns[i]);
             let mut v = match &raw.shapes {
-                Some(s) => crate::Vertex::new(curves::VertexData::new(p, n, s[i])),
+                Some(s) => crate::Vertex::new(crate::VertexData::new(p, n, s[i])),
                 None => crate::Vertex::without_curvature(p, n),
             };
             v.name = raw.vertex_name(i).map(|n| n.into_owned());

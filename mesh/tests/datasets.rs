@@ -2,10 +2,10 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
+use mesh::datasets::{dataset_by_name, AnalyticSurface, DataSet, DataSetError, DATASET_NAMES};
+use mesh::datasets::{Capsule, Sphere, Torus};
 use nalgebra::{Point3, Vector3};
 use proptest::prelude::*;
-use surface::datasets::{Capsule, Sphere, Torus};
-use surface::{dataset_by_name, AnalyticSurface, DataSet, DataSetError, DATASET_NAMES};
 
 /// Vertices are built from closed forms: their distance to the surface is rounding only.
 const ON_SURFACE: f64 = 1e-12;
@@ -146,7 +146,7 @@ fn vertices_carry_the_exact_surface_data() {
 #[test]
 fn ring_edges_are_the_curve_layers_grid_edges() {
     let d = dataset_by_name("ring", None).unwrap();
-    let grid = curves::analytic::torus_grid_edges(16, 8);
+    let grid = mesh::analytic::torus_grid_edges(16, 8);
     assert_eq!(grid.len(), d.mesh.num_edges());
     let key = |p: &Point3<f64>| [p.x, p.y, p.z].map(|c| (c * 1e9).round() as i64);
     let mesh_edges: std::collections::BTreeSet<_> = d
@@ -159,8 +159,8 @@ fn ring_edges_are_the_curve_layers_grid_edges() {
         })
         .collect();
     for ((ua, va), (ub, vb)) in grid {
-        let pa = curves::analytic::torus_point(ua, va, 1.0, 0.4).p;
-        let pb = curves::analytic::torus_point(ub, vb, 1.0, 0.4).p;
+        let pa = mesh::analytic::torus_point(ua, va, 1.0, 0.4).p;
+        let pb = mesh::analytic::torus_point(ub, vb, 1.0, 0.4).p;
         let (a, b) = (key(&pa), key(&pb));
         assert!(mesh_edges.contains(&(a.min(b), a.max(b))));
     }

@@ -1,4 +1,4 @@
-//! Prints one digest line per input of `surface::repair::repair`: a hash of the whole result
+//! Prints one digest line per input of `mesh::repair::repair`: a hash of the whole result
 //! (`Debug` of the repaired mesh with its private half-edge arrays, face and vertex sources,
 //! report; or the error's message), so that a change to the repair can be checked to give the
 //! identical result on every input. Inputs: the fixture zoo, the committed corpus, damaged
@@ -13,9 +13,9 @@ use std::fmt::Write as _;
 use std::hash::Hasher;
 
 use fixtures::SplitMix64;
+use mesh::repair::{repair, PolygonRule, RepairOptions};
 use meshio::{Polygons, RawMesh};
 use nalgebra::{Matrix3, Point3, Vector3};
-use surface::repair::{repair, PolygonRule, RepairOptions};
 
 /// A `fmt::Write` that feeds a hasher, so a large `Debug` output is hashed without storing it.
 struct HashWriter(std::collections::hash_map::DefaultHasher);

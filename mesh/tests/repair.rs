@@ -1,13 +1,13 @@
-//! The repair rules of `surface::repair`, one broken configuration each, plus a property test:
+//! The repair rules of `mesh::repair`, one broken configuration each, plus a property test:
 //! whatever faces are thrown at it (random triangles over a few vertices), the result is a valid
 //! mesh or a named refusal, never a panic.
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
+use mesh::repair::{repair, PolygonRule, RepairError, RepairOptions, Reversal};
 use meshio::{Polygons, RawMesh};
 use nalgebra::{Point3, Vector3};
 use proptest::prelude::*;
-use surface::repair::{repair, PolygonRule, RepairError, RepairOptions, Reversal};
 
 fn p(x: f64, y: f64, z: f64) -> Point3<f64> {
     Point3::new(x, y, z)
@@ -283,7 +283,7 @@ proptest! {
             Ok(r) => {
                 prop_assert_eq!(r.mesh.num_faces(), r.face_source.len());
                 prop_assert_eq!(r.mesh.num_vertices(), r.vertex_source.len());
-                prop_assert!(r.report.dropped_faces.len() <= surface::repair::MAX_DROPPED_FACES);
+                prop_assert!(r.report.dropped_faces.len() <= mesh::repair::MAX_DROPPED_FACES);
             }
             Err(RepairError::Empty(_)) => {}
             Err(e) => prop_assert!(false, "unexpected refusal: {e}"),

@@ -1,5 +1,5 @@
 //! Points of analytic surfaces with exact normals and shape tensors: ground truth for tests,
-//! benchmarks and sample problems of the curve layer. (The surface crate's data sets build whole
+//! benchmarks and sample problems of the curve layer. (The data sets, [`crate::datasets`], build whole
 //! meshes on these.)
 //!
 //! Normals point outward and the shape tensor follows docs/conventions.md: `κn(d) = dᵀ S d`, positive where
@@ -7,7 +7,7 @@
 
 use nalgebra::{Matrix3, Point3, Vector3};
 
-use crate::problem::VertexData;
+use crate::vertex::VertexData;
 
 /// The point of the sphere of radius `radius` about the origin in direction `dir`:
 /// `S = −(I − n nᵀ)/radius`, so `κn = −1/radius` in every direction.

@@ -3,7 +3,7 @@
 //!
 //! The testbed's data sets (Lounsbery et al. 1990, §5: "samplings of the sphere", the ring and
 //! the capsule of the later survey, and the octahedron of Figure 2), each a [`DataSet`]: a
-//! [`Mesh`] whose vertices carry exact `(p, n, S)` (from `curves::analytic`), and an
+//! [`Mesh`] whose vertices carry exact `(p, n, S)` (from [`crate::analytic`]), and an
 //! [`AnalyticSurface`] answering closest-point and curvature queries.
 //!
 //! | name | surface | resolution (default) | V, E, F at default | χ |
@@ -22,9 +22,9 @@
 //! **Sphere**: the octahedron of `data/octa.m` split `k` times (each triangle into four at its
 //! edge midpoints), every vertex pushed radially to the unit sphere.
 //!
-//! **Ring**: the grid `(u_i, v_j) = (2π i/nu, 2π j/nv)` of `curves::analytic::torus_point`, each
+//! **Ring**: the grid `(u_i, v_j) = (2π i/nu, 2π j/nv)` of `crate::analytic::torus_point`, each
 //! grid quad `(i,j), (i+1,j), (i+1,j+1), (i,j+1)` split along `(i,j)–(i+1,j+1)` — the diagonal
-//! convention of `curves::analytic::torus_grid_edges`, so the mesh's edges are exactly those.
+//! convention of `crate::analytic::torus_grid_edges`, so the mesh's edges are exactly those.
 //! Coarse on purpose at the default: the seeds' ring shows defects on a coarse sampling.
 //!
 //! **Capsule**: a surface of revolution about z sampled on `n` meridians. The profile runs from
@@ -43,8 +43,8 @@ use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::sync::Arc;
 
-use curves::analytic::{sphere_point, torus_point};
-use curves::VertexData;
+use crate::analytic::{sphere_point, torus_point};
+use crate::vertex::VertexData;
 use nalgebra::{Matrix3, Point3, Vector3};
 
 use crate::mesh::{Mesh, MeshError, Vertex};
@@ -181,7 +181,7 @@ impl AnalyticSurface for Sphere {
     }
 }
 
-/// A torus about the z axis through the origin (`curves::analytic::torus_point`'s). On the z
+/// A torus about the z axis through the origin (`crate::analytic::torus_point`'s). On the z
 /// axis the closest point is taken at `u = 0`, on the tube's centre circle at `v = 0`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Torus {

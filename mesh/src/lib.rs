@@ -1,0 +1,41 @@
+//! Triangle meshes as the workbench fits them: validated half-edge adjacency with per-vertex
+//! data (position, normal, shape tensor), the repair of user files by stated and counted
+//! rules, the working frame a user's mesh is fitted in, and the testbed's "semi-dstruct" `.m`
+//! format read strictly.
+//!
+//! * [`vertex`] — [`VertexData`]: a point of the surface with its normal and second
+//!   fundamental form;
+//! * [`mesh`](mod@mesh) — [`Mesh`]: validated triangle meshes with half-edge adjacency, stable
+//!   edge indices, vertex fans, walks;
+//! * [`repair`] — a file's raw mesh to a valid mesh by stated, counted rules;
+//! * [`frame`] — the working frame of a user's mesh (unit bounding box), and the way back;
+//! * [`analytic`] — points of analytic surfaces (sphere, torus) with exact normals and shape
+//!   tensors;
+//! * [`datasets`] — analytic reference surfaces with exact closest points and curvatures, and
+//!   the named data sets sampled from them ([`dataset_by_name`]);
+//! * [`testbed_format`] — the testbed's mesh format (Lounsbery et al. 1990, Figure 2), read and
+//!   written strictly (a file must already be a valid mesh).
+//!
+//! This crate knows nothing of patches, curves or schemes: `estimate` computes normals and
+//! shape tensors on it, `surface` fits patches to it, both on top of it.
+
+pub mod analytic;
+pub mod datasets;
+mod edge_groups;
+pub mod frame;
+pub mod mesh;
+pub mod repair;
+pub mod testbed_format;
+pub mod vertex;
+mod vertex_pieces;
+
+pub use datasets::{
+    dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,
+    DATASET_NAMES,
+};
+pub use frame::{Frame, FrameError};
+pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
+pub use testbed_format::{
+    read_testbed, read_testbed_file, write_testbed, write_testbed_file, TestbedError,
+};
+pub use vertex::VertexData;
