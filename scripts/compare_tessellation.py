@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Smooth output triangles per second: our fit + tessellation against libigl's Loop subdivision
 and a plain numpy implementation of PN triangles, on the same mesh at the same output count
-(issue 15, item 2).
+(docs/performance.md, "Against libigl's Loop and numpy's PN triangles").
 
 Usage (from the repository root, after `cargo build --release -p experiments`):
 
@@ -24,7 +24,8 @@ tessellation at s segments per edge F·s², so s = 2^L (s = 4 ↔ L = 2, s = 8 �
   per face, vectorized over faces, evaluated on the shared sample lattice by a precomputed
   Bernstein matrix; positions and normals per sample, unwelded (each face its own samples).
 
-Each timing is the median of five runs. The numbers in README.md were made with this script.
+Each timing is the median of five runs. The numbers in docs/performance.md were made with this
+script.
 """
 
 import re

@@ -1,7 +1,10 @@
 //! `experiments -- fit`: fit a data set or mesh file with a surface scheme (`--scheme`, default
-//! the modified Shirman–Séquin) and write the patches as JSON Lines.
+//! the modified Shirman–Séquin, or a subdivision scheme with `--levels`), streamed a window of
+//! faces at a time unless `--interior` needs the whole fit, and write the patches to `--out`
+//! (JSON Lines, or the binary `.bzp` form) and the tessellation to `--mesh-out` (any mesh
+//! format, by extension).
 //!
-//! Each output line is one record, `{"type": "BezierTriangle", "degree": n, "points":
+//! Each JSON Lines output line is one record, `{"type": "BezierTriangle", "degree": n, "points":
 //! [[x, y, z], …], "face": f, "subpatch": e}` (points in the row order of docs/conventions.md;
 //! sub-patch `e` of face `f` spans the scheme's sub-triangle `e` of the face: for
 //! Shirman–Séquin, the face's corners `e`, `e + 1` and the split point). stderr gets the G1

@@ -70,8 +70,9 @@ enum Experiment {
     /// Every boundary-curve problem of the data sets solved by every solver adapter (exact
     /// penalty, L-BFGS, Levenberg–Marquardt): convergence, agreement, iterations, time.
     Solvers(solvers::SolversArgs),
-    /// Fit a data set or mesh file with the modified Shirman–Séquin scheme; write the patches as
-    /// JSON Lines and report G1 defect, interpolation error and speed.
+    /// Fit a data set or mesh file with any surface scheme (default: the modified Shirman–Séquin
+    /// scheme), streamed; write the patches (JSON Lines or .bzp) and the tessellation (any mesh
+    /// format) and report G1 defect, interpolation error and speed.
     Fit(fit::FitArgs),
     /// Read a mesh in any supported format, repair it, estimate what it lacks (normals, shape
     /// tensors) and write it in the format of the output's extension.

@@ -3,12 +3,13 @@
 //! input run under `catch_unwind`, panics and slow inputs reported.
 //!
 //! Targets ([`TARGETS`]): every mesh reader of `meshio` on its own format (`testbed`, `obj`,
-//! `ply`, `stl`, `off`), the reader chosen by content (`sniff`), and `pipeline`: whatever the
-//! readers accept, repaired, estimated and fitted (optimized curves) — the code a user's file
-//! reaches.
+//! `ply`, `stl`, `off`), the reader chosen by content (`sniff`), one line of the `curve`
+//! command's JSON Lines protocol (`curve-line`), a `sweep` shard file as `merge` reads it
+//! (`shard`), and `pipeline`: whatever the readers accept, repaired, estimated and fitted
+//! (optimized curves) — the code a user's file reaches.
 //!
 //! `cargo run --release -p fuzz -- TARGET --runs N [--seed S]` runs one target;
-//! `fuzz/tests/smoke.rs` runs a few thousand inputs of each in the test suite.
+//! `fuzz/tests/smoke.rs` runs twenty thousand inputs of each in the test suite.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};

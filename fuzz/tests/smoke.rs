@@ -3,7 +3,7 @@
 
 use std::time::Duration;
 
-/// Inputs per target in the test suite (the recorded long runs are in the README).
+/// Inputs per target in the test suite (the recorded long runs are in docs/hostile-input.md).
 const RUNS: u64 = 20_000;
 /// A single input slower than this is a hang in the making: seeds and their mutants are small.
 const SLOW: Duration = Duration::from_secs(1);

@@ -1,5 +1,5 @@
 //! Reads a mesh file and repairs it several times, for profiling the way from a file to a
-//! validated mesh (issue 15; `perf record`, `perf stat`): prints the read time, each repair's
+//! validated mesh (`perf record`, `perf stat`): prints the read time, each repair's
 //! wall and CPU time (the process's user + system time, all threads), and the time of building
 //! the repaired mesh again with `Mesh::new_allowing_degenerate` (the validation part):
 //! `cargo run --release -p surface --example profile_repair -- FILE [REPEATS]` (default 5).

@@ -26,7 +26,7 @@ fn bench(c: &mut Criterion) {
     g.bench_function("ply_binary_write", |b| {
         b.iter(|| ply.write(&mesh, &opts).expect("write"))
     });
-    // The testbed format against OBJ on the same mesh (issue 15: within 2× in time and memory).
+    // The testbed format against OBJ on the same mesh (the target: within 2× in time and memory).
     let obj = format_by_name("obj").expect("obj");
     let testbed = format_by_name("testbed").expect("testbed");
     let obj_bytes = obj.write(&mesh, &opts).expect("write obj");

@@ -6,7 +6,7 @@
 //! to the camera (a key light above left, a fill light right) so every view is lit alike, and
 //! sRGB output. Bad triangles (non-finite vertices) are skipped, never a panic.
 //!
-//! Speed (issue 15): vertices are transformed once, triangles set up in parallel chunks, and
+//! Speed: vertices are transformed once, triangles set up in parallel chunks, and
 //! the picture drawn in bands of rows in parallel (rayon) with deferred shading (a depth pass
 //! keeps each pixel's nearest triangle, then every visible pixel is shaded once); the sRGB
 //! conversion is a table equal to the formula ([`crate::srgb`]) and the specular power of a

@@ -1,7 +1,7 @@
 //! G1 measurement speed (`surface::measure_g1`, 9 samples per boundary, as `fit` runs it) on
 //! rings of 10⁴ to 10⁶ triangles, for the Shirman–Séquin layout (three quartics per face, 3
 //! interior boundaries) and one-patch schemes, all cores. Throughput in faces per second
-//! (issue 15: at least 10⁶ faces/s).
+//! (the target: at least 10⁶ faces/s; docs/performance.md).
 
 #![allow(clippy::expect_used)] // a benchmark on fixed valid data
 

@@ -2,7 +2,8 @@
 //! 10⁶ triangles) read, repaired, completed by the default estimator, fitted with optimized
 //! curves (exact penalty), tessellated at `s = 1` (the three sub-triangles of each macro-patch,
 //! with the patch normals) and written as glTF binary. Each stage is timed on its own, then the
-//! whole path end to end; the target is < 3 s at 10⁶ triangles on 2 cores.
+//! whole path end to end; the real-mesh target is < 3 s at 10⁶ triangles on 2 cores
+//! (docs/performance.md).
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // benchmark fixtures fail loudly by design
 

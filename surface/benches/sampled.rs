@@ -1,6 +1,6 @@
 //! Speed of the sampled (non-Bézier) schemes through the patch abstraction: Nielson's
 //! side-vertex interpolant and its discrete counterpart, tessellated at s = 8 with positions,
-//! normals, K, H and shape tensors, on ring fits of 10⁴ and 10⁵ faces (issue 13: at least 10⁵
+//! normals, K, H and shape tensors, on ring fits of 10⁴ and 10⁵ faces (the target: at least 10⁵
 //! faces per second), beside PN triangles (a Bézier cubic per face) at the same s.
 
 #![allow(clippy::expect_used)] // a benchmark on fixed valid data
@@ -9,7 +9,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use curves::{method_by_name, MethodOptions};
 use surface::{fit_scheme, scheme_by_name, tessellate_fit, SchemeOptions};
 
-/// Segments per face edge, the issue's sampling.
+/// Segments per face edge, the sampling of the target (the testbed's `Tess -s 8`).
 const S: usize = 8;
 
 fn bench(c: &mut Criterion) {

@@ -1,7 +1,7 @@
 //! Tessellation speed in output triangles per second (positions, normals, K, H, shape
 //! tensors): the positional weld (`tessellate`) and the topological one (`tessellate_fit`) on
 //! ring fits of 10⁴ and 10⁵ faces (Shirman–Séquin, three quartics per face) at s = 1, 4, 8,
-//! and 10⁶ faces at s = 1 (issue 15: at least 10⁷ output triangles per second).
+//! and 10⁶ faces at s = 1 (the target: at least 10⁷ output triangles per second).
 
 #![allow(clippy::expect_used)] // a benchmark on fixed valid data
 

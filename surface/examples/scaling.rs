@@ -8,7 +8,8 @@
 //! (100, 50), (320, 160), (1000, 500). Each stage runs on the previous stage's output; its time
 //! is the best of several runs (more at the small sizes, where one run is short). Printed: the
 //! cost per face in nanoseconds at each size, the spread (largest over smallest) from 10⁴ up and
-//! from 10³ up, and the rate at the largest size. The README's `bench` note is this table.
+//! from 10³ up, and the rate at the largest size. The scaling study of
+//! docs/performance.md is this table.
 //!
 //! The last two rows are references without arithmetic: the nets' bytes copied between reused
 //! buffers, and written into a fresh allocation. Their spreads are what the memory hierarchy

@@ -16,7 +16,7 @@ use surface::{
 const EXACT: f64 = 1e-14;
 /// Derivatives of patches of size one, from a few de Casteljau steps: rounding only.
 const DERIVATIVE: f64 = 1e-12;
-/// C1 inside the face: normals of rounding size apart (the G1 bound).
+/// C1 inside the face: normals of rounding size apart (the G1 bound of docs/conventions.md).
 const G1_TOL: f64 = 1e-9;
 /// Corner normals equal to the data's to rounding.
 const NORMALS: f64 = 1e-12;

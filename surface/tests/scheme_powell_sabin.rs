@@ -15,7 +15,7 @@ use surface::{
 
 /// Hand-derived values are short fractions: rounding only.
 const EXACT: f64 = 1e-14;
-/// C1 inside the face: normals of rounding size apart (the G1 bound).
+/// C1 inside the face: normals of rounding size apart (the G1 bound of docs/conventions.md).
 const G1_TOL: f64 = 1e-9;
 /// Corner normals equal to the data's to rounding.
 const NORMALS: f64 = 1e-12;

@@ -20,7 +20,7 @@ use surface::{
 /// Positions of order one reproduced through Hermite and Bernstein evaluation: rounding.
 const POSITION: f64 = 1e-12;
 /// Normals compared by angle (radians): the rounding of a cross product of derivatives of
-/// order one, and the G1 bound.
+/// order one, and the G1 bound of docs/conventions.md.
 const ANGLE: f64 = 1e-9;
 
 fn fit_of(mesh: &Mesh, scheme: &str, method: &str) -> Fit {

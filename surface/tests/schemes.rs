@@ -16,7 +16,7 @@ use surface::{
 
 /// Positions of coordinates of order one are interpolated to rounding.
 const INTERPOLATION: f64 = 1e-12;
-/// The bound for a G1 claim: angles of rounding size.
+/// The bound for a G1 claim (docs/conventions.md): angles of rounding size.
 const G1_TOL: f64 = 1e-9;
 /// Planar data reproduced to rounding.
 const PRECISION: f64 = 1e-12;

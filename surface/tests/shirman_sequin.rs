@@ -15,7 +15,8 @@ use surface::{
 /// Appendix A's nets are exact thirds and twelfths; the construction reproduces them to
 /// rounding.
 const APPENDIX: f64 = 1e-12;
-/// G1 is exact by construction; measured angles are rounding noise (the bound).
+/// G1 is exact by construction; measured angles are rounding noise (the G1 bound of
+/// docs/conventions.md).
 const G1_TOL: f64 = 1e-9;
 /// G1 next to curves whose control points lie 10⁶–10⁷ chord lengths away: rounding of order
 /// 1e-16 grows by that factor (measured 5.6e-9).

@@ -1,5 +1,5 @@
 //! The testbed pipeline of Lounsbery et al. (1990), *A testbed for the comparison of
-//! parametric surface methods* (seed `lounsbery-1990-testbed.txt`, §§2–3.5): standalone
+//! parametric surface methods* (§§2–3.5; docs/references.md): standalone
 //! filters connected by pipes, passing a stream of self-describing records.
 //!
 //! * [`stream`] — records in and out: JSON Lines (default), the seed's dstruct external

@@ -1,5 +1,5 @@
-//! The README's headline numbers, locked: if a change moves them, this test says so and the
-//! README (and `results/`) must be updated with it.
+//! The headline numbers of README.md and docs/results.md, locked: if a change moves them, this
+//! test says so and the documents (and `results/`) must be updated with it.
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
@@ -7,7 +7,7 @@ use curves::{dbhs, method_by_name, BoundaryProblem, MethodOptions};
 use surface::analytic::{torus_grid_edges, torus_point};
 use surface::{compare_with_truth, fit, measure_g1, tessellate, InteriorParameters};
 
-/// The README prints two or three significant digits: agreement to half a unit in the last one.
+/// The documents print two or three significant digits: agreement to half a unit in the last one.
 fn close(got: f64, printed: f64, digits: i32) -> bool {
     let unit = 10f64.powi(printed.abs().log10().floor() as i32 - digits + 1);
     (got - printed).abs() <= 0.5 * unit + 1e-12

@@ -26,7 +26,7 @@ use crate::error::ExperimentError;
 use crate::output::{pretty_json, write_result, Staged};
 
 /// Two adapters "agree" on a problem when their optima differ by at most this in α (max norm):
-/// the standard for well-conditioned problems.
+/// the workbench's standard for well-conditioned problems.
 pub const AGREEMENT: f64 = 1e-8;
 
 /// Repetitions of each solve when timing (history off): the minimum over repetitions is the
