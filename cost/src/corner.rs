@@ -22,7 +22,7 @@
 //! * `∂τ/∂U = −⟨n, W⟩ U / (|U|³|V|) − S V / (|U||V|) + (Uᵀ S V) U / (|U|³|V|)`;
 //! * `∂τ/∂V` likewise with `U` and `V` exchanged.
 //!
-//! Both are checked against central differences at random points in `tests/corner.rs`.
+//! Both are checked against central differences at random points in `tests/suite/corner.rs`.
 
 use nalgebra::{Matrix3, Vector3};
 

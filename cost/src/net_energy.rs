@@ -23,7 +23,7 @@
 //! residual with respect to a control point is therefore a constant weight times the unit
 //! vector of its coordinate, and the gradient of the energy is `2 Σ r_a ∂r_a/∂P`.
 //!
-//! Tests (`tests/net_energy.rs`): the membrane energy of the identity map is `2A`, the thin
+//! Tests (`tests/suite/net_energy.rs`): the membrane energy of the identity map is `2A`, the thin
 //! plate energy of any degree-`n` net of a quadratic `r(x, y)` is its closed form, the energy
 //! is invariant under rigid motions of the net, and the gradient matches finite differences at
 //! random nets.

@@ -29,7 +29,7 @@
 //! **Order.** For a degree-`d` jet fitted to samples at spacing `h` Cazals–Pouget (Theorem 2)
 //! show normal errors `O(h^d)` and curvature errors `O(h^{d−1})`; on the regular data sets of
 //! the tests the symmetric neighbourhoods cancel a further order for even `d` (see
-//! `tests/jet.rs` for the measured orders).
+//! `tests/suite/jet.rs` for the measured orders).
 
 use mesh::Mesh;
 use nalgebra::{Matrix3, Vector3};
@@ -66,8 +66,8 @@ pub struct Jet {
     pub degree: usize,
 }
 
-/// The recommended default: the degree-2 jet on the adaptive neighbourhood (the 2-ring on a
-/// regular mesh), chosen by the convergence tests (`tests/jet.rs`). Degree 4 converges at
+/// `jet`: the degree-2 jet on the adaptive neighbourhood (the 2-ring on a
+/// regular mesh), chosen by the convergence tests (`tests/suite/jet.rs`). Degree 4 converges at
 /// order 4 against degree 2's order 2 and wins from about 64×32 on the ring, but it needs the
 /// 3-ring, costs three times as much, and loses on the coarse meshes this workbench
 /// interpolates (K RMS on ring 16×8: jet2 1.7, jet4 6.9; sphere level 2: 0.75 against 0.96);

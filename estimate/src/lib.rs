@@ -5,10 +5,12 @@
 //!
 //! * [`jet`] — osculating jets (Cazals & Pouget, SGP 2003 / CAGD 2005): a degree-`d` bivariate
 //!   polynomial height fitted by least squares over an adaptive k-ring (`jet2`, `jet3`, `jet4`,
-//!   and `jet`, the recommended default);
+//!   and `jet`, the degree-2 jet);
 //! * [`quadric`] — the local quadric fit of libigl's `principal_curvature` (Panozzo et al. 2010);
 //! * [`rusinkiewicz`] — per-face second fundamental forms from vertex-normal differences,
-//!   averaged at the vertices (Rusinkiewicz, 3DPVT 2004).
+//!   averaged at the vertices (Rusinkiewicz, 3DPVT 2004);
+//! * [`hybrid`] — the default ([`DEFAULT_ESTIMATOR`]): per vertex `jet4` where the sampling
+//!   resolves the surface, `rusinkiewicz` elsewhere.
 //!
 //! Vertex normals alone (angle-, area- and Max-weighted) are in [`normals`]; they are the first
 //! normal estimate of the fitting estimators and the input of `rusinkiewicz`.
@@ -200,7 +202,8 @@ pub struct UnknownEstimator {
     pub known: String,
 }
 
-/// Every registered estimator (`jet` first: the recommended default).
+/// Every registered estimator, in the order `--help` and the studies list them (the default is
+/// [`DEFAULT_ESTIMATOR`], `hybrid`, not the first).
 pub static ESTIMATORS: &[&dyn Estimator] =
     &[&JET, &JET2, &JET3, &JET4, &QUADRIC, &RUSINKIEWICZ, &HYBRID];
 

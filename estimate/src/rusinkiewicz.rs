@@ -24,7 +24,7 @@
 //! ([`FallbackKind::Planar`] with [`PlanarReason::NoArea`]).
 //!
 //! **Order.** Curvature errors are `O(h)` on irregular meshes and `O(h²)` on the regular data
-//! sets (measured in `tests/rusinkiewicz.rs`), the normal error that of the Max normals.
+//! sets (measured in `tests/suite/rusinkiewicz.rs`), the normal error that of the Max normals.
 
 use mesh::Mesh;
 use nalgebra::{Matrix3, Point3, Vector3};

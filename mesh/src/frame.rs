@@ -6,7 +6,7 @@
 //! A similarity `x_world = center + scale · x_work`: positions map affinely, unit normals and
 //! angles not at all, lengths by `scale`, shape tensors (curvatures, 1/length) by `1/scale`,
 //! Gaussian curvature by `1/scale²`. Every quantity the scheme builds is similarity-invariant
-//! (tested in `tests/shirman_sequin.rs`), so fitting in the working frame and mapping back is
+//! (tested in `surface/tests/suite/shirman_sequin.rs`), so fitting in the working frame and mapping back is
 //! the same surface.
 
 use meshio::RawMesh;

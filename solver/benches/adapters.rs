@@ -9,7 +9,7 @@ use solver::{solve, SolveOptions, SolverKind};
 use std::hint::black_box;
 
 /// The representative end-curvature problem, shared with the tests.
-#[path = "../tests/common/mod.rs"]
+#[path = "../tests/suite/common/mod.rs"]
 mod common;
 use common::EndCurvature;
 

@@ -6,7 +6,7 @@
 //! products (argmin-math's nalgebra backend calls exactly these), the two-loop recursion in the
 //! same order, Moré–Thuente's `cstep` copied verbatim, the executor's bookkeeping (best point by
 //! strict decrease, `prev_cost`, termination tests in argmin's order). So a run returns the same
-//! iterates, counts and termination as the argmin run (`tests/fast_paths.rs` holds them equal).
+//! iterates, counts and termination as the argmin run (`tests/suite/fast_paths.rs` holds them equal).
 //!
 //! What is gone: the executor and the line search's own executor per iteration (state
 //! construction, `HashMap` function counters keyed by `String`, observers, the timer, clones of

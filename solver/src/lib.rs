@@ -37,7 +37,7 @@
 //! in the backends' order, so they return **the same points, termination reasons, iteration and
 //! evaluation counts and cost histories, bit for bit**, as the backends themselves;
 //! `lm_nielsen` returns the same optima to the agreement tolerances (and the same kind of
-//! termination); `tests/fast_paths.rs` checks both on fixed and random problems. The backends stay available as the reference paths:
+//! termination); `tests/suite/fast_paths.rs` checks both on fixed and random problems. The backends stay available as the reference paths:
 //! [`solve_lm_crate`] and [`solve_lbfgs_argmin`] (fixed size), and [`solve_any`], which runs
 //! [`solve_lm_any`] (dynamic matrices, any number of residuals) and argmin for problems of any
 //! size. `cargo run --release -p solver --example profile_solvers -- lm` is a loop for `perf`.

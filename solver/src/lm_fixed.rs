@@ -6,7 +6,7 @@
 //! scaled norm `enorm`, nalgebra's `axpy` with `β = 1`, `Signed::is_negative` as the sign bit), so
 //! the iterates, the evaluations and the termination are bit for bit those of
 //! [`LevenbergMarquardt::minimize`](levenberg_marquardt::LevenbergMarquardt::minimize) on the
-//! same target (`tests/fast_paths.rs` holds them equal). What is gone is the generic machinery:
+//! same target (`tests/suite/fast_paths.rs` holds them equal). What is gone is the generic machinery:
 //! nalgebra views and dimension types, the `Option`-returning trait calls through the
 //! `LeastSquaresProblem` of the crate, and copies of the factorisation's work vectors.
 //!

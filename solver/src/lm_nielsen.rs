@@ -41,7 +41,7 @@
 //! iteration.
 //!
 //! The iterates differ from MINPACK's (no trust region, no QR): the optima agree to the
-//! adapter's tolerances, not bit for bit (`tests/fast_paths.rs`, `curves/tests/optimized.rs`).
+//! adapter's tolerances, not bit for bit (`tests/suite/fast_paths.rs`, `curves/tests/suite/optimized.rs`).
 //! Every comparison is multiplied out, so an iteration has two divisions (the solve and the gain
 //! ratio) and no square root.
 

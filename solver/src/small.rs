@@ -3,7 +3,7 @@
 //! order**, so a fast path returns bit for bit what the general path returns, without the
 //! generic machinery (views, strides, non-inlined calls) around a handful of flops.
 //!
-//! Every function states which operation it reproduces; the tests in `tests/fast_paths.rs` hold
+//! Every function states which operation it reproduces; the tests in `tests/suite/fast_paths.rs` hold
 //! the fast paths to exact equality with the reference paths. The exception is
 //! [`solve_2x2_spd`], the exact-penalty adapter's closed-form 2×2 solve, which is not a
 //! transcription: it computes the same solution in fewer dependent operations (one division, no

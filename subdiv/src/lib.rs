@@ -19,7 +19,7 @@
 //!
 //! One and two steps match libigl 2.6.3 (`igl.loop`, Warren's β) and CGAL's
 //! `Subdivision_method_3` (Loop with Loop's β, Catmull–Clark; through compas_cgal 0.10.0) to
-//! 3.4·10⁻¹⁶ on closed and open meshes with valences 3–8 (`tests/golden.rs`, data from
+//! 3.4·10⁻¹⁶ on closed and open meshes with valences 3–8 (`tests/suite/golden.rs`, data from
 //! `scripts/golden_subdivision.py`). Both implementations use the same boundary rules as this
 //! crate, valence-2 boundary corners included; neither has creases, so creases are tested
 //! against their definition only.

@@ -17,7 +17,7 @@
 //! One file in `surface/src/scheme/` implementing [`Scheme`], one line in [`REGISTRY`], one test
 //! file `surface/tests/scheme_<name>.rs` (closed forms or hand-derived nets, precision,
 //! similarity invariance, and the continuity it claims measured on sphere, ring and capsule;
-//! `surface/tests/schemes.rs` runs every registered scheme through the common checks).
+//! `surface/tests/suite/schemes.rs` runs every registered scheme through the common checks).
 
 pub mod clough_tocher;
 pub mod discrete_side_vertex;

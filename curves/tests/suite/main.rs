@@ -1,0 +1,7 @@
+//! The integration tests of `curves`, one test binary for all of them (one link, not one a
+//! file): a module a topic.
+
+mod boundary_problem;
+mod dbhs;
+mod extreme_problems;
+mod optimized;

@@ -1,0 +1,10 @@
+//! The integration tests of `estimate`, one test binary for all of them (one link, not one a
+//! file): a module a topic.
+
+mod common;
+mod hybrid;
+mod jet;
+mod normals;
+mod quadric;
+mod rusinkiewicz;
+mod support;

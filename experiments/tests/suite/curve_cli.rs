@@ -1,0 +1,135 @@
+//! The `curve` experiment as a user runs it: standard input to standard output, bad lines named,
+//! exit status.
+
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
+
+use crate::common;
+
+use common::run;
+
+#[test]
+fn answers_every_line_in_order_and_names_bad_ones() {
+    let input = concat!(
+        r#"{"t0":[0.995,0.0998],"t1":[0.995,-0.0998],"k0":-0.2,"k1":-0.2,"tag":"a"}"#,
+        "\n",
+        r#"{"t0":[1,0],"t1":[1,0],"k0":0}"#,
+        "\n\n",
+        "not json\n",
+        r#"{"t0":[0.6,0.8],"t1":[0.6,-0.8],"k0":-1.0,"k1":-1.0}"#,
+        "\n"
+    );
+    let (code, out, err) = run(&["curve"], input);
+    assert_eq!(code, 1, "bad lines make the exit status non-zero");
+    let lines: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("JSON line"))
+        .collect();
+    assert_eq!(lines.len(), 4);
+    assert_eq!(lines[0]["line"], 1);
+    assert_eq!(lines[0]["input"]["tag"], "a");
+    assert_eq!(
+        lines[0]["methods"]["chord"]["alpha"],
+        serde_json::json!([1.0, 1.0])
+    );
+    assert!(lines[0]["methods"]["dbhs"]["solutions"].is_array());
+    assert_eq!(lines[1]["line"], 2);
+    assert_eq!(lines[1]["error"], "missing field `k1`");
+    assert!(lines[1].get("methods").is_none());
+    assert_eq!(lines[2]["line"], 4);
+    assert!(lines[2]["error"]
+        .as_str()
+        .expect("message")
+        .starts_with("bad JSON"));
+    assert_eq!(lines[3]["line"], 5);
+    assert!(lines[3]["methods"]["dbhs"]["alpha"].is_array());
+    assert!(err.contains("2 problems answered, 2 with errors"), "{err}");
+    assert!(err.contains("line 2: missing field `k1`"), "{err}");
+}
+
+#[test]
+fn unknown_method_and_missing_file_are_usage_errors() {
+    let (code, out, err) = run(&["curve", "--methods", "chord,splines"], "");
+    assert_eq!(code, 2);
+    assert!(out.is_empty());
+    assert!(
+        err.contains("unknown boundary-curve method `splines`"),
+        "{err}"
+    );
+    let (code, _, err) = run(&["curve", "--input", "/nonexistent/problems.jsonl"], "");
+    assert_eq!(code, 2);
+    assert!(err.contains("/nonexistent/problems.jsonl"), "{err}");
+    // The cause is kept and printed on its own line.
+    assert!(
+        err.lines()
+            .any(|l| l.trim_start().starts_with("caused by: ")),
+        "{err}"
+    );
+}
+
+#[test]
+fn ring_study_runs_small_and_reports_g1() {
+    let dir = std::env::temp_dir().join(format!("ring-test-{}", std::process::id()));
+    let out = dir.to_str().expect("utf-8 path");
+    let (code, stdout, err) = run(
+        &["ring", "--resolution", "6", "--sampling", "2", "--out", out],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("optimized"), "{stdout}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).expect("report"))
+            .expect("JSON");
+    for m in ["chord", "dbhs", "optimized"] {
+        let g1 = report["methods"][m]["g1_defect_exterior_radians"]
+            .as_f64()
+            .expect("number");
+        assert!(g1 < 1e-9, "{m}: {g1}");
+    }
+    assert_eq!(report["surfaces"].as_array().map(Vec::len), Some(5));
+    for f in [
+        "shaded.png",
+        "kcolor.png",
+        "radial.png",
+        "figure2.png",
+        "optimized.ply",
+        "report.md",
+    ] {
+        assert!(dir.join(f).exists(), "{f} missing");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn merge_refuses_an_incomplete_set_of_shards() {
+    let dir = std::env::temp_dir().join(format!("sweep-test-{}", std::process::id()));
+    let out = dir.to_str().expect("utf-8 path");
+    let (code, _, err) = run(&["sweep", "--shard", "0/20", "--out", out], "");
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.join("shard-0-of-20.json").exists());
+    let (code, _, err) = run(&["merge", "--out", out], "");
+    assert_eq!(code, 2);
+    assert!(err.contains("19 of 20 tasks missing"), "{err}");
+    let (code, _, err) = run(&["sweep", "--shard", "3/2", "--out", out], "");
+    assert_eq!(code, 2, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_line_that_is_not_utf8_gets_its_own_error_and_the_others_answers() {
+    let (code, out, _) = run(
+        &["curve", "--methods", "chord"],
+        b"{\"t0\":[1,0],\"t1\":[1,0],\"k0\":0,\"k1\":0}\n\xff\xfe bad\n{\"t0\":[0.6,0.8],\"t1\":[0.6,-0.8],\"k0\":-1.0,\"k1\":-1.0}\n",
+    );
+    assert_eq!(code, 1);
+    let lines: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("json"))
+        .collect();
+    assert_eq!(lines.len(), 3);
+    assert!(lines[0]["methods"]["chord"].is_object());
+    assert!(lines[1]["error"]
+        .as_str()
+        .expect("error")
+        .contains("not UTF-8"));
+    assert!(lines[2]["methods"]["chord"].is_object());
+}

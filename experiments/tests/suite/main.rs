@@ -1,0 +1,9 @@
+//! The integration tests of `experiments`, one test binary for all of them (one link, not one a
+//! file): a module a topic.
+
+mod common;
+mod curve_cli;
+mod hostile_cli;
+mod mesh_cli;
+mod schemes_cli;
+mod sweep_cli;

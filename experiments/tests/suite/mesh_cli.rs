@@ -1,0 +1,335 @@
+//! Mesh files through the command line as a user runs it: `convert` between formats with
+//! estimation, the testbed format carrying the estimates back into `fit --estimate none`,
+//! `fit` on a real mesh writing glTF, and bad input named with a non-zero exit.
+
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
+
+use crate::common;
+
+use std::process::Command;
+
+fn run(args: &[&str]) -> (i32, String) {
+    let (code, _, err) = common::run(args, "");
+    (code, err)
+}
+
+use common::root;
+
+fn tmp(name: &str) -> (tempfile::TempDir, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name).to_string_lossy().into_owned();
+    (dir, path)
+}
+
+#[test]
+fn estimates_written_as_testbed_fields_are_read_back_as_exact_data() {
+    let (_dir, m) = tmp("teapot.m");
+    let (code, err) = run(&["convert", "--data", "data/meshes/teapot.ply", "--out", &m]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&m).unwrap();
+    assert!(text.contains("(norm . [") && text.contains("(shape . ["));
+    // With the file's normals and shape tensors, curvature-based curves run without
+    // estimation, and nothing is estimated.
+    let (code, err) = run(&[
+        "fit",
+        "--data",
+        &m,
+        "--estimate",
+        "none",
+        "--curves",
+        "optimized",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("estimated"), "{err}");
+}
+
+#[test]
+fn a_real_mesh_is_fitted_and_written_as_gltf() {
+    let (_dir, glb) = tmp("bunny.glb");
+    let (code, err) = run(&[
+        "fit",
+        "--data",
+        "data/meshes/bunny.ply",
+        "--curves",
+        "optimized",
+        "--tess",
+        "2",
+        "--mesh-out",
+        &glb,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let bytes = std::fs::read(&glb).unwrap();
+    assert_eq!(&bytes[..4], b"glTF");
+    assert!(
+        err.contains("estimated normals and curvature by `hybrid`"),
+        "{err}"
+    );
+}
+
+#[test]
+fn every_format_converts_to_every_writable_one() {
+    let (dir, _) = tmp("x");
+    let mut sources = Vec::new();
+    for ext in ["ply", "obj", "off", "stl", "m"] {
+        let out = dir.path().join(format!("bunny.{ext}"));
+        let out = out.to_string_lossy().into_owned();
+        let (code, err) = run(&["convert", "--data", "data/meshes/bunny.ply", "--out", &out]);
+        assert_eq!(code, 0, "{ext}: {err}");
+        sources.push(out);
+    }
+    for src in &sources {
+        let out = dir.path().join("again.glb").to_string_lossy().into_owned();
+        let (code, err) = run(&["convert", "--data", src, "--out", &out]);
+        assert_eq!(code, 0, "{src}: {err}");
+        // STL welds by exact position; every format keeps the bunny's 3674 faces.
+        assert!(err.contains("3674 faces"), "{src}: {err}");
+    }
+}
+
+#[test]
+fn bad_files_are_named_and_fail() {
+    let (dir, _) = tmp("x");
+    let truncated = dir.path().join("cut.ply");
+    let bytes = std::fs::read(root().join("data/meshes/bunny.ply")).unwrap();
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
+    let (code, err) = run(&["fit", "--data", truncated.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("cut.ply") && err.contains("element"), "{err}");
+
+    let empty = dir.path().join("empty.obj");
+    std::fs::write(&empty, "# nothing here\n").unwrap();
+    let (code, err) = run(&["fit", "--data", empty.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(
+        err.contains("empty.obj") && err.contains("nothing to fit"),
+        "{err}"
+    );
+
+    let unknown = dir.path().join("mesh.xyz");
+    std::fs::write(&unknown, "1 2 3\n").unwrap();
+    let (code, err) = run(&["fit", "--data", unknown.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(err.contains("unsupported format"), "{err}");
+
+    // A PLY named .obj is read as PLY, with a note.
+    let lying = dir.path().join("bunny.obj");
+    std::fs::write(&lying, &bytes).unwrap();
+    let (code, err) = run(&["fit", "--data", lying.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("content is ply"), "{err}");
+
+    // The output may not be the input.
+    let (code, err) = run(&[
+        "convert",
+        "--data",
+        lying.to_str().unwrap(),
+        "--out",
+        lying.to_str().unwrap(),
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("the output is the input"), "{err}");
+}
+
+#[test]
+fn outputs_that_are_not_regular_files_are_refused() {
+    let (dir, _) = tmp("x");
+    let sub = dir.path().join("a-directory");
+    std::fs::create_dir(&sub).unwrap();
+    let (code, err) = run(&["convert", "--data", "octa", "--out", sub.to_str().unwrap()]);
+    // A directory has no extension: refused as an unsupported output before anything is read.
+    assert_ne!(code, 0, "{err}");
+    let glb_dir = dir.path().join("dir.glb");
+    std::fs::create_dir(&glb_dir).unwrap();
+    let (code, err) = run(&[
+        "convert",
+        "--data",
+        "octa",
+        "--out",
+        glb_dir.to_str().unwrap(),
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("a directory, not a regular file"), "{err}");
+    assert!(glb_dir.is_dir());
+    #[cfg(unix)]
+    {
+        let (code, err) = run(&["fit", "--data", "octa", "--out", "/dev/null"]);
+        assert_ne!(code, 0);
+        assert!(err.contains("a device"), "{err}");
+        // `fit` refuses an unwritable output before it reads or fits anything (no stage times
+        // printed), for the patches and for the tessellation alike.
+        for option in ["--out", "--mesh-out"] {
+            let out = dir.path().join(format!("{option}.ply"));
+            std::fs::create_dir(&out).unwrap();
+            let (code, err) = run(&["fit", "--data", "octa", option, out.to_str().unwrap()]);
+            assert_ne!(code, 0, "{option}");
+            assert!(
+                err.contains("a directory, not a regular file"),
+                "{option}: {err}"
+            );
+            assert!(
+                !err.contains("time:"),
+                "{option}: refused only after the work: {err}"
+            );
+        }
+        // A link to a regular file writes through to the file and keeps the link.
+        let target = dir.path().join("target.jsonl");
+        std::fs::write(&target, "old\n").unwrap();
+        let link = dir.path().join("link.jsonl");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        let (code, err) = run(&["fit", "--data", "octa", "--out", link.to_str().unwrap()]);
+        assert_eq!(code, 0, "{err}");
+        assert!(std::fs::read_to_string(&target)
+            .unwrap()
+            .contains("BezierTriangle"));
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn an_interrupted_study_leaves_the_old_results_and_nothing_else() {
+    let (dir, _) = tmp("x");
+    let out = dir.path().join("estimation");
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("report.md"), "previous run\n").unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_experiments"))
+        .args(["estimation", "--out", out.to_str().unwrap()])
+        .current_dir(root())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let _ = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status();
+    let status = child.wait().unwrap();
+    let names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, vec!["estimation".to_string()], "left: {names:?}");
+    if status.code() == Some(130) {
+        // Interrupted: the previous results are untouched.
+        assert_eq!(
+            std::fs::read_to_string(out.join("report.md")).unwrap(),
+            "previous run\n"
+        );
+    } else {
+        // It finished first: the directory holds one whole new run.
+        assert!(status.success());
+        assert!(!out.join("report.md").exists() || out.join("report.json").exists());
+    }
+}
+
+#[test]
+fn coordinates_from_1e_minus_100_to_1e154_fit_the_same() {
+    let raw = meshio::read_file(root().join("data/meshes/bunny.ply")).unwrap();
+    let (dir, _) = tmp("x");
+    let mut summaries = Vec::new();
+    for scale in [1.0, 1e154, 1e-100] {
+        let mut text = String::new();
+        for p in &raw.positions {
+            text.push_str(&format!(
+                "v {:e} {:e} {:e}\n",
+                p.x * scale,
+                p.y * scale,
+                p.z * scale
+            ));
+        }
+        for f in raw.polygons.iter() {
+            text.push_str(&format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1));
+        }
+        let path = dir.path().join(format!("bunny-{scale:e}.obj"));
+        std::fs::write(&path, text).unwrap();
+        let out = dir.path().join(format!("bunny-{scale:e}.jsonl"));
+        let (code, err) = run(&[
+            "fit",
+            "--data",
+            path.to_str().unwrap(),
+            "--curves",
+            "optimized",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{scale:e}: {err}");
+        let first = std::fs::read_to_string(&out).unwrap();
+        let rec: serde_json::Value = serde_json::from_str(first.lines().next().unwrap()).unwrap();
+        let x = rec["points"][0][0].as_f64().unwrap();
+        // The first control point is the first face's first vertex, in the file's units.
+        assert!(
+            (x / (f64::from(raw.positions[raw.polygons.get(0)[0]].x as f32) * scale) - 1.0).abs()
+                < 1e-6
+        );
+        let fallback = err
+            .lines()
+            .find(|l| l.contains("fallback:"))
+            .map(str::to_string);
+        summaries.push(fallback);
+    }
+    // The fit is similarity-invariant: the same fallback faces at every scale.
+    assert_eq!(summaries[0], summaries[1]);
+    assert_eq!(summaries[0], summaries[2]);
+}
+
+/// `fit --out` streams its patches, with `--mesh-out` too (its tessellation builds each face's
+/// nets again; `tests/tests/suite/streamed_fit.rs` checks it is the whole fit's, bit for bit): with
+/// and without a tessellation it prints the same report — G1 figures, fallback faces by name,
+/// curve counts — and writes the same bytes, in both patch forms, on a real mesh with fallback
+/// faces.
+#[test]
+fn fit_prints_and_writes_the_same_with_and_without_a_tessellation() {
+    let dir = tempfile::tempdir().unwrap();
+    // What depends on the run, not the fit: times, memory, where things were written.
+    let report = |err: &str| -> Vec<String> {
+        err.lines()
+            .filter(|l| {
+                ![
+                    "time",
+                    "peak memory",
+                    "written to",
+                    "streamed",
+                    "tessellation",
+                ]
+                .iter()
+                .any(|k| l.contains(k))
+            })
+            .map(str::to_string)
+            .collect()
+    };
+    for ext in ["bzp", "jsonl"] {
+        let streamed = dir.path().join(format!("streamed.{ext}"));
+        let with_mesh = dir.path().join(format!("with-mesh.{ext}"));
+        let mesh = dir.path().join("tess.obj");
+        let base = [
+            "fit",
+            "--data",
+            "data/meshes/teapot.ply",
+            "--curves",
+            "optimized",
+        ];
+        let (code, err_s) = run(&[&base[..], &["--out", streamed.to_str().unwrap()]].concat());
+        assert_eq!(code, 0, "{err_s}");
+        assert!(err_s.contains("streamed:"), "{err_s}");
+        let (code, err_m) = run(&[
+            &base[..],
+            &[
+                "--out",
+                with_mesh.to_str().unwrap(),
+                "--mesh-out",
+                mesh.to_str().unwrap(),
+            ],
+        ]
+        .concat());
+        assert_eq!(code, 0, "{err_m}");
+        assert!(err_m.contains("streamed:"), "{err_m}");
+        assert!(err_s.contains("fallback: 13 faces"), "{err_s}");
+        assert_eq!(report(&err_s), report(&err_m));
+        assert!(
+            std::fs::read(&streamed).unwrap() == std::fs::read(&with_mesh).unwrap(),
+            "{ext}: the files differ"
+        );
+    }
+}

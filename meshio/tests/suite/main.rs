@@ -1,0 +1,12 @@
+//! The integration tests of `meshio`, one test binary for all of them (one link, not one a
+//! file): a module a topic.
+
+mod common;
+mod fuzz;
+mod glb;
+mod obj;
+mod off;
+mod ply;
+mod registry;
+mod stl;
+mod testbed;

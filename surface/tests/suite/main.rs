@@ -1,0 +1,16 @@
+//! The integration tests of `surface`, one test binary for all of them (one link, not one a
+//! file): a module a topic.
+
+mod fallback;
+mod interior;
+mod mesh_invariants;
+mod octa;
+mod patch_io;
+mod scheme_clough_tocher;
+mod scheme_flat;
+mod scheme_phong;
+mod scheme_pn_triangles;
+mod scheme_powell_sabin;
+mod scheme_side_vertex;
+mod schemes;
+mod shirman_sequin;

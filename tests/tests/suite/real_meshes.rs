@@ -1,0 +1,99 @@
+//! Real data is the test: every committed real-world mesh and every generated hostile mesh
+//! (fixtures' zoo: irregular, anisotropic, noisy, open, needles, zero-area faces, creases,
+//! several components, non-manifold spots, polygons, extreme valences) goes through the whole
+//! input path — read, repair, estimate — and is fitted with every curve construction: one
+//! macro-patch per face, every control point finite, and G1 below the scheme's bound on every
+//! edge between regular faces. Fallbacks are counted, and bounded where the data is clean.
+
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
+
+use curves::{method_by_name, MethodOptions, REGISTRY};
+use estimate::{prepare, EstimateChoice};
+
+use crate::support::default_estimator;
+use meshio::RawMesh;
+use surface::{fit, measure_g1, InteriorParameters, Mesh};
+
+/// G1 between regular faces is exact by construction; the measured angle is rounding, grown by
+/// the largest control-point magnitudes of scanned data (measured up to 3.6e-8 on the dragon
+/// with dBHS curves, whose end derivatives reach 10⁴ chord lengths there).
+const G1_REGULAR: f64 = 1e-7;
+
+/// Fits `mesh` with every registered curve construction and checks the invariants; returns the
+/// fallback-face count of each construction.
+fn fit_everything(label: &str, mesh: &Mesh) -> Vec<(&'static str, usize)> {
+    let mut out = Vec::new();
+    for entry in REGISTRY {
+        let m = method_by_name(entry.name, &MethodOptions::default()).unwrap();
+        let f = fit(mesh, m.as_ref(), &|_| InteriorParameters::default())
+            .unwrap_or_else(|e| panic!("{label}/{}: {e}", entry.name));
+        assert_eq!(
+            f.num_patches(),
+            3 * mesh.num_faces(),
+            "{label}/{}",
+            entry.name
+        );
+        assert!(
+            f.points.iter().all(|q| q.iter().all(|c| c.is_finite())),
+            "{label}/{}: non-finite control point",
+            entry.name
+        );
+        let g1 = measure_g1(mesh, &f, 5);
+        assert!(
+            g1.interior_max < G1_REGULAR && g1.exterior_max < G1_REGULAR,
+            "{label}/{}: {g1:?}",
+            entry.name
+        );
+        out.push((entry.name, f.face_fallbacks.len()));
+    }
+    out
+}
+
+fn prepared(label: &str, raw: &RawMesh) -> Mesh {
+    prepare(raw, EstimateChoice::With(default_estimator()), false)
+        .unwrap_or_else(|e| panic!("{label}: {e}"))
+        .mesh
+}
+
+#[test]
+fn every_corpus_file_is_read_repaired_estimated_and_fitted() {
+    let files = fixtures::corpus::corpus_files();
+    assert_eq!(files.len(), 4);
+    for path in files {
+        let label = path.file_name().unwrap().to_string_lossy().into_owned();
+        let raw = meshio::read_file(&path).unwrap();
+        let mesh = prepared(&label, &raw);
+        let counts = fit_everything(&label, &mesh);
+        for (method, fallbacks) in counts {
+            // Measured with `hybrid` estimates: bunny 0, teapot 13 (its unwelded seams are
+            // open boundaries with pole triangles), dragons up to 747 of 46 540 (decimation
+            // folds). A tenth of the faces would mean the input path is broken, not the data.
+            assert!(
+                fallbacks * 10 < mesh.num_faces(),
+                "{label}/{method}: {fallbacks} fallbacks of {} faces",
+                mesh.num_faces()
+            );
+        }
+    }
+}
+
+#[test]
+fn every_hostile_mesh_is_fitted() {
+    for (name, raw) in fixtures::zoo() {
+        let mesh = match prepare(&raw, EstimateChoice::With(default_estimator()), false) {
+            Ok(p) => p.mesh,
+            Err(e) => panic!("{name}: {e}"),
+        };
+        fit_everything(name, &mesh);
+    }
+}
+
+#[test]
+fn without_estimation_a_file_without_normals_is_refused_by_name() {
+    let raw = meshio::read_file(fixtures::corpus::corpus_dir().join("bunny.ply")).unwrap();
+    let err = prepare(&raw, EstimateChoice::None, false).unwrap_err();
+    assert!(
+        err.to_string().contains("no usable vertex normals"),
+        "{err}"
+    );
+}
