@@ -32,6 +32,9 @@ pub enum ExperimentError {
     /// writer refuses a directory, device, FIFO or socket by name).
     #[error(transparent)]
     Render(#[from] render::RenderError),
+    /// An output file could not be written (`meshio::outfile`).
+    #[error(transparent)]
+    Output(#[from] meshio::outfile::OutputError),
     /// A mesh file could not be read.
     #[error(transparent)]
     MeshIo(meshio::MeshIoError),
@@ -269,7 +272,7 @@ mod tests {
         assert_eq!(lines[0], "cannot serialize the ring report as JSON");
         assert!(lines[1].starts_with("  caused by: EOF"), "{text}");
         // A cause the message already repeats is not shown twice.
-        let e = ExperimentError::Render(render::RenderError::Io {
+        let e = ExperimentError::Output(meshio::outfile::OutputError::Io {
             path: "x.png".into(),
             source: std::io::Error::other("disk full"),
         });

@@ -93,7 +93,7 @@ fn main() -> ExitCode {
     // On SIGINT, SIGTERM or SIGHUP: remove the temporary files and staging directories in
     // flight, so an interrupted run leaves the previous results as they were and nothing else.
     let _ = ctrlc::set_handler(|| {
-        let removed = render::remove_in_flight();
+        let removed = meshio::outfile::remove_in_flight();
         say!("interrupted: removed {removed} temporary files and directories");
         std::process::exit(130);
     });

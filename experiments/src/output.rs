@@ -13,7 +13,7 @@ pub fn write_result(path: Option<&Path>, bytes: &[u8]) -> Result<(), ExperimentE
             if let Some(parent) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
                 ensure_dir(parent)?;
             }
-            render::write_atomic(p, bytes).map_err(ExperimentError::from)
+            meshio::outfile::write_atomic(p, bytes).map_err(ExperimentError::from)
         }
         None => {
             let mut out = std::io::stdout().lock();
@@ -38,7 +38,7 @@ pub fn write_result_with(
             if let Some(parent) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
                 ensure_dir(parent)?;
             }
-            render::write_atomic_with(p, produce).map_err(ExperimentError::from)
+            meshio::outfile::write_atomic_with(p, produce).map_err(ExperimentError::from)
         }
         None => {
             let mut out = std::io::BufWriter::new(std::io::stdout().lock());
@@ -62,7 +62,7 @@ pub fn ensure_dir(dir: &Path) -> Result<(), ExperimentError> {
 
 /// Refuses, before any work is done, an output `out` (given by `option`) that could not be
 /// written at the end: a path that exists and is not a regular file or a link to one (a
-/// directory, a device …: [`render::io::writable_target`]), or the input file itself
+/// directory, a device …: [`meshio::outfile::writable_target`]), or the input file itself
 /// ([`refuse_overwriting_input`]). A run over a large mesh then fails in milliseconds instead
 /// of after its whole computation.
 pub fn refuse_unwritable(
@@ -70,7 +70,7 @@ pub fn refuse_unwritable(
     out: &Path,
     input: &str,
 ) -> Result<(), ExperimentError> {
-    render::io::writable_target(out)?;
+    meshio::outfile::writable_target(out)?;
     refuse_overwriting_input(option, out, input)
 }
 
@@ -134,7 +134,7 @@ pub fn pretty_json(
 /// final one, and [`Staged::commit`] swaps it in (the old directory renamed aside, the new one
 /// renamed into place, the old one removed), so a reader never sees files of two runs mixed.
 /// Dropped without a commit (an error), the staging directory is removed; on an interrupt the
-/// handler of `main` removes it ([`render::remove_in_flight`]).
+/// handler of `main` removes it ([`meshio::outfile::remove_in_flight`]).
 pub struct Staged {
     final_dir: std::path::PathBuf,
     staging: std::path::PathBuf,
@@ -168,7 +168,7 @@ impl Staged {
             let _ = std::fs::remove_dir_all(&staging);
         }
         ensure_dir(&staging)?;
-        render::io::in_flight(&staging);
+        meshio::outfile::in_flight(&staging);
         let staged = Staged {
             final_dir: out.to_path_buf(),
             staging,
@@ -219,7 +219,7 @@ impl Staged {
             }
             return Err(write_err(&self.final_dir, e));
         }
-        render::io::landed(&self.staging);
+        meshio::outfile::landed(&self.staging);
         self.committed = true;
         if had_old {
             let _ = std::fs::remove_dir_all(&old);
@@ -232,7 +232,7 @@ impl Drop for Staged {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.staging);
-            render::io::landed(&self.staging);
+            meshio::outfile::landed(&self.staging);
         }
     }
 }

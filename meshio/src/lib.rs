@@ -3,7 +3,7 @@
 //! Every reader parses a file into a [`RawMesh`] (positions, optional per-vertex normals,
 //! shape tensors, colours and other properties, polygons, notes), and every writer writes one.
 //! Validation and repair (non-manifold edges, orientation, degenerate faces) happen in the
-//! `surface` crate, so a reader's only job is to read exactly what the file says, or to say
+//! `mesh` crate, so a reader's only job is to read exactly what the file says, or to say
 //! exactly where it cannot.
 //!
 //! Formats ([`FORMATS`]):
@@ -23,12 +23,16 @@
 //! triangulation), and do not check topology. Memory stays within a small multiple of the input
 //! size: no reader reserves room from a header count before checking it against the bytes
 //! left.
+//!
+//! Every file the workbench writes, mesh or not, goes through [`outfile`]: atomically, only
+//! over a regular file or nothing, with temporaries removed on failure and on interruption.
 
 pub mod error;
 pub mod format;
 pub mod glb;
 pub mod obj;
 pub mod off;
+pub mod outfile;
 pub mod ply;
 pub mod raw;
 pub mod stl;

@@ -8,7 +8,7 @@ use plotters::prelude::*;
 
 use crate::error::RenderError;
 use crate::font::{self, FONT_FAMILY};
-use crate::io::write_atomic;
+use meshio::outfile::write_atomic;
 
 /// Width and height of one chart cell in pixels.
 const CELL: (u32, u32) = (560, 420);
@@ -325,7 +325,7 @@ fn write_both(
         })?;
     }
     write_atomic(png, &png_bytes)?;
-    write_atomic(svg, svg_text.as_bytes())
+    Ok(write_atomic(svg, svg_text.as_bytes())?)
 }
 
 fn grid<DB: DrawingBackend>(

@@ -28,8 +28,8 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::font::{self, FONT_FAMILY};
-use crate::io::write_atomic;
 use crate::RenderError;
+use meshio::outfile::write_atomic;
 
 /// One curve of a figure: a method's answer to one boundary-curve problem.
 #[derive(Clone, Debug, PartialEq)]
@@ -960,7 +960,7 @@ pub fn write_curve_figure(fig: &CurveFigure, png: &Path, svg: &Path) -> Result<(
     }
 
     write_atomic(png, &png_bytes)?;
-    write_atomic(svg, svg_text.as_bytes())
+    Ok(write_atomic(svg, svg_text.as_bytes())?)
 }
 
 pub(crate) fn encode_png(rgb: &[u8], w: u32, h: u32) -> std::io::Result<Vec<u8>> {

@@ -5,32 +5,9 @@ use std::path::PathBuf;
 /// Why a figure could not be rendered or written; every variant names the output file.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
-    /// Reading or writing the file (or its temporary sibling) failed.
-    #[error("cannot write {path}: {source}", path = .path.display())]
-    Io {
-        /// The file being written.
-        path: PathBuf,
-        /// The underlying I/O error.
-        #[source]
-        source: std::io::Error,
-    },
-    /// The output path has no file name (for example `/` or `..`), so there is nothing to
-    /// create a temporary sibling of.
-    #[error("cannot write {path}: the path has no file name", path = .path.display())]
-    NoFileName {
-        /// The offending path.
-        path: PathBuf,
-    },
-    /// The output path exists and is not a regular file (a directory, a device, a FIFO, a
-    /// socket, or a symbolic link to one): writing would replace or feed something that is not
-    /// a result file.
-    #[error("cannot write {path}: it is {kind}, not a regular file (choose a file path; to write to standard output, leave the option out)", path = .path.display())]
-    NotRegularFile {
-        /// The offending path.
-        path: PathBuf,
-        /// What it is (`"a directory"`, `"a FIFO"`, …).
-        kind: &'static str,
-    },
+    /// The file could not be written (`meshio::outfile`: atomic, regular files only).
+    #[error(transparent)]
+    Output(#[from] meshio::outfile::OutputError),
     /// The figure has nothing to draw.
     #[error("cannot write {path}: the figure has no panels", path = .path.display())]
     EmptyFigure {

@@ -1,9 +1,9 @@
 //! Headless plotting and rendering: curve and curvature plots, line charts and histograms,
-//! shaded meshes by a CPU rasterizer, colour maps, picture composites, binary PLY.
+//! shaded meshes by a CPU rasterizer, colour maps, picture composites.
 //!
 //! Everything here draws without a display or system fonts: text uses the DejaVu Sans font
 //! bundled with the workspace (`assets/fonts`), registered with plotters from bytes
-//! ([`font`]), and every output file is written atomically ([`io::write_atomic`]) so a
+//! ([`font`]), and every output file is written atomically (`meshio::outfile::write_atomic`) so a
 //! failed or interrupted run never leaves a half-written figure in place of a good one.
 //!
 //! * [`curveplot`] — figures in the style of Mann (1994), *Using local optimization in surface
@@ -16,8 +16,6 @@
 //! * [`srgb`] — linear → 8-bit sRGB by table, equal to the formula;
 //! * [`colors`] — diverging and sequential colour maps (Moreland, viridis);
 //! * [`mosaic`] — composites of rendered tiles with a title and a legend;
-//! * [`plyfile`] — binary PLY with colours and a quality value, for MeshLab;
-//! * [`io`] — file output that cannot destroy anything, shared by every writer.
 //! * [`font`] — the bundled font and its one-time registration.
 
 pub mod chart;
@@ -25,9 +23,7 @@ pub mod colors;
 pub mod curveplot;
 pub mod error;
 pub mod font;
-pub mod io;
 pub mod mosaic;
-pub mod plyfile;
 pub mod shade;
 pub mod srgb;
 
@@ -39,9 +35,7 @@ pub use curveplot::{
     CurvePanel, YRange,
 };
 pub use error::RenderError;
-pub use io::{remove_in_flight, writable_target, write_atomic, write_atomic_with};
 pub use mosaic::{write_composite, Legend, LegendKind, Tile};
-pub use plyfile::{ply_bytes, write_ply_binary};
 pub use shade::{
     render, render_many, wire_frame, write_png, Camera, Image, RenderMesh, RenderOptions,
 };

@@ -8,8 +8,8 @@ use plotters::prelude::*;
 use crate::colors::{diverging, sequential};
 use crate::error::RenderError;
 use crate::font::{self, FONT_FAMILY};
-use crate::io::write_atomic;
 use crate::shade::{to_srgb8, Image};
+use meshio::outfile::write_atomic;
 
 /// Height of the title band, of each label band and of the legend band, in pixels.
 const TITLE_H: u32 = 40;
@@ -145,5 +145,5 @@ pub fn write_composite(
         path: png.to_path_buf(),
         message: e.to_string(),
     })?;
-    write_atomic(png, &bytes)
+    Ok(write_atomic(png, &bytes)?)
 }

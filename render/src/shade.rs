@@ -781,7 +781,7 @@ pub fn write_rgb_png(
 }
 
 /// Encodes an image as PNG into `out` (a pipe, a buffer; files go through
-/// [`crate::write_atomic_with`]).
+/// `meshio::outfile::write_atomic_with`).
 pub fn write_png(image: &Image, out: &mut dyn std::io::Write) -> std::io::Result<()> {
     write_rgb_png(&image.rgb, image.width, image.height, out)
 }

@@ -246,7 +246,7 @@ pub fn write_mesh(tris: &[[Vertex; 3]], path: &Path) -> Result<(), FilterError> 
             message: e.to_string(),
         }
     })?;
-    render::write_atomic(path, &bytes)?;
+    meshio::outfile::write_atomic(path, &bytes).map_err(render::RenderError::from)?;
     eprintln!(
         "to-mesh: {} triangles, {} vertices → {}",
         raw.num_faces(),

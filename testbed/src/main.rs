@@ -246,7 +246,7 @@ fn with_output(
         }
         Some(p) => {
             let mut failure = None;
-            let result = render::write_atomic_with(p, &mut |w| {
+            let result = meshio::outfile::write_atomic_with(p, &mut |w| {
                 f(w).map_err(|e| {
                     failure = Some(e);
                     std::io::Error::other("the filter failed")
@@ -254,7 +254,7 @@ fn with_output(
             });
             match failure {
                 Some(e) => Err(e),
-                None => result.map_err(FilterError::from),
+                None => result.map_err(|e| FilterError::from(render::RenderError::from(e))),
             }
         }
     }

@@ -6,10 +6,7 @@ use std::path::Path;
 
 use nalgebra::{Point3, Vector3};
 use render::colors as colormap;
-use render::{
-    write_composite, write_ply_binary, Camera, Image, Legend, LegendKind, RenderMesh,
-    RenderOptions, Tile,
-};
+use render::{write_composite, Camera, Image, Legend, LegendKind, RenderMesh, RenderOptions, Tile};
 use serde_json::{json, Value};
 
 use super::surfaces::{FittedMethod, SurfaceView};
@@ -182,22 +179,25 @@ pub fn write_meshes(out: &Path, views: &[SurfaceView<'_>]) -> Result<(), Experim
     let k_limit = gaussian_limit(views);
     for v in views {
         let t = v.tess;
-        let colors: Vec<[u8; 3]> = t
-            .gaussian
-            .iter()
-            .map(|k| {
-                colormap::diverging(*k, k_limit).map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
-            })
-            .collect();
-        let quality: Vec<f32> = t.gaussian.iter().map(|k| *k as f32).collect();
-        write_ply_binary(
-            &out.join(format!("{}.ply", v.name)),
-            &t.positions,
-            &t.normals,
-            &colors,
-            Some(&quality),
-            &t.faces,
-        )?;
+        // The workspace's one PLY writer (meshio's): positions, normals, KColor colours, the
+        // curvatures as properties `gaussian`, `mean`, and K once more as `quality`, the
+        // property MeshLab colours and filters by.
+        let mut raw = t.to_raw();
+        raw.colors = Some(
+            t.gaussian
+                .iter()
+                .map(|k| colormap::diverging(*k, k_limit))
+                .collect(),
+        );
+        raw.properties.insert("quality".into(), t.gaussian.clone());
+        let path = out.join(format!("{}.ply", v.name));
+        let bytes =
+            meshio::MeshFormat::write(&meshio::ply::Ply, &raw, &meshio::WriteOptions::new())
+                .map_err(|source| ExperimentError::MeshWrite {
+                    path: path.clone(),
+                    source,
+                })?;
+        write_result(Some(&path), &bytes)?;
         if v.name != "optimized" {
             continue;
         }

@@ -1,9 +1,10 @@
-//! File output that cannot destroy anything, shared by every writer of the workbench.
+//! File output that cannot destroy anything, shared by every writer of the workbench (mesh
+//! files, patches, pictures, reports): the one place results reach the disk.
 //!
 //! * **Atomic**: bytes go to a temporary sibling, are flushed, and the sibling is renamed over
 //!   the path; a reader sees the old file or the whole new one.
 //! * **Only over regular files**: a path that exists and is a directory, device, FIFO or socket
-//!   is refused ([`RenderError::NotRegularFile`]); a symbolic link is followed to its target,
+//!   is refused ([`OutputError::NotRegularFile`]); a symbolic link is followed to its target,
 //!   which must itself be a regular file or not exist (the link stays a link, the target is
 //!   replaced atomically).
 //! * **No leftovers**: a temporary file is removed when the write fails, and every temporary
@@ -16,7 +17,36 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
-use crate::RenderError;
+/// Why an output file could not be written; every variant names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    /// Writing the file (or its temporary sibling), or renaming it into place, failed.
+    #[error("cannot write {path}: {source}", path = .path.display())]
+    Io {
+        /// The file being written.
+        path: PathBuf,
+        /// The underlying I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The output path has no file name (for example `/` or `..`), so there is nothing to
+    /// create a temporary sibling of.
+    #[error("cannot write {path}: the path has no file name", path = .path.display())]
+    NoFileName {
+        /// The offending path.
+        path: PathBuf,
+    },
+    /// The output path exists and is not a regular file (a directory, a device, a FIFO, a
+    /// socket, or a symbolic link to one): writing would replace or feed something that is not
+    /// a result file.
+    #[error("cannot write {path}: it is {kind}, not a regular file (choose a file path; to write to standard output, leave the option out)", path = .path.display())]
+    NotRegularFile {
+        /// The offending path.
+        path: PathBuf,
+        /// What it is (`"a directory"`, `"a FIFO"`, …).
+        kind: &'static str,
+    },
+}
 
 /// Distinguishes temporary files of concurrent writes from one process.
 static COUNTER: AtomicU64 = AtomicU64::new(0);
@@ -110,8 +140,8 @@ fn kind_of(meta: &fs::Metadata) -> &'static str {
 
 /// The path to write for `path`: itself when it does not exist or is a regular file, the
 /// target of a symbolic link when that is a regular file or does not exist; an error otherwise.
-pub fn writable_target(path: &Path) -> Result<PathBuf, RenderError> {
-    let refuse = |kind| RenderError::NotRegularFile {
+pub fn writable_target(path: &Path) -> Result<PathBuf, OutputError> {
+    let refuse = |kind| OutputError::NotRegularFile {
         path: path.to_path_buf(),
         kind,
     };
@@ -119,7 +149,7 @@ pub fn writable_target(path: &Path) -> Result<PathBuf, RenderError> {
         Err(_) => Ok(path.to_path_buf()),
         Ok(meta) if meta.file_type().is_symlink() => match fs::metadata(path) {
             Ok(target) if target.is_file() => {
-                fs::canonicalize(path).map_err(|source| RenderError::Io {
+                fs::canonicalize(path).map_err(|source| OutputError::Io {
                     path: path.to_path_buf(),
                     source,
                 })
@@ -134,7 +164,7 @@ pub fn writable_target(path: &Path) -> Result<PathBuf, RenderError> {
                         path.parent().unwrap_or(Path::new("")).join(t)
                     }
                 })
-                .map_err(|source| RenderError::Io {
+                .map_err(|source| OutputError::Io {
                     path: path.to_path_buf(),
                     source,
                 }),
@@ -148,7 +178,7 @@ pub fn writable_target(path: &Path) -> Result<PathBuf, RenderError> {
 /// (so the rename cannot cross file systems), are flushed to disk, and the temporary file is then
 /// renamed over `path`. Readers see either the old file or the complete new one, and a failure
 /// leaves an existing `path` untouched and removes the temporary file.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
     write_atomic_with(path, &mut |w| w.write_all(bytes))
 }
 
@@ -158,8 +188,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
 pub fn write_atomic_with(
     path: &Path,
     produce: &mut dyn FnMut(&mut dyn Write) -> std::io::Result<()>,
-) -> Result<(), RenderError> {
-    let io_err = |source| RenderError::Io {
+) -> Result<(), OutputError> {
+    let io_err = |source| OutputError::Io {
         path: path.to_path_buf(),
         source,
     };
@@ -189,8 +219,8 @@ pub fn write_atomic_with(
 }
 
 /// `dir/.name.tmp-<pid>-<n>` beside `path`.
-fn temp_sibling(path: &Path) -> Result<PathBuf, RenderError> {
-    let name = path.file_name().ok_or_else(|| RenderError::NoFileName {
+fn temp_sibling(path: &Path) -> Result<PathBuf, OutputError> {
+    let name = path.file_name().ok_or_else(|| OutputError::NoFileName {
         path: path.to_path_buf(),
     })?;
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
@@ -245,15 +275,15 @@ mod tests {
         // A directory that does not exist: creating the temporary file fails.
         let path = dir.path().join("missing").join("out.txt");
         let err = write_atomic(&path, b"x").unwrap_err();
-        assert!(matches!(err, RenderError::Io { .. }));
+        assert!(matches!(err, OutputError::Io { .. }));
         assert!(err.to_string().contains("out.txt"));
         assert!(entries(dir.path()).is_empty());
         // No file name at all: `/` is a directory, refused before a temporary name is made.
         let err = write_atomic(Path::new("/"), b"x").unwrap_err();
-        assert!(matches!(err, RenderError::NotRegularFile { .. }));
+        assert!(matches!(err, OutputError::NotRegularFile { .. }));
         assert!(matches!(
             temp_sibling(Path::new("/")),
-            Err(RenderError::NoFileName { .. })
+            Err(OutputError::NoFileName { .. })
         ));
     }
 
