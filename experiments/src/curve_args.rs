@@ -71,6 +71,14 @@ pub struct SchemeOption {
 }
 
 impl SchemeOption {
+    /// The schemes' options with `interior` as the uniform β and c of `shirman-sequin`.
+    pub fn options(&self, interior: surface::InteriorParameters) -> surface::SchemeOptions {
+        surface::SchemeOptions {
+            interior,
+            phong_alpha: self.phong_alpha,
+        }
+    }
+
     /// The scheme, built with `interior` as the uniform β and c of `shirman-sequin`.
     pub fn build(
         &self,

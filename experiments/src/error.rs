@@ -35,26 +35,9 @@ pub enum ExperimentError {
     /// An output file could not be written (`meshio::outfile`).
     #[error(transparent)]
     Output(#[from] meshio::outfile::OutputError),
-    /// A mesh file could not be read.
+    /// The fit job (or its input, limits or outputs) refused or failed (`fitjob`).
     #[error(transparent)]
-    MeshIo(meshio::MeshIoError),
-    /// A mesh file was read but could not be made into a mesh to fit (nothing left after
-    /// repair, coordinates beyond a working frame, no normals and no estimator).
-    #[error("{path}: cannot make a mesh to fit of it")]
-    Prepare {
-        /// The file.
-        path: PathBuf,
-        /// Why.
-        source: estimate::PrepareError,
-    },
-    /// `--estimate` names no estimator.
-    #[error("--estimate {value}: not an estimator's name or `none`")]
-    Estimate {
-        /// The value given.
-        value: String,
-        /// The estimator registry's answer (it lists the known names).
-        source: estimate::UnknownEstimator,
-    },
+    Job(Box<fitjob::JobError>),
     /// `--data` (with `--resolution`), or the ring study's `--resolution`, asks for a data set
     /// that cannot be built: an unknown name that is no mesh file either, or a resolution out of
     /// range.
@@ -117,24 +100,6 @@ pub enum ExperimentError {
         path: PathBuf,
         /// The format writer's answer (the format and what it cannot hold).
         source: meshio::WriteError,
-    },
-    /// An output option names a file whose extension no mesh writer handles.
-    #[error("{option} {path}: unsupported output format (writable: {writable})", path = .path.display())]
-    UnsupportedOutputFormat {
-        /// The option (`--out`, `--mesh-out`).
-        option: &'static str,
-        /// The file given.
-        path: PathBuf,
-        /// The writable extensions, comma-separated.
-        writable: String,
-    },
-    /// An output option names the input file (by any path): writing would destroy the input.
-    #[error("{option} {path}: the output is the input file; choose another output path", path = .path.display())]
-    OutputIsInput {
-        /// The option (`--out`, `--mesh-out`, `--output`).
-        option: &'static str,
-        /// The file given.
-        path: PathBuf,
     },
     /// A results directory exists as something that is not a directory.
     #[error("{path}: exists and is not a directory; results are a directory")]
@@ -204,28 +169,12 @@ pub enum ExperimentError {
         /// The directory given.
         path: PathBuf,
     },
-    /// A numeric option is outside its valid range.
-    #[error("--{option} {value}: outside its valid range {range}{}", why.map(|w| format!(" ({w})")).unwrap_or_default())]
-    OutOfRange {
-        /// The option, without its dashes (`beta`, `tess`).
-        option: &'static str,
-        /// The value as given (shown in scientific notation when very small or large).
-        value: String,
-        /// The valid range, `[lo, hi]`.
-        range: String,
-        /// Why the range is what it is, where that needs saying.
-        why: Option<&'static str>,
-    },
-    /// A setting would need more memory than the machine has available.
-    #[error("{what} would need about {:.1} GB, more than this machine has available ({:.1} GB): choose a smaller setting", *needed_bytes as f64 / 1e9, *budget_bytes as f64 / 1e9)]
-    TooMuchMemory {
-        /// The options responsible (`--resolution 4096 --sampling 4`).
-        what: String,
-        /// Estimated need, bytes.
-        needed_bytes: u128,
-        /// What the run may use, bytes.
-        budget_bytes: u128,
-    },
+}
+
+impl From<fitjob::JobError> for ExperimentError {
+    fn from(e: fitjob::JobError) -> Self {
+        ExperimentError::Job(Box::new(e))
+    }
 }
 
 /// The second half of a [`ExperimentError::DataOption`] message.

@@ -36,7 +36,6 @@ mod realmesh;
 mod ring;
 mod schemes;
 mod solvers;
-mod subdivide;
 mod sweep;
 
 use std::process::ExitCode;

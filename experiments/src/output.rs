@@ -1,121 +1,47 @@
-//! Writing results: atomically, to a file or to standard output.
+//! Writing results: atomically, to a file or to standard output (the fit job's writers,
+//! `fitjob::output`), as pretty JSON, and as result directories swapped in whole.
 
-use std::io::Write;
 use std::path::Path;
 
 use crate::error::ExperimentError;
 
-/// Writes `bytes` to `path` atomically (temporary file in the same directory, then rename),
-/// creating the parent directory if needed; `None` writes to standard output.
+/// Writes `bytes` to `path` atomically, or to standard output ([`fitjob::output::write_result`]).
 pub fn write_result(path: Option<&Path>, bytes: &[u8]) -> Result<(), ExperimentError> {
-    match path {
-        Some(p) => {
-            if let Some(parent) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-                ensure_dir(parent)?;
-            }
-            meshio::outfile::write_atomic(p, bytes).map_err(ExperimentError::from)
-        }
-        None => {
-            let mut out = std::io::stdout().lock();
-            out.write_all(bytes)
-                .and_then(|_| out.flush())
-                .map_err(|source| ExperimentError::Write {
-                    path: "<stdout>".into(),
-                    source,
-                })
-        }
-    }
+    Ok(fitjob::output::write_result(path, bytes)?)
 }
 
-/// Writes to `path` atomically what `produce` writes, piece by piece (no full copy in memory);
-/// `None` streams to standard output.
-pub fn write_result_with(
-    path: Option<&Path>,
-    produce: &mut dyn FnMut(&mut dyn Write) -> std::io::Result<()>,
-) -> Result<(), ExperimentError> {
-    match path {
-        Some(p) => {
-            if let Some(parent) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-                ensure_dir(parent)?;
-            }
-            meshio::outfile::write_atomic_with(p, produce).map_err(ExperimentError::from)
-        }
-        None => {
-            let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-            produce(&mut out)
-                .and_then(|_| out.flush())
-                .map_err(|source| ExperimentError::Write {
-                    path: "<stdout>".into(),
-                    source,
-                })
-        }
-    }
-}
-
-/// Creates a results directory (and its parents).
+/// Creates a results directory and its parents ([`fitjob::output::ensure_dir`]).
 pub fn ensure_dir(dir: &Path) -> Result<(), ExperimentError> {
-    std::fs::create_dir_all(dir).map_err(|source| ExperimentError::Write {
-        path: dir.to_path_buf(),
-        source,
-    })
+    Ok(fitjob::output::ensure_dir(dir)?)
 }
 
-/// Refuses, before any work is done, an output `out` (given by `option`) that could not be
-/// written at the end: a path that exists and is not a regular file or a link to one (a
-/// directory, a device …: [`meshio::outfile::writable_target`]), or the input file itself
-/// ([`refuse_overwriting_input`]). A run over a large mesh then fails in milliseconds instead
-/// of after its whole computation.
+/// Refuses an output that could not be written at the end, before any work
+/// ([`fitjob::output::refuse_unwritable`]).
 pub fn refuse_unwritable(
     option: &'static str,
     out: &Path,
     input: &str,
 ) -> Result<(), ExperimentError> {
-    meshio::outfile::writable_target(out)?;
-    refuse_overwriting_input(option, out, input)
+    Ok(fitjob::output::refuse_unwritable(option, out, input)?)
 }
 
-/// Refuses to write `out` (given by `option`, such as `--out`) when it is the input file `input`
-/// (the same file, by any path): a conversion or fit would otherwise destroy its own input.
+/// Refuses an output that is the input file ([`fitjob::output::refuse_overwriting_input`]).
 pub fn refuse_overwriting_input(
     option: &'static str,
     out: &Path,
     input: &str,
 ) -> Result<(), ExperimentError> {
-    let (Ok(a), Ok(b)) = (std::fs::canonicalize(out), std::fs::canonicalize(input)) else {
-        return Ok(());
-    };
-    if a == b {
-        return Err(ExperimentError::OutputIsInput {
-            option,
-            path: out.to_path_buf(),
-        });
-    }
-    Ok(())
+    Ok(fitjob::output::refuse_overwriting_input(
+        option, out, input,
+    )?)
 }
 
-/// The writable mesh format `path`'s extension names, or the error naming `option` and the
-/// extensions that would do.
+/// The writable mesh format `path`'s extension names ([`fitjob::output::mesh_format_for`]).
 pub fn mesh_format_for(
     option: &'static str,
     path: &Path,
 ) -> Result<&'static dyn meshio::MeshFormat, ExperimentError> {
-    meshio::format_for_path(path)
-        .filter(|f| f.can_write())
-        .ok_or_else(|| ExperimentError::UnsupportedOutputFormat {
-            option,
-            path: path.to_path_buf(),
-            writable: writable_extensions(),
-        })
-}
-
-/// The extensions of the writable mesh formats as a message lists them (`.obj, .ply, …`;
-/// `meshio::writable_extensions`).
-pub fn writable_extensions() -> String {
-    meshio::writable_extensions()
-        .iter()
-        .map(|e| format!(".{e}"))
-        .collect::<Vec<_>>()
-        .join(", ")
+    Ok(fitjob::output::mesh_format_for(option, path)?)
 }
 
 /// A report as pretty-printed JSON with a final newline, the form of every `report.json` and

@@ -1,0 +1,193 @@
+//! The job's input: a named analytic data set, a mesh file of any supported format, or a raw
+//! mesh already in memory, repaired and completed by an estimator ([`estimate::prepare`]).
+
+use std::path::{Path, PathBuf};
+
+use estimate::EstimateChoice;
+use mesh::repair::RepairReport;
+use mesh::{Frame, Mesh};
+use serde::Serialize;
+
+use crate::error::JobError;
+
+/// Where the mesh comes from.
+#[derive(Clone, Debug)]
+pub enum Source {
+    /// A data set (`ring`, `sphere`, `capsule`, `octa`) or a mesh file (`.m`, `.obj`, `.ply`,
+    /// `.stl`, `.off`; the format by extension, checked against the content): an existing file
+    /// of that name is read; otherwise the name is a data set.
+    Data {
+        /// The name or path.
+        data: String,
+        /// Resolution of a named data set (its default when absent).
+        resolution: Option<usize>,
+    },
+    /// A raw mesh already in memory (positions, polygons, optional normals and shape tensors),
+    /// treated as a file's content: repaired and completed.
+    Raw {
+        /// What to call it in messages and reports.
+        label: String,
+        /// The mesh.
+        raw: Box<meshio::RawMesh>,
+    },
+}
+
+impl Source {
+    /// The name messages and reports give the input.
+    pub fn label(&self) -> &str {
+        match self {
+            Source::Data { data, .. } => data,
+            Source::Raw { label, .. } => label,
+        }
+    }
+
+    /// The file this input reads, if it reads one (for the outputs' "is the input" check).
+    pub fn file(&self) -> Option<&Path> {
+        match self {
+            Source::Data { data, .. } if is_file_input(data) => Some(Path::new(data)),
+            _ => None,
+        }
+    }
+}
+
+/// The input and how to complete it.
+#[derive(Clone, Debug)]
+pub struct InputOptions {
+    /// Where the mesh comes from.
+    pub source: Source,
+    /// How to estimate what a mesh file lacks (normals, shape tensors): an estimator's name or
+    /// `none` (use the file's data only).
+    pub estimate: String,
+    /// Estimate normals even where the file gives them.
+    pub replace_normals: bool,
+}
+
+impl Default for InputOptions {
+    /// The ring data set, the default estimator, the file's normals kept.
+    fn default() -> Self {
+        InputOptions {
+            source: Source::Data {
+                data: "ring".into(),
+                resolution: None,
+            },
+            estimate: estimate::DEFAULT_ESTIMATOR.into(),
+            replace_normals: false,
+        }
+    }
+}
+
+/// A loaded input mesh.
+pub struct Loaded {
+    /// The mesh, every vertex with a normal and (unless the estimator is `none`) a shape tensor.
+    pub mesh: Mesh,
+    /// The working frame of the mesh (identity for a data set): `world = center + scale · mesh`.
+    pub frame: Frame,
+    /// What was done to a file (repairs, estimation, notes), one line each.
+    pub notes: Vec<String>,
+    /// What the repair did to a file (`None` for a data set).
+    pub repairs: Option<RepairReport>,
+    /// For each mesh face, the file's face it came from (`None` for a data set).
+    pub face_source: Option<Vec<usize>>,
+    /// For each mesh vertex, the file's vertex it came from (`None` for a data set).
+    pub vertex_source: Option<Vec<usize>>,
+    /// The process's peak resident memory once the file was read, before the repair (`None`
+    /// for a data set, or where the system does not say), bytes.
+    pub peak_after_read: Option<u64>,
+    /// Seconds spent reading, repairing and estimating (zero for a data set).
+    pub time: InputTime,
+}
+
+/// Seconds spent on each step of loading a file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct InputTime {
+    /// Reading and parsing the file.
+    pub read_time: f64,
+    /// The repair.
+    pub repair_time: f64,
+    /// The estimation of what the file lacks.
+    pub estimate_time: f64,
+}
+
+/// Whether `data` names a file to read rather than a data set: an existing file is one, and so
+/// is any name with an extension that is not a data set's (its absence is then reported by
+/// name).
+pub fn is_file_input(data: &str) -> bool {
+    let path = Path::new(data);
+    path.is_file() || !mesh::DATASET_NAMES.contains(&data) && path.extension().is_some()
+}
+
+/// Loads the input.
+pub fn load(options: &InputOptions) -> Result<Loaded, JobError> {
+    match &options.source {
+        Source::Data { data, resolution } => {
+            if is_file_input(data) {
+                let path = Path::new(data);
+                let t = std::time::Instant::now();
+                let raw = meshio::read_file(path).map_err(JobError::MeshIo)?;
+                let read_time = t.elapsed().as_secs_f64();
+                prepare(raw, options, path.to_path_buf(), read_time)
+            } else {
+                dataset(data, *resolution)
+            }
+        }
+        Source::Raw { label, raw } => prepare((**raw).clone(), options, PathBuf::from(label), 0.0),
+    }
+}
+
+/// A raw mesh repaired and completed.
+fn prepare(
+    mut raw: meshio::RawMesh,
+    options: &InputOptions,
+    path: PathBuf,
+    read_time: f64,
+) -> Result<Loaded, JobError> {
+    let choice = EstimateChoice::parse(&options.estimate).map_err(|source| JobError::Estimate {
+        value: options.estimate.clone(),
+        source,
+    })?;
+    let peak_read = crate::limits::peak_resident_bytes();
+    let mut notes: Vec<String> = std::mem::take(&mut raw.notes);
+    // The raw mesh is handed over and freed once repaired: a large file is not held twice.
+    let prepared = estimate::prepare_owned(raw, choice, options.replace_normals)
+        .map_err(|source| JobError::Prepare { path, source })?;
+    notes.extend(prepared.summary_lines());
+    notes.push(format!(
+        "time: read {:.3} s, repair {:.3} s, estimation {:.3} s",
+        read_time, prepared.repair_time_seconds, prepared.estimate_time_seconds
+    ));
+    Ok(Loaded {
+        mesh: prepared.mesh,
+        frame: prepared.frame,
+        notes,
+        repairs: Some(prepared.report),
+        face_source: Some(prepared.face_source),
+        vertex_source: Some(prepared.vertex_source),
+        peak_after_read: peak_read,
+        time: InputTime {
+            read_time,
+            repair_time: prepared.repair_time_seconds,
+            estimate_time: prepared.estimate_time_seconds,
+        },
+    })
+}
+
+/// A named data set.
+fn dataset(data: &str, resolution: Option<usize>) -> Result<Loaded, JobError> {
+    let set = mesh::dataset_by_name(data, resolution).map_err(|source| JobError::DataOption {
+        given: match resolution {
+            Some(r) => format!("--data {data} --resolution {r}"),
+            None => format!("--data {data}"),
+        },
+        source,
+    })?;
+    Ok(Loaded {
+        mesh: set.mesh,
+        frame: Frame::identity(),
+        notes: Vec::new(),
+        repairs: None,
+        face_source: None,
+        vertex_source: None,
+        peak_after_read: None,
+        time: InputTime::default(),
+    })
+}

@@ -1,0 +1,408 @@
+//! The job itself: read → repair → estimate → curves → patches → G1 → (stream) → tessellate →
+//! write, with the memory estimates checked before the large allocations and every output path
+//! checked before any work.
+
+use std::time::Instant;
+
+use mesh::{Frame, Mesh};
+use surface::fairing::InteriorChoice;
+use surface::stream::{StreamError, Streamed};
+use surface::{Fit, G1Report, Tessellation};
+
+use crate::error::JobError;
+use crate::input::{load, Source};
+use crate::limits::{self, check_f64, check_memory, check_usize, BETA_RANGE, C_RANGE};
+use crate::options::FitOptions;
+use crate::output::{mesh_format_for, refuse_unwritable, write_result, write_result_with};
+use crate::report::{
+    CurveCounts, DegenerateEdge, FallbackFace, FitReport, G1Summary, InteriorSummary, PeakMemory,
+    TessellationSummary, Timings,
+};
+
+/// What a job leaves besides its report, when [`FitOptions::keep`] asks for it.
+#[derive(Default)]
+pub struct Kept {
+    /// The mesh fitted, in its working frame.
+    pub mesh: Option<Mesh>,
+    /// The way back from the working frame to the input's coordinates.
+    pub frame: Option<Frame>,
+    /// The fit, every net held (in the working frame).
+    pub fit: Option<Fit>,
+    /// The tessellation (in world coordinates), when one was made.
+    pub tessellation: Option<Tessellation>,
+}
+
+/// A finished job: its report, and what [`FitOptions::keep`] asked to keep.
+pub struct FitOutcome {
+    /// The report.
+    pub report: FitReport,
+    /// The mesh, fit and tessellation (empty unless kept).
+    pub kept: Kept,
+}
+
+/// Runs the fit job: `log` receives the progress lines as the stages finish (the input's notes,
+/// the stream's timing, the outputs written); the summary is
+/// [`FitReport::summary_lines`] of the returned report.
+pub fn run(options: &FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutcome, JobError> {
+    if options.is_subdivision() {
+        return crate::subdivision::run(options).map(|report| FitOutcome {
+            report,
+            kept: Kept::default(),
+        });
+    }
+    let params = options.interior_parameters();
+    check_f64(
+        "beta",
+        params.beta[0],
+        &BETA_RANGE,
+        "the interior points move by ~1/β",
+    )?;
+    check_f64(
+        "c",
+        params.c[0],
+        &C_RANGE,
+        "the cross-boundary field changes by c along an edge",
+    )?;
+    check_usize("tess", options.tess, &limits::SAMPLING_RANGE)?;
+    let label = options.input.source.label().to_string();
+    if let Source::Data {
+        data,
+        resolution: Some(r),
+    } = &options.input.source
+    {
+        check_memory(
+            &format!("--data {data} --resolution {r}"),
+            limits::dataset_faces(data, *r) * limits::FIT_BYTES_PER_FACE as u128,
+        )?;
+    }
+    let input_file = options
+        .input
+        .source
+        .file()
+        .map(|p| p.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    if let Some(out) = &options.patches_out {
+        refuse_unwritable("--out", out, &input_file)?;
+    }
+    // The tessellation's format, checked with its path before any work.
+    let mesh_format = match &options.mesh_out {
+        Some(out) => {
+            refuse_unwritable("--mesh-out", out, &input_file)?;
+            Some(mesh_format_for("--mesh-out", out)?)
+        }
+        None => None,
+    };
+    let t0 = Instant::now();
+    let loaded = load(&options.input)?;
+    for note in &loaded.notes {
+        log(&format!("  {note}"));
+    }
+    let repaired = loaded.repairs.as_ref().is_some_and(|r| !r.is_clean());
+    let mesh = loaded.mesh;
+    let frame = loaded.frame;
+    let t_read = t0.elapsed().as_secs_f64();
+    // Peak resident memory after each stage (where the system says), for the summary.
+    let mut peaks: Vec<PeakMemory> = Vec::new();
+    if let Some(bytes) = loaded.peak_after_read {
+        peaks.push(PeakMemory {
+            stage: "read".into(),
+            bytes,
+        });
+    }
+    let mut peak_after = |stage: &str| {
+        if let Some(bytes) = limits::peak_resident_bytes() {
+            peaks.push(PeakMemory {
+                stage: stage.into(),
+                bytes,
+            });
+        }
+    };
+    peak_after(if loaded.peak_after_read.is_some() {
+        "repair and estimation"
+    } else {
+        "data set"
+    });
+    let method = curves::method_by_name(&options.curves, &options.method_options)?;
+    let t1 = Instant::now();
+    let fit_error = |source| JobError::Fit {
+        subject: label.clone(),
+        source,
+    };
+    let scheme = surface::scheme_by_name(&options.scheme, &options.scheme_options)?;
+    // Streamed when nothing needs the whole fit's nets afterwards (no interior optimization,
+    // which refits from a first fit; nothing kept): the same report and file, bit for bit,
+    // without the nets in memory (`surface::stream`). With a tessellation too, when the layout
+    // is welded by topology: the tessellation then builds each face's nets again where it
+    // evaluates them (`tessellate_fit_rebuilt`, the same mesh).
+    let stream = options.interior == InteriorChoice::Default
+        && !options.keep
+        && (options.mesh_out.is_none()
+            || surface::welds_by_topology(&scheme.layout(), options.tess));
+    let samples = options.g1_samples;
+    let (fitted, g1, stats, t_fit, t_g1): (Fit, G1Report, _, f64, f64) = if stream {
+        let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
+        let mut streamed: Option<Result<Streamed, StreamError>> = None;
+        let run = |output: Option<surface::stream::Output<'_>>| {
+            surface::stream::fit_streamed(&mesh, scheme.as_ref(), method.as_ref(), samples, output)
+        };
+        match &options.patches_out {
+            Some(out) => {
+                let format = surface::patch_io::PatchFormat::for_path(out);
+                let written = write_result_with(Some(out), &mut |w| {
+                    let r = run(Some(surface::stream::Output {
+                        format,
+                        to_world: &to_world,
+                        out: w,
+                    }));
+                    let io = match &r {
+                        Err(StreamError::Io(e)) => {
+                            Err(std::io::Error::new(e.kind(), e.to_string()))
+                        }
+                        Err(StreamError::Fit(_)) => Err(std::io::Error::other("the fit failed")),
+                        Ok(_) => Ok(()),
+                    };
+                    streamed = Some(r);
+                    io
+                });
+                // A failed fit is reported as such, not as the write it interrupted.
+                if let Some(Err(StreamError::Fit(source))) = streamed {
+                    return Err(fit_error(source));
+                }
+                written?;
+            }
+            None => streamed = Some(run(None)),
+        }
+        let s = match streamed {
+            Some(Ok(s)) => s,
+            Some(Err(StreamError::Fit(source))) => return Err(fit_error(source)),
+            Some(Err(StreamError::Io(source))) => {
+                return Err(JobError::Write {
+                    path: options.patches_out.clone().unwrap_or_default(),
+                    source,
+                })
+            }
+            None => {
+                return Err(JobError::Write {
+                    path: options.patches_out.clone().unwrap_or_default(),
+                    source: std::io::Error::other("the fit did not run"),
+                })
+            }
+        };
+        let total = t1.elapsed().as_secs_f64();
+        log(&format!(
+            "  streamed: curves {:.3} s, then patches, G1{} a window of faces at a time {:.3} s",
+            s.curves_seconds,
+            if options.patches_out.is_some() {
+                " and writing"
+            } else {
+                ""
+            },
+            total - s.curves_seconds
+        ));
+        peak_after(if options.patches_out.is_some() {
+            "fit, G1 and write"
+        } else {
+            "fit and G1"
+        });
+        let stats = surface::fairing::InteriorStats {
+            faces: mesh.num_faces(),
+            ..Default::default()
+        };
+        (
+            s.fit,
+            s.g1,
+            stats,
+            s.curves_seconds,
+            total - s.curves_seconds,
+        )
+    } else {
+        let (fitted, stats) = surface::fairing::fit_surface(
+            &mesh,
+            scheme.as_ref(),
+            method.as_ref(),
+            options.interior,
+            options.method_options.solver,
+        )
+        .map_err(fit_error)?;
+        let t_fit = t1.elapsed().as_secs_f64();
+        peak_after("fit");
+        let t2 = Instant::now();
+        let g1 = surface::measure_g1(&mesh, &fitted, samples);
+        let t_g1 = t2.elapsed().as_secs_f64();
+        peak_after("G1");
+        if let Some(out) = &options.patches_out {
+            let t_out = Instant::now();
+            let format = surface::patch_io::PatchFormat::for_path(out);
+            let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
+            write_result_with(Some(out), &mut |w| {
+                surface::patch_io::write_patches(&fitted, format, &to_world, w)
+            })?;
+            log(&format!(
+                "  patches written to {} in {:.3} s",
+                out.display(),
+                t_out.elapsed().as_secs_f64()
+            ));
+            peak_after("write");
+        }
+        (fitted, g1, stats, t_fit, t_g1)
+    };
+    let interior = (options.interior != InteriorChoice::Default).then(|| InteriorSummary {
+        choice: options.interior.to_string(),
+        faces: stats.faces,
+        converged: stats.converged,
+        kept_default: stats.kept_default,
+        energy_default: stats.energy_default,
+        energy_chosen: stats.energy_chosen,
+    });
+    if let Some(i) = &interior {
+        log(&format!(
+            "  interior {}: {} faces, {} converged, {} kept at defaults, energy {:.4e} → {:.4e}",
+            i.choice, i.faces, i.converged, i.kept_default, i.energy_default, i.energy_chosen
+        ));
+    }
+    let mut tessellation = None;
+    let mut kept_tessellation = None;
+    let mut t_tess = 0.0;
+    if let (Some(path), Some(format)) = (&options.mesh_out, mesh_format) {
+        check_memory(
+            &format!("--tess {}", options.tess),
+            // Patches counted from the mesh: a streamed fit holds no nets to count.
+            limits::tessellation_bytes(
+                (mesh.num_faces() * fitted.layout.patches_per_face()) as u128,
+                options.tess,
+            ),
+        )?;
+        let t3 = Instant::now();
+        let tessellated = if stream {
+            surface::tessellate_fit_rebuilt(&mesh, &fitted, scheme.as_ref(), options.tess)
+        } else {
+            surface::tessellate_fit(&mesh, &fitted, options.tess)
+        };
+        let mut tess = tessellated.map_err(|source| JobError::Tessellate {
+            subject: label.clone(),
+            source,
+        })?;
+        let tessellate_time = t3.elapsed().as_secs_f64();
+        tess.to_world(&frame);
+        let raw = crate::colour::tessellation_to_raw(&tess);
+        let bytes =
+            meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|source| {
+                JobError::MeshWrite {
+                    path: path.clone(),
+                    source,
+                }
+            })?;
+        write_result(Some(path), &bytes)?;
+        t_tess = t3.elapsed().as_secs_f64();
+        log(&format!(
+            "  tessellation: s = {}, {} vertices, {} triangles, {} seam welds, in {:.3} s (tessellate {:.3} s, convert and write the rest) → {}",
+            options.tess,
+            tess.positions.len(),
+            tess.faces.len(),
+            tess.welds,
+            t_tess,
+            tessellate_time,
+            path.display()
+        ));
+        peak_after("tessellate");
+        tessellation = Some(TessellationSummary {
+            segments: options.tess,
+            vertices: tess.positions.len(),
+            triangles: tess.faces.len(),
+            welds: tess.welds,
+            path: path.display().to_string(),
+        });
+        if options.keep {
+            kept_tessellation = Some(tess);
+        }
+    }
+    let faces = mesh.num_faces();
+    let uses_curves = scheme.uses_curves();
+    let settings = match (fitted.scheme, uses_curves) {
+        ("shirman-sequin", _) => format!(
+            "curves {}, β = {}, c = {}",
+            method.name(),
+            params.beta[0],
+            params.c[0]
+        ),
+        (_, true) => format!("curves {}", method.name()),
+        (_, false) => "its own boundaries".to_string(),
+    };
+    let face_source = loaded.face_source.as_deref();
+    let vertex_source = loaded.vertex_source.as_deref();
+    let fallback_faces = fitted
+        .face_fallbacks
+        .iter()
+        .map(|fb| FallbackFace {
+            face: fb.face,
+            // In the file's numbering where the mesh came from a file (0-based).
+            file_vertices: mesh.faces()[fb.face]
+                .map(|i| vertex_source.and_then(|s| s.get(i).copied()).unwrap_or(i)),
+            file_face: face_source.and_then(|s| s.get(fb.face).copied()),
+            reason: fb.reason.to_string(),
+        })
+        .collect();
+    let report = FitReport {
+        input: label,
+        vertices: mesh.num_vertices(),
+        edges: mesh.num_edges(),
+        faces,
+        notes: loaded.notes,
+        repaired,
+        scheme: fitted.scheme.to_string(),
+        continuity: fitted.continuity.to_string(),
+        curves: uses_curves.then(|| method.name().to_string()),
+        settings,
+        streamed: stream,
+        g1: Some(G1Summary {
+            samples,
+            interior_max: g1.interior_max,
+            exterior_max: g1.exterior_max,
+            fallback_edges: g1.fallback_edges,
+            fallback_interior_max: g1.fallback_interior_max,
+            fallback_exterior_max: g1.fallback_exterior_max,
+            position_error: g1.position_error * frame.scale,
+            normal_error: g1.normal_error,
+            undefined_normals: g1.undefined_normals,
+        }),
+        fallback_faces,
+        degenerate_edges: fitted
+            .degenerate_edges
+            .iter()
+            .map(|d| DegenerateEdge {
+                edge: d.edge,
+                error: d.error.to_string(),
+            })
+            .collect(),
+        curve_counts: uses_curves.then_some(CurveCounts {
+            fallbacks: fitted.fallbacks,
+            unconverged: fitted.unconverged,
+            flipped_tangents: fitted.flipped_tangents,
+        }),
+        interior,
+        tessellation,
+        subdivision: None,
+        patches_out: options
+            .patches_out
+            .as_ref()
+            .map(|p| p.display().to_string()),
+        time: Timings {
+            read: t_read,
+            fit: t_fit,
+            g1: t_g1,
+            tessellate: t_tess,
+        },
+        peak_memory: peaks,
+    };
+    let kept = if options.keep {
+        Kept {
+            mesh: Some(mesh),
+            frame: Some(frame),
+            fit: Some(fitted),
+            tessellation: kept_tessellation,
+        }
+    } else {
+        Kept::default()
+    };
+    Ok(FitOutcome { report, kept })
+}

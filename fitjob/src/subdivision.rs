@@ -1,0 +1,93 @@
+//! A subdivision scheme (`loop`, `loop-warren`, `catmull-clark`: the `subdiv` crate) instead of
+//! a Bézier scheme. The mesh is read with its polygons kept as they are (a data set is its
+//! triangles); [`FitOptions::levels`] steps are applied and the control mesh after them is
+//! written to [`FitOptions::mesh_out`] (not pushed to the limit, so it compares with other
+//! implementations). Subdivision approximates: the report gives the distance from each data
+//! point to its limit position (limit stencils at the original vertices), against the model
+//! size.
+
+use std::path::Path;
+use std::time::Instant;
+
+use crate::error::JobError;
+use crate::input::Source;
+use crate::options::FitOptions;
+use crate::output::{mesh_format_for, refuse_overwriting_input, write_result};
+use crate::report::{FitReport, SubdivisionSummary, Timings};
+
+/// Runs the subdivision scheme of `options`.
+pub fn run(options: &FitOptions) -> Result<FitReport, JobError> {
+    let t0 = Instant::now();
+    let label = options.input.source.label().to_string();
+    let subject = |e: subdiv::SubdivError| JobError::Subdivision {
+        subject: label.clone(),
+        source: e,
+    };
+    let s = subdiv::scheme_by_name(&options.scheme).map_err(subject)?;
+    let mesh = match &options.input.source {
+        Source::Data { data, resolution } if mesh::DATASET_NAMES.contains(&data.as_str()) => {
+            let d = mesh::dataset_by_name(data, *resolution).map_err(|source| {
+                JobError::DataOption {
+                    given: data.to_string(),
+                    source,
+                }
+            })?;
+            let positions = d.mesh.vertices().iter().map(|v| v.data.p).collect();
+            subdiv::PolyMesh::from_triangles(positions, d.mesh.faces()).map_err(subject)?
+        }
+        Source::Data { data, .. } => {
+            let raw = meshio::read_file(Path::new(data)).map_err(JobError::MeshIo)?;
+            subdiv::PolyMesh::from_raw(&raw).map_err(subject)?
+        }
+        Source::Raw { raw, .. } => subdiv::PolyMesh::from_raw(raw).map_err(subject)?,
+    };
+    let refined = subdiv::subdivide(s.as_ref(), &mesh, options.levels, subdiv::DEFAULT_MAX_FACES)
+        .map_err(subject)?;
+    let t_sub = t0.elapsed().as_secs_f64();
+    // Distance from the data points to the limit surface at the same vertices.
+    let limit = s.limit_positions(&mesh).map_err(subject)?;
+    let size = mesh::mesh::bounding_size(mesh.positions().iter()).max(f64::MIN_POSITIVE);
+    let d: Vec<f64> = mesh
+        .positions()
+        .iter()
+        .zip(&limit)
+        .map(|(p, q)| (p - q).norm())
+        .collect();
+    let max = d.iter().copied().fold(0.0f64, f64::max);
+    let rms = (d.iter().map(|x| x * x).sum::<f64>() / d.len().max(1) as f64).sqrt();
+    if let Some(path) = &options.mesh_out {
+        let input = options
+            .input
+            .source
+            .file()
+            .map(|p| p.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        refuse_overwriting_input("--mesh-out", path, &input)?;
+        let format = mesh_format_for("--mesh-out", path)?;
+        let bytes = meshio::write_bytes(&refined.to_raw(), format, &meshio::WriteOptions::new())
+            .map_err(|source| JobError::MeshWrite {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        write_result(Some(path), &bytes)?;
+    }
+    Ok(FitReport {
+        input: label,
+        vertices: mesh.num_vertices(),
+        faces: mesh.num_faces(),
+        scheme: s.name().to_string(),
+        subdivision: Some(SubdivisionSummary {
+            levels: options.levels,
+            vertices: refined.num_vertices(),
+            faces: refined.num_faces(),
+            approximation_max: max,
+            approximation_rms: rms,
+            model_size: size,
+        }),
+        time: Timings {
+            fit: t_sub,
+            ..Timings::default()
+        },
+        ..FitReport::default()
+    })
+}
