@@ -29,7 +29,8 @@
 //! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
 //!   position, normal, Gaussian and mean curvature;
 //! * [`tessellate_fit`](mod@tessellate_fit) — the same for a fitted mesh, welded by topology and
-//!   in parallel.
+//!   in parallel;
+//! * [`weld`] — the weld by position within a tolerance (tessellations, triangle soups).
 //!
 //! Conventions (docs/conventions.md): normal curvature `κn(d) = dᵀ S d` is positive where the surface
 //! bends towards its normal, so the unit sphere with outward normals has `κn = −1`, Gaussian
@@ -58,6 +59,7 @@ pub mod tessellate;
 pub mod tessellate_fit;
 pub mod testbed_format;
 mod vertex_pieces;
+pub mod weld;
 
 pub use beztri::{BezTriError, BezierCurve, BezierTriangle, Curvature, Derivatives};
 pub use datasets::{
