@@ -30,7 +30,8 @@
 //!   position, normal, Gaussian and mean curvature;
 //! * [`tessellate_fit`](mod@tessellate_fit) — the same for a fitted mesh, welded by topology and
 //!   in parallel;
-//! * [`weld`] — the weld by position within a tolerance (tessellations, triangle soups).
+//! * [`weld`] — the weld by position within a tolerance (tessellations, triangle soups);
+//! * [`limits`] — memory estimates and the limit checked before large allocations.
 //!
 //! Conventions (docs/conventions.md): normal curvature `κn(d) = dᵀ S d` is positive where the surface
 //! bends towards its normal, so the unit sphere with outward normals has `κn = −1`, Gaussian
@@ -46,6 +47,7 @@ pub mod fit;
 pub mod frame;
 pub mod g1;
 pub mod interior;
+pub mod limits;
 pub mod mesh;
 pub mod metrics;
 pub mod patch;
