@@ -26,6 +26,8 @@
 //!   the interior parameters;
 //! * [`interior`] — Section 4's corner measures (interior-boundary curvature, twists);
 //! * [`g1`] — the testbed's `G1`: measured normal continuity and interpolation;
+//! * [`patch_g1`] — the same for a list of patches with no mesh, boundaries matched by
+//!   position within a tolerance;
 //! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
 //!   position, normal, Gaussian and mean curvature;
 //! * [`tessellate_fit`](mod@tessellate_fit) — the same for a fitted mesh, welded by topology and
@@ -51,6 +53,7 @@ pub mod limits;
 pub mod mesh;
 pub mod metrics;
 pub mod patch;
+pub mod patch_g1;
 pub mod patch_io;
 pub mod repair;
 pub mod scheme;
