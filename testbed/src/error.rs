@@ -155,6 +155,10 @@ pub enum FilterError {
         /// Why.
         message: String,
     },
+    /// `g1 --strict`: boundaries were left unmeasured, or nothing was measured (and perhaps
+    /// the tolerance exceeded too: every reason is named).
+    #[error("--strict: {0}")]
+    G1Unmeasured(String),
     /// `g1 --strict`: a boundary exceeds the tolerance.
     #[error("G1 defect {angle:.3e} rad exceeds the tolerance {tolerance:.1e} rad")]
     G1Exceeded {
