@@ -160,7 +160,8 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-    /// The triangles as a mesh file (welded by position), format by extension.
+    /// The triangles as a mesh file (welded by position within a tolerance: the library's
+    /// weld), format by extension.
     ToMesh {
         /// The mesh file (.ply, .obj, .glb, .off, .stl, .m).
         #[arg(long)]
