@@ -6,6 +6,10 @@
 
 use std::ops::RangeInclusive;
 
+pub use surface::limits::{
+    available_memory, dataset_faces, tessellation_bytes, FIT_BYTES_PER_FACE,
+};
+
 use crate::error::JobError;
 
 /// β at a corner. Any β > 0 gives a G1 surface, but the interior points move by `~1/β` (the
@@ -23,18 +27,6 @@ pub const C_RANGE: RangeInclusive<f64> = 0.01..=100.0;
 /// corners only; 256 already gives 65 536 triangles per patch.
 pub const SAMPLING_RANGE: RangeInclusive<usize> = 1..=256;
 
-/// Bytes one tessellation vertex takes (position, normal, K, H, shape tensor: 136 bytes, plus
-/// the welding grid's entry), and one output triangle (indices and its patch).
-const TESS_BYTES_PER_VERTEX: usize = 160;
-const TESS_BYTES_PER_TRIANGLE: usize = 32;
-
-/// Bytes a fitted face takes: mesh and adjacency (~300), three quartic nets (1080), curves and
-/// measurement buffers (~600).
-pub const FIT_BYTES_PER_FACE: usize = 2000;
-
-/// The share of the available memory a run may plan to use.
-const MEMORY_SHARE: f64 = 0.8;
-
 /// The process's peak resident memory so far, bytes (`VmHWM` of `/proc/self/status`; `None`
 /// where the system does not say).
 pub fn peak_resident_bytes() -> Option<u64> {
@@ -43,9 +35,6 @@ pub fn peak_resident_bytes() -> Option<u64> {
     let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kb * 1024)
 }
-
-/// Memory assumed available where the system does not say (`/proc/meminfo` absent).
-const FALLBACK_AVAILABLE: u64 = 8 << 30;
 
 /// `--option value` must lie in `range` (`option` without its dashes; `why` says why the range is
 /// what it is).
@@ -88,49 +77,15 @@ pub fn check_usize(
     })
 }
 
-/// Memory available to this process, bytes (Linux `MemAvailable`, else a stated assumption).
-pub fn available_memory() -> u64 {
-    std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|text| {
-            text.lines()
-                .find(|l| l.starts_with("MemAvailable:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|kb| kb.parse::<u64>().ok())
-                .map(|kb| kb * 1024)
-        })
-        .unwrap_or(FALLBACK_AVAILABLE)
-}
-
-/// Refuses a plan needing `bytes` when that exceeds the share of the available memory.
+/// Refuses a plan needing `bytes` when that exceeds the share of the available memory
+/// ([`surface::limits::check_memory`]: the limit and the estimates are the library's, shared
+/// with the testbed).
 pub fn check_memory(what: &str, bytes: u128) -> Result<(), JobError> {
-    let budget = (available_memory() as f64 * MEMORY_SHARE) as u128;
-    if bytes <= budget {
-        return Ok(());
-    }
-    Err(JobError::TooMuchMemory {
-        what: what.to_string(),
-        needed_bytes: bytes,
-        budget_bytes: budget,
+    surface::limits::check_memory(what, bytes).map_err(|e| JobError::TooMuchMemory {
+        what: e.what,
+        needed_bytes: e.needed_bytes,
+        budget_bytes: e.budget_bytes,
     })
-}
-
-/// Estimated bytes of a tessellation of `patches` patches at `s` segments per edge.
-pub fn tessellation_bytes(patches: u128, s: usize) -> u128 {
-    let (p, s) = (patches, s as u128);
-    p * ((s + 1) * (s + 2) / 2 * TESS_BYTES_PER_VERTEX as u128
-        + s * s * TESS_BYTES_PER_TRIANGLE as u128)
-}
-
-/// Faces of a named data set at a resolution (before building it), for the memory check.
-pub fn dataset_faces(name: &str, resolution: usize) -> u128 {
-    let n = resolution as u128;
-    match name {
-        "ring" => 2 * n * (n / 2).max(3),
-        "capsule" => 2 * n * n,
-        "sphere" => 8u128.saturating_mul(4u128.saturating_pow(resolution.min(60) as u32)),
-        _ => 0,
-    }
 }
 
 #[cfg(test)]

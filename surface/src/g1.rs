@@ -133,7 +133,7 @@ fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
 /// `r_u` and `r_v` for the control points whose weights are not zero (on a patch edge only the
 /// two rows next to it count); for a sampled form ([`crate::patch`]), the prepared point.
 #[derive(Clone, Debug)]
-struct Tangents {
+pub(crate) struct Tangents {
     patch: usize,
     how: How,
 }
@@ -199,7 +199,7 @@ impl Tangents {
     }
 
     /// Unit normal `r_u × r_v` of the face's patch (see [`Tangents::point_and_normal`]).
-    fn normal(&self, face: &[Point3<f64>], np: usize) -> Option<Vector3<f64>> {
+    pub(crate) fn normal(&self, face: &[Point3<f64>], np: usize) -> Option<Vector3<f64>> {
         self.point_and_normal(face, np).1
     }
 }
@@ -207,12 +207,12 @@ impl Tangents {
 /// A monotone stand-in for the angle between unit vectors, cheap and accurate near zero: the
 /// chord `|a − b| = 2 sin(θ/2)`, compared as its square; [`from_chord2`] turns the largest
 /// back into radians.
-fn chord2(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
+pub(crate) fn chord2(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     (a - b).norm_squared()
 }
 
 /// The angle whose squared chord is `c2`: `θ = 2 asin(√c2 / 2)`.
-fn from_chord2(c2: f64) -> f64 {
+pub(crate) fn from_chord2(c2: f64) -> f64 {
     2.0 * (c2.sqrt() / 2.0).min(1.0).asin()
 }
 
@@ -255,18 +255,18 @@ pub fn interior_boundaries(layout: &Layout) -> Vec<(usize, usize, usize)> {
 
 /// Everything about a layout that does not depend on the face: where to sample and the weights
 /// there.
-struct Plan {
-    np: usize,
+pub(crate) struct Plan {
+    pub(crate) np: usize,
     /// Per interior boundary, per sample: `(t, side a, side b)`.
     interior: Vec<Vec<(f64, Tangents, Tangents)>>,
     /// Per face edge `l` (from corner `l` to `l + 1`), per sample `t`: the tangents there.
-    exterior: [Vec<(f64, Tangents)>; 3],
+    pub(crate) exterior: [Vec<(f64, Tangents)>; 3],
     /// Per face corner: the control point that interpolates it and the tangents there.
     corners: [(usize, Tangents); 3],
 }
 
 impl Plan {
-    fn new(layout: &Layout, samples: usize) -> Option<Plan> {
+    pub(crate) fn new(layout: &Layout, samples: usize) -> Option<Plan> {
         let np = layout.points_per_patch();
         let ts: Vec<f64> = (0..samples)
             .map(|s| s as f64 / (samples - 1) as f64)
@@ -548,20 +548,47 @@ impl Plan {
         let [pf, pg] = pts;
         let touches_fallback = fallback[0] || fallback[1];
         r.fallback_edges += usize::from(touches_fallback);
-        let (sf, sg) = (&self.exterior[lf], &self.exterior[lg]);
-        for (k, (t, tf)) in sf.iter().enumerate() {
-            // Face f's edge runs from its corner lf to lf + 1; g's runs backwards.
-            let tg = &sg[sg.len() - 1 - k].1;
-            match (tf.normal(pf, np), tg.normal(pg, np)) {
-                (Some(a), Some(b)) if touches_fallback => {
-                    r.fallback_exterior_max = r.fallback_exterior_max.max(chord2(&a, &b));
-                }
-                (Some(a), Some(b)) => {
-                    r.exterior(chord2(&a, &b), (Boundary::Exterior { edge: ei }, *t))
-                }
-                _ => r.undefined_normals += 1,
+        // Face f's edge runs from its corner lf to lf + 1; g's runs backwards.
+        let (f, g) = ((&self.exterior[lf][..], pf), (&self.exterior[lg][..], pg));
+        boundary_chords(f, g, np, true, false, |t, c| match c {
+            Some(c) if touches_fallback => {
+                r.fallback_exterior_max = r.fallback_exterior_max.max(c);
             }
-        }
+            Some(c) => r.exterior(c, (Boundary::Exterior { edge: ei }, t)),
+            None => r.undefined_normals += 1,
+        });
+    }
+}
+
+/// Samples along one side of a boundary: the tangents at each parameter of a patch edge (a
+/// row of [`Plan`]'s `exterior`) and the points they weigh (a face's, or one patch's, net).
+pub(crate) type Side<'a> = (&'a [(f64, Tangents)], &'a [Point3<f64>]);
+
+/// The measurement of one boundary shared by two patches, used by [`measure`] for the edges
+/// between faces and by [`crate::patch_g1`] for boundaries matched by position: at each sample
+/// of side `a` (its parameter `t` along `a`'s edge), the squared chord between the unit normals
+/// of both sides ([`chord2`]; `None` where either normal is undefined) is given to `at`.
+/// `reversed`: `b`'s edge runs the other way (the usual case, neighbours traversing their
+/// common edge in opposite directions), so `a`'s sample `k` meets `b`'s sample `n − 1 − k`;
+/// `flip_b`: `b`'s normal is reversed first (oppositely oriented patches). `np` is the points
+/// per patch of the nets.
+pub(crate) fn boundary_chords(
+    a: Side<'_>,
+    b: Side<'_>,
+    np: usize,
+    reversed: bool,
+    flip_b: bool,
+    mut at: impl FnMut(f64, Option<f64>),
+) {
+    let ((sa, pa), (sb, pb)) = (a, b);
+    let n = sa.len().min(sb.len());
+    for (k, (t, ta)) in sa.iter().take(n).enumerate() {
+        let tb = &sb[if reversed { n - 1 - k } else { k }].1;
+        let c = match (ta.normal(pa, np), tb.normal(pb, np)) {
+            (Some(x), Some(y)) => Some(chord2(&x, &if flip_b { -y } else { y })),
+            _ => None,
+        };
+        at(*t, c);
     }
 }
 

@@ -18,10 +18,14 @@
 //!   the interior parameters;
 //! * [`interior`] — Section 4's corner measures (interior-boundary curvature, twists);
 //! * [`g1`] — the testbed's `G1`: measured normal continuity and interpolation;
+//! * [`patch_g1`] — the same for a list of patches with no mesh, boundaries matched by
+//!   position within a tolerance;
 //! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
 //!   position, normal, Gaussian and mean curvature;
 //! * [`tessellate_fit`](mod@tessellate_fit) — the same for a fitted mesh, welded by topology and
-//!   in parallel.
+//!   in parallel;
+//! * [`weld`] — the weld by position within a tolerance (tessellations, triangle soups);
+//! * [`limits`] — memory estimates and the limit checked before large allocations.
 //!
 //! Conventions (docs/conventions.md): normal curvature `κn(d) = dᵀ S d` is positive where the surface
 //! bends towards its normal, so the unit sphere with outward normals has `κn = −1`, Gaussian
@@ -38,8 +42,10 @@ pub mod fallback;
 pub mod fit;
 pub mod g1;
 pub mod interior;
+pub mod limits;
 pub mod metrics;
 pub mod patch;
+pub mod patch_g1;
 pub mod patch_io;
 pub mod scheme;
 pub mod shirman_sequin;
@@ -47,6 +53,7 @@ pub mod side_vertex;
 pub mod stream;
 pub mod tessellate;
 pub mod tessellate_fit;
+pub mod weld;
 
 pub use ::mesh::datasets::{
     dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,

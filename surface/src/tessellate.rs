@@ -8,15 +8,16 @@
 //! patch normal `r_u × r_v`). Every sample carries position, unit normal, Gaussian and mean
 //! curvature and the shape tensor (see [`crate::beztri`] for the formulas and signs).
 //!
-//! **Welding.** Samples on patch boundaries are merged by position: two boundary samples closer
-//! than [`WELD_RELATIVE`] times the diagonal of the patches' control-net bounding box are one
-//! vertex. Interior samples of a patch are never welded. Patches that share a boundary curve
-//! (same end points, same control points, in either direction) produce bit-identical or
-//! nearly identical samples along it, so the welded mesh has no duplicated seams; patches that
-//! merely come close are not merged unless within the tolerance. [`Tessellation::welds`] counts
-//! merged samples. A welded vertex keeps the normal and curvature of the first patch that
-//! produced it; [`Tessellation::max_weld_normal_angle`] reports the largest angle between the
-//! normals merged (a G1 defect measure along seams, in radians).
+//! **Welding.** Samples on patch boundaries are merged by position (the library's one weld,
+//! [`crate::weld`]): two boundary samples closer than [`WELD_RELATIVE`] times the diagonal of
+//! the patches' control-net bounding box are one vertex. Interior samples of a patch are never
+//! welded. Patches that share a boundary curve (same end points, same control points, in
+//! either direction) produce bit-identical or nearly identical samples along it, so the
+//! welded mesh has no duplicated seams; patches that merely come close are not merged unless
+//! within the tolerance. [`Tessellation::welds`] counts merged samples. A welded vertex keeps
+//! the normal and curvature of the first patch that produced it;
+//! [`Tessellation::max_weld_normal_angle`] reports the largest angle between the normals
+//! merged (a G1 defect measure along seams, in radians).
 //!
 //! Welding can make two corners of a sample triangle one vertex when a patch edge collapses to
 //! a point; such triangles are dropped and counted ([`Tessellation::collapsed_faces`]).
@@ -36,6 +37,7 @@ use nalgebra::{Matrix3, Point3, Vector3};
 
 use crate::beztri::{BezierTriangle, Curvature, SampleWeights};
 use crate::mesh::{bounding_size, Mesh, MeshError, Vertex};
+use crate::weld::PositionWeld;
 
 /// Boundary samples closer than this fraction of the model size are welded: far above the
 /// rounding of de Casteljau evaluation (1e-15 relative), far below any sampling step (1/s ≥
@@ -142,88 +144,6 @@ impl Tessellation {
     }
 }
 
-/// A multiply–rotate hash (FxHash's) for grid cells: the cells are small integer triples from
-/// our own samples, not adversarial keys, and SipHash cost a quarter of a tessellation.
-#[derive(Clone, Copy, Default)]
-struct CellHasher(u64);
-
-impl std::hash::Hasher for CellHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for b in bytes {
-            self.write_u64(u64::from(*b));
-        }
-    }
-
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn write_i64(&mut self, x: i64) {
-        self.write_u64(x as u64);
-    }
-
-    fn write_usize(&mut self, x: usize) {
-        self.write_u64(x as u64);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-type CellMap = HashMap<[i64; 3], Vec<usize>, std::hash::BuildHasherDefault<CellHasher>>;
-
-/// Spatial hash of boundary vertices for welding.
-struct Welder {
-    cell: f64,
-    tol: f64,
-    grid: CellMap,
-}
-
-impl Welder {
-    fn key(&self, p: &Point3<f64>) -> [i64; 3] {
-        [p.x, p.y, p.z].map(|c| (c / self.cell).floor() as i64)
-    }
-
-    fn find(&self, p: &Point3<f64>, positions: &[Point3<f64>]) -> Option<usize> {
-        let k = self.key(p);
-        // The cell is twice the tolerance, so the ball of radius `tol` around `p` meets, along
-        // each axis, only `p`'s cell and the neighbour on the side of the nearer face: eight
-        // cells, not twenty-seven.
-        let side = |c: f64| {
-            let f = c / self.cell;
-            if f - f.floor() < 0.5 {
-                -1
-            } else {
-                1
-            }
-        };
-        let (sx, sy, sz) = (side(p.x), side(p.y), side(p.z));
-        let mut best: Option<(f64, usize)> = None;
-        for dx in [0, sx] {
-            for dy in [0, sy] {
-                for dz in [0, sz] {
-                    let Some(list) = self.grid.get(&[k[0] + dx, k[1] + dy, k[2] + dz]) else {
-                        continue;
-                    };
-                    for &i in list {
-                        let d = (positions[i] - p).norm();
-                        if d <= self.tol && best.is_none_or(|(bd, _)| d < bd) {
-                            best = Some((d, i));
-                        }
-                    }
-                }
-            }
-        }
-        best.map(|(_, i)| i)
-    }
-
-    fn insert(&mut self, p: &Point3<f64>, i: usize) {
-        let k = self.key(p);
-        self.grid.entry(k).or_default().push(i);
-    }
-}
-
 fn geometry(
     patch: &BezierTriangle,
     weights: Option<&SampleWeights>,
@@ -272,11 +192,7 @@ pub fn tessellate(patches: &[BezierTriangle], s: usize) -> Result<Tessellation, 
     }
     let size = bounding_size(patches.iter().flat_map(|p| p.points().iter()));
     let tol = WELD_RELATIVE * size.max(f64::MIN_POSITIVE);
-    let mut welder = Welder {
-        cell: 2.0 * tol,
-        tol,
-        grid: CellMap::default(),
-    };
+    let mut welder = PositionWeld::new(tol);
     let mut out = Tessellation::default();
     let local = |i: usize, j: usize| -> usize {
         // Position of sample (i, j, s − i − j) in the per-patch table, rows by j.

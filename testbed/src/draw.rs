@@ -6,7 +6,6 @@
 //! where a vertex has none) and colours (the uniform material where a vertex has none). The
 //! camera frames the triangles' bounding box from the given azimuth and elevation.
 
-use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
 
@@ -192,41 +191,43 @@ pub fn write_png(image: &Image, out: &mut dyn Write) -> Result<(), FilterError> 
     render::write_png(image, out).map_err(|e| FilterError::Png(e.to_string()))
 }
 
-/// Triangles welded by exact position into a raw mesh with normals (the first seen at a
-/// position) and colours (when every vertex has one).
-pub fn to_raw(tris: &[[Vertex; 3]]) -> meshio::RawMesh {
-    let mut index: HashMap<[u64; 3], usize> = HashMap::new();
-    let mut positions = Vec::new();
-    let mut normals = Vec::new();
-    let mut colors = Vec::new();
+/// Triangles welded by position with the library's weld ([`surface::weld::weld_triangles`]:
+/// corners closer than [`surface::tessellate::WELD_RELATIVE`] times the diagonal of the
+/// triangles' bounding box are one vertex, so patches tessellated one by one, whose shared
+/// boundary samples differ by rounding, close up), into a raw mesh with normals (the first
+/// seen at a vertex) and colours (when every vertex has one); triangles the weld collapses are
+/// dropped (counted in the second value).
+pub fn to_raw(tris: &[[Vertex; 3]]) -> (meshio::RawMesh, surface::weld::WeldedTriangles) {
+    let corners: Vec<[Point3<f64>; 3]> = tris.iter().map(|t| t.each_ref().map(|v| v.pos)).collect();
+    let welded = surface::weld::weld_triangles(&corners);
+    drop(corners);
     let all_normals = tris.iter().flatten().all(|v| v.norm.is_some());
     let all_colors = tris.iter().flatten().all(|v| v.color.is_some());
-    let mut faces = Vec::with_capacity(tris.len());
-    for t in tris {
-        let mut f = [0usize; 3];
-        for (slot, v) in f.iter_mut().zip(t) {
-            let key = [
-                (v.pos.x + 0.0).to_bits(),
-                (v.pos.y + 0.0).to_bits(),
-                (v.pos.z + 0.0).to_bits(),
-            ];
-            *slot = *index.entry(key).or_insert_with(|| {
-                positions.push(v.pos);
-                normals.push(v.norm.unwrap_or_else(Vector3::z));
-                colors.push(v.color.unwrap_or(render::colors::MATERIAL));
-                positions.len() - 1
-            });
-        }
-        faces.push(f);
-    }
-    let mut raw = meshio::RawMesh::from_triangles(positions, &faces);
+    let corner = |c: usize| tris.get(c / 3).and_then(|t| t.get(c % 3));
+    let mut raw = meshio::RawMesh::from_triangles(welded.positions.clone(), &welded.faces);
     if all_normals {
-        raw.normals = Some(normals);
+        raw.normals = Some(
+            welded
+                .source
+                .iter()
+                .map(|&c| corner(c).and_then(|v| v.norm).unwrap_or_else(Vector3::z))
+                .collect(),
+        );
     }
     if all_colors {
-        raw.colors = Some(colors);
+        raw.colors = Some(
+            welded
+                .source
+                .iter()
+                .map(|&c| {
+                    corner(c)
+                        .and_then(|v| v.color)
+                        .unwrap_or(render::colors::MATERIAL)
+                })
+                .collect(),
+        );
     }
-    raw
+    (raw, welded)
 }
 
 /// Writes triangles as a mesh file, the format by `path`'s extension, atomically.
@@ -239,7 +240,7 @@ pub fn write_mesh(tris: &[[Vertex; 3]], path: &Path) -> Result<(), FilterError> 
                 path.display()
             ))
         })?;
-    let raw = to_raw(tris);
+    let (raw, welded) = to_raw(tris);
     let bytes = meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|e| {
         FilterError::MeshWrite {
             path: path.to_path_buf(),
@@ -248,9 +249,13 @@ pub fn write_mesh(tris: &[[Vertex; 3]], path: &Path) -> Result<(), FilterError> 
     })?;
     meshio::outfile::write_atomic(path, &bytes).map_err(render::RenderError::from)?;
     eprintln!(
-        "to-mesh: {} triangles, {} vertices → {}",
+        "to-mesh: {} triangles, {} vertices ({} corners welded within {:.1e}: {:.0e} of the size; {} collapsed triangles dropped) → {}",
         raw.num_faces(),
         raw.num_vertices(),
+        welded.welds,
+        welded.tolerance,
+        surface::tessellate::WELD_RELATIVE,
+        welded.collapsed,
         path.display()
     );
     Ok(())

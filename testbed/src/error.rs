@@ -155,6 +155,14 @@ pub enum FilterError {
         /// Why.
         message: String,
     },
+    /// A setting would need more memory than the run may use (the estimate made before
+    /// allocating: [`surface::limits`]).
+    #[error(transparent)]
+    TooMuchMemory(Box<surface::limits::TooMuchMemory>),
+    /// `g1 --strict`: boundaries were left unmeasured, or nothing was measured (and perhaps
+    /// the tolerance exceeded too: every reason is named).
+    #[error("--strict: {0}")]
+    G1Unmeasured(String),
     /// `g1 --strict`: a boundary exceeds the tolerance.
     #[error("G1 defect {angle:.3e} rad exceeds the tolerance {tolerance:.1e} rad")]
     G1Exceeded {
@@ -163,4 +171,11 @@ pub enum FilterError {
         /// The tolerance.
         tolerance: f64,
     },
+}
+
+impl From<surface::limits::TooMuchMemory> for FilterError {
+    fn from(e: surface::limits::TooMuchMemory) -> Self {
+        // Boxed: its figures are u128s, and every filter returns this error type.
+        FilterError::TooMuchMemory(Box::new(e))
+    }
 }

@@ -484,6 +484,7 @@ pub fn tess(
         )));
     }
     let mut tessellator = PatchTessellator::new(s)?;
+    let mut degrees_checked = Vec::new();
     let mut rec = Record::default();
     let mut indexed = IndexedPatch::default();
     let mut tris = Vec::new();
@@ -502,6 +503,10 @@ pub fn tess(
                 continue;
             }
         };
+        if !degrees_checked.contains(&patch.degree()) {
+            check_tess_memory(s, patch.degree())?;
+            degrees_checked.push(patch.degree());
+        }
         match records {
             TessRecords::Mesh => {
                 tessellator.tessellate_indexed(&patch, &mut indexed)?;
@@ -527,6 +532,31 @@ pub fn tess(
     }
     pipe.finish()?;
     Ok(())
+}
+
+/// Bytes per sample of the record `tess` builds for one patch before writing it: a
+/// `TriangleMesh` tape holds each sample's coordinates, normal and its two triangles' indices
+/// as tokens with their text (measured: binary `--mesh` at `-s 1024` peaks at 1.7 GB, of which
+/// 0.86 GB the weight table and 0.12 GB the tessellation, 1.4 KB a sample for the rest); a
+/// `Triangle` stream holds the patch's triangles with their vertices (2 × 168 bytes a sample).
+const TESS_RECORD_BYTES_PER_SAMPLE: u128 = 1500;
+
+/// Refuses `tess -s s` for patches of `degree` when one patch's tessellation, the weight table
+/// kept for the degree and the record built from it would exceed the library's limit
+/// ([`surface::limits::check_memory`], the estimates of `experiments`:
+/// [`surface::limits::tessellation_bytes`], [`surface::limits::sample_weights_bytes`]). One
+/// patch is held at a time, so the stream's length does not count; the check is made when a
+/// degree is first met, before its table is built.
+pub fn check_tess_memory(s: usize, degree: usize) -> Result<(), FilterError> {
+    let samples = (s as u128 + 1) * (s as u128 + 2) / 2;
+    let points = (degree + 1) * (degree + 2) / 2;
+    let bytes = surface::limits::tessellation_bytes(1, s)
+        .saturating_add(surface::limits::sample_weights_bytes(points, s))
+        .saturating_add(samples.saturating_mul(TESS_RECORD_BYTES_PER_SAMPLE));
+    Ok(surface::limits::check_memory(
+        &format!("tess -s {s} (patches of degree {degree})"),
+        bytes,
+    )?)
 }
 
 /// How a colouring filter picks each vertex's colour.

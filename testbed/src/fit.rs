@@ -88,6 +88,14 @@ pub fn dataset(spec: &str) -> Result<Input, FilterError> {
         ),
         None => (spec, None),
     };
+    if let Some(r) = res {
+        // The same estimate as `experiments fit --resolution`, before anything is built.
+        surface::limits::check_memory(
+            &format!("--dataset {spec}"),
+            surface::limits::dataset_faces(name, r)
+                .saturating_mul(surface::limits::FIT_BYTES_PER_FACE as u128),
+        )?;
+    }
     let data = surface::dataset_by_name(name, res)?;
     Ok(Input {
         mesh: data.mesh,
@@ -105,21 +113,12 @@ pub fn fit<W: std::io::Write>(
         .map_err(|e| FilterError::Usage(e.to_string()))?;
     let method = curves::method_by_name(&options.curves, &curves::MethodOptions::default())
         .map_err(|e| FilterError::Usage(e.to_string()))?;
-    let fitted = surface::fit_scheme(&input.mesh, scheme.as_ref(), method.as_ref())?;
-    if !fitted.face_fallbacks.is_empty() {
-        eprintln!(
-            "fit: {} face(s) fitted with the C0 fallback patch",
-            fitted.face_fallbacks.len()
-        );
-    }
-    let per_face = fitted.layout.patches_per_face().max(1);
-    let scheme_name = Value::from(fitted.scheme);
-    let mut at = Position::default();
+    let layout = scheme.layout();
     let sample = match options.sample {
-        None if !fitted.layout.is_bezier() => {
+        None if !layout.is_bezier() => {
             eprintln!(
                 "fit: `{}` is evaluated, not a Bézier patch: sampled here at s = {SAMPLED_DENSITY} (--sample N to change)",
-                fitted.scheme
+                scheme.name()
             );
             Some(SAMPLED_DENSITY)
         }
@@ -131,10 +130,21 @@ pub fn fit<W: std::io::Write>(
                 .into(),
         ));
     }
+    if sample == Some(0) {
+        return Err(FilterError::Usage("fit --sample must be at least 1".into()));
+    }
+    check_memory(input.mesh.num_faces(), &layout, sample)?;
+    let fitted = surface::fit_scheme(&input.mesh, scheme.as_ref(), method.as_ref())?;
+    if !fitted.face_fallbacks.is_empty() {
+        eprintln!(
+            "fit: {} face(s) fitted with the C0 fallback patch",
+            fitted.face_fallbacks.len()
+        );
+    }
+    let per_face = fitted.layout.patches_per_face().max(1);
+    let scheme_name = Value::from(fitted.scheme);
+    let mut at = Position::default();
     if let Some(s) = sample {
-        if s == 0 {
-            return Err(FilterError::Usage("fit --sample must be at least 1".into()));
-        }
         let mut t = surface::tessellate_fit(&input.mesh, &fitted, s)?;
         t.to_world(&input.frame);
         if options.mesh {
@@ -190,6 +200,35 @@ pub fn fit<W: std::io::Write>(
     }
     out.finish()?;
     Ok(())
+}
+
+/// Refuses a fit of `faces` faces with `layout` (tessellated at `sample` segments per patch
+/// edge, if given) whose estimated memory exceeds the library's limit
+/// ([`surface::limits::check_memory`]): the estimates of `experiments fit`,
+/// [`surface::limits::FIT_BYTES_PER_FACE`] per face and [`surface::limits::tessellation_bytes`],
+/// with the tessellator's weight table ([`surface::limits::sample_weights_bytes`]), checked
+/// before the fit allocates anything.
+pub fn check_memory(
+    faces: usize,
+    layout: &surface::Layout,
+    sample: Option<usize>,
+) -> Result<(), FilterError> {
+    let fit = (faces as u128).saturating_mul(surface::limits::FIT_BYTES_PER_FACE as u128);
+    let Some(s) = sample else {
+        return Ok(surface::limits::check_memory(
+            &format!("fitting {faces} faces"),
+            fit,
+        )?);
+    };
+    let patches = (faces as u128).saturating_mul(layout.patches_per_face() as u128);
+    Ok(surface::limits::check_memory(
+        &format!("fit --sample {s} ({faces} faces, {patches} patches)"),
+        fit.saturating_add(surface::limits::tessellation_bytes(patches, s))
+            .saturating_add(surface::limits::sample_weights_bytes(
+                layout.points_per_patch(),
+                s,
+            )),
+    )?)
 }
 
 /// The welded tessellation `t` cut back into one `TriangleMesh` record per patch, in patch

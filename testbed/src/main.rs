@@ -99,11 +99,12 @@ enum Command {
     },
     /// Passes records through; measures normal angles along shared patch boundaries.
     G1 {
-        /// Exit with an error when the largest angle exceeds the tolerance (1e-6 rad).
+        /// Exit with an error when the largest angle exceeds the tolerance (1e-6 rad), when a
+        /// boundary could not be measured, or when nothing was measured.
         #[arg(long)]
         strict: bool,
-        /// Samples per boundary, ends included.
-        #[arg(long, default_value_t = testbed::g1::DEFAULT_SAMPLES)]
+        /// Samples per boundary, ends included (at least 3: the ends alone say nothing).
+        #[arg(long, default_value_t = testbed::g1::DEFAULT_SAMPLES, value_parser = g1_samples)]
         samples: usize,
         #[command(flatten)]
         common: Common,
@@ -159,7 +160,8 @@ enum Command {
         #[command(flatten)]
         common: Common,
     },
-    /// The triangles as a mesh file (welded by position), format by extension.
+    /// The triangles as a mesh file (welded by position within a tolerance: the library's
+    /// weld), format by extension.
     ToMesh {
         /// The mesh file (.ply, .obj, .glb, .off, .stl, .m).
         #[arg(long)]
@@ -178,6 +180,18 @@ struct Picture {
     /// Size `WxH` in pixels.
     #[arg(long)]
     size: Option<String>,
+}
+
+/// `g1 --samples N`: a whole number of at least [`surface::patch_g1::MIN_SAMPLES`] (clap
+/// refuses anything else as a usage error, exit status 2).
+fn g1_samples(s: &str) -> Result<usize, String> {
+    let min = surface::patch_g1::MIN_SAMPLES;
+    match s.parse::<usize>() {
+        Ok(n) if n >= min => Ok(n),
+        _ => Err(format!(
+            "at least {min} samples per boundary (with 2 only the ends are sampled, where every interpolating scheme has the vertex normal on both sides)"
+        )),
+    }
 }
 
 fn pair<T: std::str::FromStr>(s: &str, sep: char, what: &str) -> Result<(T, T), FilterError> {
