@@ -84,6 +84,7 @@ impl FitArgs {
             tess: self.tess,
             levels: self.levels,
             g1_samples: fitjob::options::DEFAULT_G1_SAMPLES,
+            measure_g1: true,
             patches_out: self.out.clone(),
             mesh_out: self.mesh_out.clone(),
             keep: false,

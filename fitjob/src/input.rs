@@ -22,6 +22,13 @@ pub enum Source {
         /// Resolution of a named data set (its default when absent).
         resolution: Option<usize>,
     },
+    /// A named data set, never a file (`ring`, `sphere`, `capsule`, `octa`).
+    DataSet {
+        /// The data set's name.
+        name: String,
+        /// Its resolution (its default when absent).
+        resolution: Option<usize>,
+    },
     /// A raw mesh already in memory (positions, polygons, optional normals and shape tensors),
     /// treated as a file's content: repaired and completed.
     Raw {
@@ -37,6 +44,7 @@ impl Source {
     pub fn label(&self) -> &str {
         match self {
             Source::Data { data, .. } => data,
+            Source::DataSet { name, .. } => name,
             Source::Raw { label, .. } => label,
         }
     }
@@ -130,6 +138,7 @@ pub fn load(options: &InputOptions) -> Result<Loaded, JobError> {
                 dataset(data, *resolution)
             }
         }
+        Source::DataSet { name, resolution } => dataset(name, *resolution),
         Source::Raw { label, raw } => prepare((**raw).clone(), options, PathBuf::from(label), 0.0),
     }
 }

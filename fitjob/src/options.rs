@@ -46,6 +46,10 @@ pub struct FitOptions {
     pub levels: u32,
     /// Samples per boundary of the G1 measurement.
     pub g1_samples: usize,
+    /// Measure G1 and interpolation. The pipeline's `fit` leaves that to its `g1` filter, as
+    /// the testbed's modules do; a streamed fit measures anyway (the measurement is part of
+    /// its pass over the faces, and costs little there).
+    pub measure_g1: bool,
     /// Where to write the patches: JSON Lines, or the compact binary form when the name ends
     /// in `.bzp` (`surface::patch_io`).
     pub patches_out: Option<PathBuf>,
@@ -71,6 +75,7 @@ impl Default for FitOptions {
             tess: DEFAULT_TESS,
             levels: DEFAULT_LEVELS,
             g1_samples: DEFAULT_G1_SAMPLES,
+            measure_g1: true,
             patches_out: None,
             mesh_out: None,
             keep: false,

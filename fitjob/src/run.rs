@@ -68,6 +68,10 @@ pub fn run(options: &FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutcome
     if let Source::Data {
         data,
         resolution: Some(r),
+    }
+    | Source::DataSet {
+        name: data,
+        resolution: Some(r),
     } = &options.input.source
     {
         check_memory(
@@ -227,7 +231,11 @@ pub fn run(options: &FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutcome
         let t_fit = t1.elapsed().as_secs_f64();
         peak_after("fit");
         let t2 = Instant::now();
-        let g1 = surface::measure_g1(&mesh, &fitted, samples);
+        let g1 = if options.measure_g1 {
+            surface::measure_g1(&mesh, &fitted, samples)
+        } else {
+            G1Report::default()
+        };
         let t_g1 = t2.elapsed().as_secs_f64();
         peak_after("G1");
         if let Some(out) = &options.patches_out {
@@ -354,7 +362,7 @@ pub fn run(options: &FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutcome
         curves: uses_curves.then(|| method.name().to_string()),
         settings,
         streamed: stream,
-        g1: Some(G1Summary {
+        g1: (stream || options.measure_g1).then_some(G1Summary {
             samples,
             interior_max: g1.interior_max,
             exterior_max: g1.exterior_max,

@@ -24,22 +24,29 @@ pub fn run(options: &FitOptions) -> Result<FitReport, JobError> {
         source: e,
     };
     let s = subdiv::scheme_by_name(&options.scheme).map_err(subject)?;
-    let mesh = match &options.input.source {
+    // A data set's triangles, or a file's (or raw mesh's) polygons as they are.
+    let dataset = match &options.input.source {
+        Source::DataSet { name, resolution } => Some((name, *resolution)),
         Source::Data { data, resolution } if mesh::DATASET_NAMES.contains(&data.as_str()) => {
-            let d = mesh::dataset_by_name(data, *resolution).map_err(|source| {
-                JobError::DataOption {
-                    given: data.to_string(),
+            Some((data, *resolution))
+        }
+        _ => None,
+    };
+    let mesh = match (dataset, &options.input.source) {
+        (Some((name, resolution)), _) => {
+            let d =
+                mesh::dataset_by_name(name, resolution).map_err(|source| JobError::DataOption {
+                    given: name.to_string(),
                     source,
-                }
-            })?;
+                })?;
             let positions = d.mesh.vertices().iter().map(|v| v.data.p).collect();
             subdiv::PolyMesh::from_triangles(positions, d.mesh.faces()).map_err(subject)?
         }
-        Source::Data { data, .. } => {
-            let raw = meshio::read_file(Path::new(data)).map_err(JobError::MeshIo)?;
+        (None, Source::Raw { raw, .. }) => subdiv::PolyMesh::from_raw(raw).map_err(subject)?,
+        (None, _) => {
+            let raw = meshio::read_file(Path::new(&label)).map_err(JobError::MeshIo)?;
             subdiv::PolyMesh::from_raw(&raw).map_err(subject)?
         }
-        Source::Raw { raw, .. } => subdiv::PolyMesh::from_raw(raw).map_err(subject)?,
     };
     let refined = subdiv::subdivide(s.as_ref(), &mesh, options.levels, subdiv::DEFAULT_MAX_FACES)
         .map_err(subject)?;

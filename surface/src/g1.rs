@@ -40,7 +40,7 @@ pub enum Boundary {
 }
 
 /// The result of a G1 measurement.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct G1Report {
     /// Largest normal angle (radians) along interior boundaries of regular faces.
     pub interior_max: f64,

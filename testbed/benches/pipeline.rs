@@ -108,9 +108,10 @@ fn stage(bin: &str, args: &[&str], input: &std::path::Path, output: &std::path::
 
 fn in_process(obj_bytes: &[u8], shared: bool) -> f64 {
     let t = Instant::now();
-    let input =
-        testbed::fit::prepare_bytes(std::path::Path::new("ring.obj"), obj_bytes, "hybrid", false)
-            .expect("prepared");
+    let raw = meshio::read_bytes(std::path::Path::new("ring.obj"), obj_bytes).expect("read");
+    let estimator = estimate::estimator_by_name("hybrid").expect("estimator");
+    let input = estimate::prepare(&raw, estimate::EstimateChoice::With(estimator), false)
+        .expect("prepared");
     let scheme = surface::scheme_by_name("shirman-sequin", &Default::default()).expect("scheme");
     let method = curves::method_by_name("chord", &Default::default()).expect("method");
     let fitted = surface::fit_scheme(&input.mesh, scheme.as_ref(), method.as_ref()).expect("fit");

@@ -159,6 +159,10 @@ pub enum FilterError {
     /// allocating: [`surface::limits`]).
     #[error(transparent)]
     TooMuchMemory(Box<surface::limits::TooMuchMemory>),
+    /// The fit job refused or failed in a way none of the variants above says
+    /// (`fitjob::JobError`).
+    #[error(transparent)]
+    Job(Box<fitjob::JobError>),
     /// `g1 --strict`: boundaries were left unmeasured, or nothing was measured (and perhaps
     /// the tolerance exceeded too: every reason is named).
     #[error("--strict: {0}")]
@@ -171,6 +175,36 @@ pub enum FilterError {
         /// The tolerance.
         tolerance: f64,
     },
+}
+
+impl From<fitjob::JobError> for FilterError {
+    /// The fit job's errors as the pipeline has always reported them: usage errors for bad
+    /// names, the library's own errors for a failed read, repair, fit or data set.
+    fn from(e: fitjob::JobError) -> Self {
+        use fitjob::JobError as J;
+        match e {
+            J::MeshIo(e) => FilterError::MeshIo(e),
+            J::Prepare { source, .. } => FilterError::Prepare(source),
+            J::Fit { source, .. } => FilterError::Fit(source),
+            J::Tessellate { source, .. } => FilterError::Tess(source),
+            J::DataOption { source, .. } => FilterError::DataSet(source),
+            J::Estimate { value, source } => {
+                FilterError::Usage(format!("--estimate {value}: {source}"))
+            }
+            J::Scheme(e) => FilterError::Usage(e.to_string()),
+            J::Method(e) => FilterError::Usage(e.to_string()),
+            J::TooMuchMemory {
+                what,
+                needed_bytes,
+                budget_bytes,
+            } => FilterError::TooMuchMemory(Box::new(surface::limits::TooMuchMemory {
+                what,
+                needed_bytes,
+                budget_bytes,
+            })),
+            other => FilterError::Job(Box::new(other)),
+        }
+    }
 }
 
 impl From<surface::limits::TooMuchMemory> for FilterError {

@@ -20,7 +20,6 @@ pub const SAMPLED_DENSITY: usize = 8;
 
 use std::path::Path;
 
-use estimate::EstimateChoice;
 use serde_json::{Map, Value};
 
 use crate::error::{FilterError, Position};
@@ -48,37 +47,29 @@ pub struct FitOptions {
     pub mesh: bool,
 }
 
-/// A mesh for fitting: prepared from bytes, or a named data set.
-pub struct Input {
-    /// The mesh in the working frame.
-    pub mesh: surface::Mesh,
-    /// The way back to the file's coordinates.
-    pub frame: surface::Frame,
-}
-
-/// Reads, repairs and completes a mesh from `bytes` (`path` names it and may pick the format
-/// by extension; the content decides when it is recognisably another format).
-pub fn prepare_bytes(
+/// The fit job's input from bytes (`path` names it and may pick the format by extension; the
+/// content decides when it is recognisably another format): read here, repaired and completed
+/// by the job.
+pub fn input_from_bytes(
     path: &Path,
     bytes: &[u8],
     estimate: &str,
     replace_normals: bool,
-) -> Result<Input, FilterError> {
+) -> Result<fitjob::InputOptions, FilterError> {
     let raw = meshio::read_bytes(path, bytes)?;
-    let choice = EstimateChoice::parse(estimate)
-        .map_err(|e| FilterError::Usage(format!("--estimate {estimate}: {e}")))?;
-    let prepared = estimate::prepare(&raw, choice, replace_normals)?;
-    for line in prepared.summary_lines() {
-        eprintln!("fit: {line}");
-    }
-    Ok(Input {
-        mesh: prepared.mesh,
-        frame: prepared.frame,
+    Ok(fitjob::InputOptions {
+        source: fitjob::Source::Raw {
+            label: path.display().to_string(),
+            raw: Box::new(raw),
+        },
+        estimate: estimate.to_string(),
+        replace_normals,
     })
 }
 
-/// A named data set (`ring`, `sphere`, `capsule`, `octa`), optionally `NAME:RESOLUTION`.
-pub fn dataset(spec: &str) -> Result<Input, FilterError> {
+/// A named data set (`ring`, `sphere`, `capsule`, `octa`), optionally `NAME:RESOLUTION`, as the
+/// fit job's input.
+pub fn dataset(spec: &str) -> Result<fitjob::InputOptions, FilterError> {
     let (name, res) = match spec.split_once(':') {
         Some((n, r)) => (
             n,
@@ -89,29 +80,33 @@ pub fn dataset(spec: &str) -> Result<Input, FilterError> {
         None => (spec, None),
     };
     if let Some(r) = res {
-        // The same estimate as `experiments fit --resolution`, before anything is built.
+        // The same estimate as `experiments fit --resolution`, before anything is built (the
+        // job checks it too, naming the options as `experiments` does).
         surface::limits::check_memory(
             &format!("--dataset {spec}"),
             surface::limits::dataset_faces(name, r)
                 .saturating_mul(surface::limits::FIT_BYTES_PER_FACE as u128),
         )?;
     }
-    let data = surface::dataset_by_name(name, res)?;
-    Ok(Input {
-        mesh: data.mesh,
-        frame: surface::Frame::identity(),
+    Ok(fitjob::InputOptions {
+        source: fitjob::Source::DataSet {
+            name: name.to_string(),
+            resolution: res,
+        },
+        ..fitjob::InputOptions::default()
     })
 }
 
-/// Fits `input` and writes its records.
+/// Fits `input` with the fit job (`fitjob::run`, the fit every front end calls; G1 is left to
+/// the pipeline's `g1` filter) and writes its records.
 pub fn fit<W: std::io::Write>(
-    input: &Input,
+    input: fitjob::InputOptions,
     options: &FitOptions,
     out: &mut RecordWriter<W>,
 ) -> Result<(), FilterError> {
     let scheme = surface::scheme_by_name(&options.scheme, &surface::SchemeOptions::default())
         .map_err(|e| FilterError::Usage(e.to_string()))?;
-    let method = curves::method_by_name(&options.curves, &curves::MethodOptions::default())
+    curves::method_by_name(&options.curves, &curves::MethodOptions::default())
         .map_err(|e| FilterError::Usage(e.to_string()))?;
     let layout = scheme.layout();
     let sample = match options.sample {
@@ -133,20 +128,40 @@ pub fn fit<W: std::io::Write>(
     if sample == Some(0) {
         return Err(FilterError::Usage("fit --sample must be at least 1".into()));
     }
-    check_memory(input.mesh.num_faces(), &layout, sample)?;
-    let fitted = surface::fit_scheme(&input.mesh, scheme.as_ref(), method.as_ref())?;
+    let job = fitjob::FitOptions {
+        input,
+        scheme: options.scheme.clone(),
+        curves: options.curves.clone(),
+        measure_g1: false,
+        keep: true,
+        ..fitjob::FitOptions::default()
+    };
+    let outcome = fitjob::run(&job, &mut |line| eprintln!("fit: {}", line.trim_start()))
+        .map_err(FilterError::from)?;
+    let (Some(mesh), Some(frame), Some(fitted)) =
+        (outcome.kept.mesh, outcome.kept.frame, outcome.kept.fit)
+    else {
+        return Err(FilterError::Usage(
+            "the fit job kept no fit (a subdivision scheme is not a fitter of the pipeline)".into(),
+        ));
+    };
     if !fitted.face_fallbacks.is_empty() {
         eprintln!(
             "fit: {} face(s) fitted with the C0 fallback patch",
             fitted.face_fallbacks.len()
         );
     }
+    // The tessellation's memory, checked before it allocates (the fit is within the job's own
+    // estimates).
+    if sample.is_some() {
+        check_memory(mesh.num_faces(), &layout, sample)?;
+    }
     let per_face = fitted.layout.patches_per_face().max(1);
     let scheme_name = Value::from(fitted.scheme);
     let mut at = Position::default();
     if let Some(s) = sample {
-        let mut t = surface::tessellate_fit(&input.mesh, &fitted, s)?;
-        t.to_world(&input.frame);
+        let mut t = surface::tessellate_fit(&mesh, &fitted, s)?;
+        t.to_world(&frame);
         if options.mesh {
             for v in patch_meshes(&t, per_face, &scheme_name, options.fields) {
                 at.record += 1;
@@ -185,7 +200,7 @@ pub fn fit<W: std::io::Write>(
                 Value::Array(
                     net.iter()
                         .map(|p| {
-                            let q = input.frame.to_world(p);
+                            let q = frame.to_world(p);
                             record::arr3([q.x, q.y, q.z])
                         })
                         .collect(),

@@ -355,7 +355,7 @@ fn run(cli: Cli) -> Result<(), FilterError> {
                             (PathBuf::from("<standard input>"), b)
                         }
                     };
-                    fit::prepare_bytes(&name, &bytes, &estimate, replace_normals)?
+                    fit::input_from_bytes(&name, &bytes, &estimate, replace_normals)?
                 }
             };
             let options = FitOptions {
@@ -367,9 +367,13 @@ fn run(cli: Cli) -> Result<(), FilterError> {
                 fields: CurvatureFields { kg, km },
                 mesh,
             };
+            let mut input = Some(input);
             with_output(&common.output, &mut |out| {
                 let mut w = RecordWriter::new(out, common.format.or(Some(Format::Json)));
-                fit::fit(&input, &options, &mut w)
+                match input.take() {
+                    Some(input) => fit::fit(input, &options, &mut w),
+                    None => Ok(()),
+                }
             })
         }
         Command::Tess {

@@ -1,0 +1,6 @@
+//! The integration tests of `testbed`, one test binary for all of them (one link, not one a
+//! file): a module a topic.
+
+mod examples;
+mod library;
+mod pipeline;
