@@ -98,7 +98,7 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
     if let Some(path) = &args.report {
         crate::output::refuse_unwritable("--report", path, &args.input.data)?;
     }
-    let outcome = fitjob::run(&args.job(), &mut |line| say!("{line}"))?;
+    let outcome = fitjob::run(args.job(), &mut |line| say!("{line}"))?;
     let report = outcome.report;
     for line in report.summary_lines() {
         say!("{line}");

@@ -143,6 +143,24 @@ pub fn load(options: &InputOptions) -> Result<Loaded, JobError> {
     }
 }
 
+/// [`load`], taking the input: a raw mesh in memory is repaired without a copy of it being made
+/// first (a large mesh is not held twice).
+pub fn load_owned(options: InputOptions) -> Result<Loaded, JobError> {
+    match options.source {
+        Source::Raw { label, raw } => {
+            let rest = InputOptions {
+                source: Source::DataSet {
+                    name: label.clone(),
+                    resolution: None,
+                },
+                ..options
+            };
+            prepare(*raw, &rest, PathBuf::from(label), 0.0)
+        }
+        source => load(&InputOptions { source, ..options }),
+    }
+}
+
 /// A raw mesh repaired and completed.
 fn prepare(
     mut raw: meshio::RawMesh,

@@ -10,7 +10,7 @@ use surface::stream::{StreamError, Streamed};
 use surface::{Fit, G1Report, Tessellation};
 
 use crate::error::JobError;
-use crate::input::{load, Source};
+use crate::input::{load_owned, InputOptions, Source};
 use crate::limits::{self, check_f64, check_memory, check_usize, BETA_RANGE, C_RANGE};
 use crate::options::FitOptions;
 use crate::output::{mesh_format_for, refuse_unwritable, write_result, write_result_with};
@@ -43,9 +43,12 @@ pub struct FitOutcome {
 /// Runs the fit job: `log` receives the progress lines as the stages finish (the input's notes,
 /// the stream's timing, the outputs written); the summary is
 /// [`FitReport::summary_lines`] of the returned report.
-pub fn run(options: &FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutcome, JobError> {
+///
+/// The options are taken, so that a raw mesh in memory ([`Source::Raw`]) is repaired without a
+/// copy.
+pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutcome, JobError> {
     if options.is_subdivision() {
-        return crate::subdivision::run(options).map(|report| FitOutcome {
+        return crate::subdivision::run(&options).map(|report| FitOutcome {
             report,
             kept: Kept::default(),
         });
@@ -97,7 +100,18 @@ pub fn run(options: &FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutcome
         None => None,
     };
     let t0 = Instant::now();
-    let loaded = load(&options.input)?;
+    // The input is taken (a raw mesh moves into the repair); what follows reads only its label.
+    let input = std::mem::replace(
+        &mut options.input,
+        InputOptions {
+            source: Source::DataSet {
+                name: label.clone(),
+                resolution: None,
+            },
+            ..InputOptions::default()
+        },
+    );
+    let loaded = load_owned(input)?;
     for note in &loaded.notes {
         log(&format!("  {note}"));
     }

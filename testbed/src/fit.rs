@@ -136,7 +136,7 @@ pub fn fit<W: std::io::Write>(
         keep: true,
         ..fitjob::FitOptions::default()
     };
-    let outcome = fitjob::run(&job, &mut |line| eprintln!("fit: {}", line.trim_start()))
+    let outcome = fitjob::run(job, &mut |line| eprintln!("fit: {}", line.trim_start()))
         .map_err(FilterError::from)?;
     let (Some(mesh), Some(frame), Some(fitted)) =
         (outcome.kept.mesh, outcome.kept.frame, outcome.kept.fit)
