@@ -1,0 +1,271 @@
+//! The fit job end to end: the streamed and the whole fit report the same numbers, the report
+//! holds every fallback face, a raw mesh in memory is fitted as its file is, the outputs are
+//! checked before any work, and the report serializes with its timings apart.
+
+use std::path::PathBuf;
+
+use fitjob::{FitOptions, FitReport, InputOptions, JobError, Source};
+use nalgebra::{Rotation3, Vector3};
+
+fn data(name: &str) -> InputOptions {
+    InputOptions {
+        source: Source::Data {
+            data: name.into(),
+            resolution: None,
+        },
+        ..InputOptions::default()
+    }
+}
+
+fn repo_file(rel: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join(rel)
+        .to_string_lossy()
+        .into_owned()
+}
+
+fn quiet(options: FitOptions) -> Result<fitjob::FitOutcome, JobError> {
+    fitjob::run(options, &mut |_| {})
+}
+
+/// The report without what differs between two runs of the same fit by design: the timings,
+/// the memory, whether it was streamed, and the notes' timing line.
+fn comparable(mut r: FitReport) -> FitReport {
+    r.time = Default::default();
+    r.peak_memory.clear();
+    r.streamed = false;
+    r.notes.retain(|n| !n.starts_with("time:"));
+    r
+}
+
+#[test]
+fn the_streamed_fit_and_the_kept_fit_report_the_same_numbers() {
+    for (name, curves) in [
+        ("ring", "optimized"),
+        ("capsule", "dbhs"),
+        ("octa", "chord"),
+    ] {
+        let options = FitOptions {
+            input: data(name),
+            curves: curves.into(),
+            ..FitOptions::default()
+        };
+        let streamed = quiet(options.clone()).expect("streamed");
+        assert!(streamed.report.streamed, "{name}: streamed by default");
+        assert!(
+            streamed.kept.fit.is_none(),
+            "{name}: nothing kept unless asked"
+        );
+        let kept = quiet(FitOptions {
+            keep: true,
+            ..options
+        })
+        .expect("kept");
+        assert!(!kept.report.streamed);
+        let fit = kept.kept.fit.as_ref().expect("the fit is kept");
+        let mesh = kept.kept.mesh.as_ref().expect("the mesh is kept");
+        assert_eq!(
+            fit.nets().count(),
+            mesh.num_faces() * fit.layout.patches_per_face(),
+            "{name}"
+        );
+        // Bit for bit: the same G1 figures, counts and settings.
+        assert_eq!(
+            comparable(streamed.report),
+            comparable(kept.report),
+            "{name}/{curves}"
+        );
+    }
+}
+
+#[test]
+fn the_ring_is_g1_to_rounding_and_the_summary_says_so() {
+    /// The G1 defect of the Shirman–Séquin ring is rounding: measured at about 1e-14 rad.
+    const G1_ROUNDING: f64 = 1e-12;
+    let outcome = quiet(FitOptions::default()).expect("fit");
+    let r = &outcome.report;
+    let g1 = r.g1.expect("measured");
+    assert!(
+        g1.interior_max < G1_ROUNDING && g1.exterior_max < G1_ROUNDING,
+        "{g1:?}"
+    );
+    assert_eq!((r.vertices, r.edges, r.faces), (128, 384, 256));
+    assert!(r.departures().is_empty());
+    let lines = r.summary_lines();
+    assert!(
+        lines[0].starts_with("fit: ring (128 vertices, 384 edges, 256 faces), scheme shirman-sequin (G1), curves chord"),
+        "{lines:?}"
+    );
+    assert!(lines[1].starts_with("  G1 defect: interior "), "{lines:?}");
+}
+
+/// A sphere whose given normals are turned by 120° at every third vertex: the faces around
+/// them cannot be fitted G1 and fall back to the C0 patch, each with its reason.
+fn spoiled_sphere() -> meshio::RawMesh {
+    let d = mesh::dataset_by_name("sphere", None).expect("sphere");
+    let positions: Vec<_> = d.mesh.vertices().iter().map(|v| v.data.p).collect();
+    let mut raw = meshio::RawMesh::from_triangles(positions, d.mesh.faces());
+    let turn = Rotation3::from_axis_angle(&Vector3::x_axis(), 2.0 * std::f64::consts::FRAC_PI_3);
+    raw.normals = Some(
+        d.mesh
+            .vertices()
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                if i % 3 == 0 {
+                    turn * v.data.n
+                } else {
+                    v.data.n
+                }
+            })
+            .collect(),
+    );
+    raw
+}
+
+#[test]
+fn the_report_holds_every_fallback_face_and_the_summary_the_first_ten() {
+    let options = FitOptions {
+        input: InputOptions {
+            source: Source::Raw {
+                label: "spoiled sphere".into(),
+                raw: Box::new(spoiled_sphere()),
+            },
+            ..InputOptions::default()
+        },
+        keep: true,
+        ..FitOptions::default()
+    };
+    let outcome = quiet(options).expect("fit");
+    let r = &outcome.report;
+    let fit = outcome.kept.fit.as_ref().expect("kept");
+    let n = fit.face_fallbacks.len();
+    assert!(n > fitjob::report::FALLBACKS_LISTED, "{n} fallbacks");
+    assert_eq!(r.fallback_faces.len(), n);
+    for (entry, fb) in r.fallback_faces.iter().zip(&fit.face_fallbacks) {
+        assert_eq!(entry.face, fb.face);
+        assert_eq!(entry.reason, fb.reason.to_string());
+        assert_eq!(
+            entry.file_face,
+            Some(fb.face),
+            "no face was dropped or reordered"
+        );
+    }
+    let lines = r.summary_lines();
+    let listed = lines.iter().filter(|l| l.starts_with("    face ")).count();
+    assert_eq!(listed, fitjob::report::FALLBACKS_LISTED);
+    assert!(
+        lines.iter().any(|l| l == &format!("    … ({n} in all)")),
+        "{lines:?}"
+    );
+    assert!(r
+        .departures()
+        .iter()
+        .any(|(k, what)| *k == n && *what == "fallback faces"));
+    // The JSON report carries them all, with the timings under `time` only.
+    let json: serde_json::Value =
+        serde_json::from_str(&r.to_json().expect("json")).expect("parses");
+    assert_eq!(json["fallback_faces"].as_array().map(Vec::len), Some(n));
+    assert!(json["time"]["fit"].is_number());
+}
+
+#[test]
+fn a_raw_mesh_in_memory_is_fitted_as_its_file_is() {
+    let path = repo_file("data/meshes/teapot.ply");
+    let from_file = quiet(FitOptions {
+        input: data(&path),
+        ..FitOptions::default()
+    })
+    .expect("file");
+    let raw = meshio::read_file(std::path::Path::new(&path)).expect("read");
+    let from_memory = quiet(FitOptions {
+        input: InputOptions {
+            source: Source::Raw {
+                label: path.clone(),
+                raw: Box::new(raw),
+            },
+            ..InputOptions::default()
+        },
+        ..FitOptions::default()
+    })
+    .expect("memory");
+    assert_eq!(comparable(from_file.report), comparable(from_memory.report));
+}
+
+#[test]
+fn outputs_are_refused_before_any_work() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut stages = 0;
+    let e = fitjob::run(
+        FitOptions {
+            patches_out: Some(dir.path().to_path_buf()),
+            ..FitOptions::default()
+        },
+        &mut |_| stages += 1,
+    )
+    .err()
+    .expect("a directory is no patch file");
+    assert!(e.to_string().contains("a directory"), "{e}");
+    let e = quiet(FitOptions {
+        mesh_out: Some(dir.path().join("x.unknown")),
+        ..FitOptions::default()
+    })
+    .err()
+    .expect("no writer for .unknown");
+    assert!(matches!(e, JobError::UnsupportedOutputFormat { .. }), "{e}");
+    assert_eq!(stages, 0, "nothing ran");
+    let e = quiet(FitOptions {
+        scheme_options: surface::SchemeOptions {
+            interior: surface::InteriorParameters {
+                beta: [100.0; 3],
+                c: [1.0; 3],
+            },
+            ..surface::SchemeOptions::default()
+        },
+        ..FitOptions::default()
+    })
+    .err()
+    .expect("β out of range");
+    assert!(
+        e.to_string()
+            .starts_with("--beta 100: outside its valid range"),
+        "{e}"
+    );
+}
+
+#[test]
+fn the_outputs_written_are_those_reported() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let patches = dir.path().join("ring.bzp");
+    let tess = dir.path().join("ring.ply");
+    let outcome = quiet(FitOptions {
+        patches_out: Some(patches.clone()),
+        mesh_out: Some(tess.clone()),
+        tess: 3,
+        ..FitOptions::default()
+    })
+    .expect("fit");
+    let t = outcome.report.tessellation.expect("tessellated");
+    let written = meshio::read_file(&tess).expect("the mesh reads back");
+    assert_eq!(written.num_vertices(), t.vertices);
+    assert_eq!(written.num_faces(), t.triangles);
+    // 256 faces × 3 sub-patches × 3² triangles.
+    assert_eq!(t.triangles, 256 * 3 * 9);
+    assert!(std::fs::metadata(&patches).expect("patches").len() > 0);
+}
+
+#[test]
+fn a_subdivision_scheme_reports_its_approximation() {
+    let outcome = quiet(FitOptions {
+        scheme: "loop".into(),
+        levels: 2,
+        ..FitOptions::default()
+    })
+    .expect("loop");
+    let s = outcome.report.subdivision.expect("subdivision");
+    // Loop: every level multiplies the triangles by four.
+    assert_eq!(s.faces, 256 * 16);
+    assert!(s.approximation_max > 0.0 && s.approximation_max < s.model_size);
+    assert!(outcome.report.g1.is_none());
+}

@@ -1,0 +1,3 @@
+//! The integration tests of `fitjob`, one test binary for all of them: a module a topic.
+
+mod job;
