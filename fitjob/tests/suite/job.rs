@@ -2,6 +2,8 @@
 //! holds every fallback face, a raw mesh in memory is fitted as its file is, the outputs are
 //! checked before any work, and the report serializes with its timings apart.
 
+#![allow(clippy::expect_used)] // test fixtures fail loudly by design
+
 use std::path::PathBuf;
 
 use fitjob::{FitOptions, FitReport, InputOptions, JobError, Source};
@@ -25,8 +27,8 @@ fn repo_file(rel: &str) -> String {
         .into_owned()
 }
 
-fn quiet(options: FitOptions) -> Result<fitjob::FitOutcome, JobError> {
-    fitjob::run(options, &mut |_| {})
+fn quiet(options: FitOptions) -> Result<fitjob::FitOutcome, Box<JobError>> {
+    fitjob::run(options, &mut |_| {}).map_err(Box::new)
 }
 
 /// The report without what differs between two runs of the same fit by design: the timings,
@@ -213,7 +215,10 @@ fn outputs_are_refused_before_any_work() {
     })
     .err()
     .expect("no writer for .unknown");
-    assert!(matches!(e, JobError::UnsupportedOutputFormat { .. }), "{e}");
+    assert!(
+        matches!(*e, JobError::UnsupportedOutputFormat { .. }),
+        "{e}"
+    );
     assert_eq!(stages, 0, "nothing ran");
     let e = quiet(FitOptions {
         scheme_options: surface::SchemeOptions {
