@@ -17,4 +17,8 @@ impl CurveMethod for Chord {
     fn construct(&self, _problem: &UnitProblem) -> CurveChoice {
         CurveChoice::plain([1.0, 1.0])
     }
+
+    fn needs_curvature(&self) -> bool {
+        false
+    }
 }

@@ -80,6 +80,13 @@ pub trait CurveMethod: Send + Sync {
     /// falls back (and says so in [`CurveChoice::fallback`]).
     fn construct(&self, problem: &UnitProblem) -> CurveChoice;
 
+    /// True if it reads the end curvatures of its problems, so that a mesh must carry shape
+    /// tensors (estimated or given) before it is fitted with it; false for a construction of
+    /// tangents alone (`chord`).
+    fn needs_curvature(&self) -> bool {
+        true
+    }
+
     /// True if [`CurveChoice::candidates`] lists all solutions (then outputs show them even
     /// when there are none).
     fn enumerates_solutions(&self) -> bool {

@@ -6,8 +6,8 @@
 //! |---|---|---|
 //! | [`CurveOptions`] | `--solver`, `--dbhs-pick` | `curve`, `ring`, `fit` (in [`FitOptions`]) |
 //! | [`InteriorOption`] | `--interior` | `sweep`, `ring`, `fit` (in [`FitOptions`]) |
-//! | [`SchemeOption`] | `--scheme`, `--phong-alpha` | `ring`, `sweep`, `fit` (in [`FitOptions`]) |
-//! | [`FitOptions`] | `--curves` (one construction), [`CurveOptions`], [`InteriorOption`], [`SchemeOption`] | `fit` |
+//! | `fitjob::cli::SchemeArgs` | `--scheme` and one option a scheme parameter (`--beta`, `--c`, `--phong-alpha`, …), generated from the scheme registry | `ring`, `sweep`, `fit` (in [`FitOptions`]), the pipeline's `fit` |
+//! | [`FitOptions`] | `--curves` (one construction), [`CurveOptions`], [`InteriorOption`], `SchemeArgs` | `fit` |
 //!
 //! `ring` fits every construction of its study, so it takes no `--curves`; `sweep` runs every
 //! construction with every solver and the default dBHS pick, so it takes only `--interior`;
@@ -58,53 +58,6 @@ pub struct InteriorOption {
     pub choice: InteriorChoice,
 }
 
-/// `--scheme` and the options of the schemes that have any.
-#[derive(clap::Args, Debug, Clone)]
-pub struct SchemeOption {
-    /// Surface scheme (`surface::scheme::REGISTRY`; in `fit` and `sweep` also the subdivision schemes
-    /// `loop`, `loop-warren`, `catmull-clark` of `subdiv::SCHEMES`, with `--levels`).
-    #[arg(long, default_value = surface::DEFAULT_SCHEME, value_parser = scheme_names())]
-    pub scheme: String,
-    /// Shape factor α of the `phong` scheme (0: flat triangles; Boubekeur and Alexa: 3/4).
-    #[arg(long, default_value_t = surface::scheme::phong::DEFAULT_ALPHA)]
-    pub phong_alpha: f64,
-}
-
-impl SchemeOption {
-    /// The schemes' options with `interior` as the uniform β and c of `shirman-sequin`.
-    pub fn options(&self, interior: surface::InteriorParameters) -> surface::SchemeOptions {
-        surface::SchemeOptions {
-            interior,
-            phong_alpha: self.phong_alpha,
-        }
-    }
-
-    /// The scheme, built with `interior` as the uniform β and c of `shirman-sequin`.
-    pub fn build(
-        &self,
-        interior: surface::InteriorParameters,
-    ) -> Result<Box<dyn surface::Scheme>, surface::UnknownScheme> {
-        surface::scheme_by_name(
-            &self.scheme,
-            &surface::SchemeOptions {
-                interior,
-                phong_alpha: self.phong_alpha,
-            },
-        )
-    }
-}
-
-/// The registered scheme names as the values `--scheme` accepts: the Bézier schemes, then the
-/// subdivision schemes (`fit` and `sweep`; `ring` refuses them).
-fn scheme_names() -> PossibleValuesParser {
-    PossibleValuesParser::new(
-        surface::scheme::REGISTRY
-            .iter()
-            .map(|e| e.name)
-            .chain(subdiv::SCHEMES.iter().map(|e| e.name)),
-    )
-}
-
 /// `--curves` (one construction) with [`CurveOptions`] and [`InteriorOption`]: how `fit` builds
 /// its surface.
 #[derive(clap::Args, Debug, Clone)]
@@ -118,14 +71,14 @@ pub struct FitOptions {
     /// The interior parameters.
     #[command(flatten)]
     pub interior: InteriorOption,
-    /// The surface scheme.
+    /// The surface scheme and the schemes' parameters (generated from the registry).
     #[command(flatten)]
-    pub scheme: SchemeOption,
+    pub scheme: fitjob::cli::SchemeArgs,
 }
 
 /// The registered construction names as the values a flag accepts (listed in its `--help`).
 fn method_names() -> PossibleValuesParser {
-    PossibleValuesParser::new(curves::REGISTRY.iter().map(|e| e.name))
+    fitjob::cli::curve_method_names()
 }
 
 /// Every registered construction, comma-separated in registry order: the default of `curve

@@ -13,8 +13,6 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use surface::InteriorParameters;
-
 use crate::curve_args::FitOptions;
 use crate::error::ExperimentError;
 use crate::input::InputArgs;
@@ -29,12 +27,6 @@ pub struct FitArgs {
     /// The construction, its options and the interior parameters.
     #[command(flatten)]
     fit: FitOptions,
-    /// β at every corner (1/3: the Shirman–Séquin default, C1 inside each triangle).
-    #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_BETA)]
-    beta: f64,
-    /// Jensen's c on every edge (1: Chiyokura–Kimura).
-    #[arg(long, default_value_t = surface::shirman_sequin::DEFAULT_C)]
-    c: f64,
     /// Where to write the patches: JSON Lines, or the compact binary form when the name ends in
     /// `.bzp` (`surface::patch_io`); none are written when absent. Without `--interior`, the
     /// patches are streamed: built, measured and written a window of faces at a time, never all
@@ -70,14 +62,10 @@ pub struct FitArgs {
 impl FitArgs {
     /// The fit job these options ask for.
     pub fn job(&self) -> fitjob::FitOptions {
-        let params = InteriorParameters {
-            beta: [self.beta; 3],
-            c: [self.c; 3],
-        };
         fitjob::FitOptions {
             input: self.input.job_input(),
             scheme: self.fit.scheme.scheme.clone(),
-            scheme_options: self.fit.scheme.options(params),
+            scheme_options: self.fit.scheme.options.clone(),
             curves: self.fit.curves.clone(),
             method_options: self.fit.curve.method_options(),
             interior: self.fit.interior.choice,

@@ -19,9 +19,9 @@ use std::time::Instant;
 use curves::{method_by_name, MethodOptions};
 use serde_json::{json, Value};
 use solver::SolverKind;
-use surface::{compare_with_truth, measure_g1, InteriorParameters};
+use surface::{compare_with_truth, measure_g1};
 
-use crate::curve_args::{InteriorOption, SchemeOption};
+use crate::curve_args::InteriorOption;
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, pretty_json, write_result, Staged};
 
@@ -172,7 +172,7 @@ pub struct SweepArgs {
     interior: InteriorOption,
     /// The surface scheme of every task.
     #[command(flatten)]
-    scheme: SchemeOption,
+    scheme: fitjob::cli::SchemeArgs,
     /// Output directory.
     #[arg(long, default_value = "results/sweep")]
     out: PathBuf,
@@ -250,11 +250,14 @@ fn run_task(
 
 /// Runs the sweep (or one shard of it).
 pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
-    let subdivision = is_subdivision(&args.scheme.scheme);
+    let subdivision = args.scheme.is_subdivision();
     let scheme = if subdivision {
         None
     } else {
-        Some(args.scheme.build(InteriorParameters::default())?)
+        Some(surface::scheme_by_name(
+            &args.scheme.scheme,
+            &args.scheme.options,
+        )?)
     };
     let all = tasks_for(&args.scheme.scheme);
     let mine: Vec<(usize, &Task)> = all
@@ -322,10 +325,18 @@ fn is_shard(name: &str) -> bool {
 }
 
 /// The options every task of a run shares: what a shard records and `merge` compares.
-fn options_json(interior: surface::fairing::InteriorChoice, scheme: &SchemeOption) -> Value {
-    json!({"interior": interior.to_string(), "sampling": SAMPLING, "scheme": scheme.scheme,
-           "phong_alpha": scheme.phong_alpha,
-           "beta": surface::shirman_sequin::DEFAULT_BETA, "c": surface::shirman_sequin::DEFAULT_C})
+/// Every scheme parameter is recorded (generated from the registry: `beta`, `c`, `phong_alpha`,
+/// …), so shards of runs with different parameters are told apart.
+fn options_json(
+    interior: surface::fairing::InteriorChoice,
+    scheme: &fitjob::cli::SchemeArgs,
+) -> Value {
+    let mut v =
+        json!({"interior": interior.to_string(), "sampling": SAMPLING, "scheme": scheme.scheme});
+    for (p, _) in surface::scheme::parameters_of(surface::scheme::REGISTRY) {
+        v[p.key()] = json!(scheme.options.value(p));
+    }
+    v
 }
 
 /// Joins shard files into the report.

@@ -19,12 +19,16 @@
 //! * [`limits`] — valid ranges and memory estimates, shared by every front end;
 //! * [`output`] — safe writing of the outputs and the checks made on their paths;
 //! * [`report`] — [`FitReport`] and the terminal summary;
-//! * [`error`] — [`JobError`].
+//! * [`error`] — [`JobError`];
+//! * `cli` (feature `cli`) — the command lines' `--scheme` and scheme-parameter options,
+//!   generated from the registry.
 //!
 //! This crate sits above `surface` (patches, schemes, G1, tessellation), `estimate`, `subdiv`
 //! and `render` (the colour maps of written meshes): the job needs all of them, and none of
 //! them needs the job.
 
+#[cfg(feature = "cli")]
+pub mod cli;
 pub mod colour;
 pub mod error;
 pub mod input;

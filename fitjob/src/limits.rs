@@ -12,17 +12,6 @@ pub use surface::limits::{
 
 use crate::error::JobError;
 
-/// β at a corner. Any β > 0 gives a G1 surface, but the interior points move by `~1/β` (the
-/// `m = 2` step divides by β): below 0.01 the nets reach 100× the triangle's size and the
-/// surface folds; above 10 the first interior points overshoot the triangle tenfold. Appendix A
-/// uses 1/3.
-pub const BETA_RANGE: RangeInclusive<f64> = 0.01..=10.0;
-
-/// Jensen's c on an edge. `K(t)` is a quadratic in c; at 0.01 or 100 the cross-boundary field
-/// already changes by 100× along an edge, beyond which the patch folds over itself. 1 is
-/// Chiyokura–Kimura.
-pub const C_RANGE: RangeInclusive<f64> = 0.01..=100.0;
-
 /// Segments per patch edge of a tessellation (`--tess`, `--sampling`): 1 is the patch's
 /// corners only; 256 already gives 65 536 triangles per patch.
 pub const SAMPLING_RANGE: RangeInclusive<usize> = 1..=256;
@@ -34,6 +23,18 @@ pub fn peak_resident_bytes() -> Option<u64> {
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kb * 1024)
+}
+
+/// Every parameter of `entry`'s scheme must lie in its declared range
+/// ([`surface::scheme::ParameterSpec`]): refused as `--name value: outside its valid range`.
+pub fn check_scheme_parameters(
+    entry: &surface::scheme::SchemeEntry,
+    options: &surface::SchemeOptions,
+) -> Result<(), JobError> {
+    match options.out_of_range(entry) {
+        None => Ok(()),
+        Some((p, value)) => check_f64(p.name, value, &(p.range.0..=p.range.1), p.range_reason),
+    }
 }
 
 /// `--option value` must lie in `range` (`option` without its dashes; `why` says why the range is
@@ -94,12 +95,19 @@ mod tests {
 
     #[test]
     fn ranges_name_option_value_and_range() {
-        let e = check_f64("beta", 1e-308, &BETA_RANGE, "β").unwrap_err();
-        assert!(e
-            .to_string()
-            .contains("--beta 1e-308: outside its valid range [0.01, 10]"));
-        assert!(check_f64("c", 1.0, &C_RANGE, "c").is_ok());
-        assert!(check_f64("c", f64::NAN, &C_RANGE, "c").is_err());
+        use surface::scheme::shirman_sequin::{BETA, C};
+        let entry = surface::scheme::entry_by_name("shirman-sequin").expect("registered");
+        let with = |p, v| surface::SchemeOptions::default().with(p, v);
+        let e = check_scheme_parameters(entry, &with(&BETA, 1e-308)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--beta 1e-308: outside its valid range [0.01, 10] (the interior points move by ~1/β)"
+        );
+        assert!(check_scheme_parameters(entry, &with(&C, 1.0)).is_ok());
+        assert!(check_scheme_parameters(entry, &with(&C, f64::NAN)).is_err());
+        let phong = surface::scheme::entry_by_name("phong").expect("registered");
+        let alpha = &surface::scheme::phong::ALPHA;
+        assert!(check_scheme_parameters(phong, &with(alpha, 1e308)).is_err());
         let e = check_usize("tess", 1000, &SAMPLING_RANGE).unwrap_err();
         assert_eq!(
             e.to_string(),

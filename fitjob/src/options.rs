@@ -31,7 +31,8 @@ pub struct FitOptions {
     /// The surface scheme (`surface::scheme::REGISTRY`, or a subdivision scheme of
     /// `subdiv::SCHEMES`).
     pub scheme: String,
-    /// The scheme's parameters (the interior β and c of `shirman-sequin`, `phong`'s α).
+    /// The schemes' parameter values (the interior β and c of `shirman-sequin`, `phong`'s α;
+    /// each scheme reads its own, declared in its registry entry).
     pub scheme_options: SchemeOptions,
     /// The boundary-curve construction (`curves::REGISTRY`).
     pub curves: String,
@@ -84,9 +85,9 @@ impl Default for FitOptions {
 }
 
 impl FitOptions {
-    /// The uniform interior parameters the options set.
+    /// The uniform interior parameters the options set (β and c of `shirman-sequin`).
     pub fn interior_parameters(&self) -> InteriorParameters {
-        self.scheme_options.interior
+        surface::scheme::shirman_sequin::uniform_parameters(&self.scheme_options)
     }
 
     /// Whether the scheme is one of the subdivision schemes.

@@ -11,7 +11,7 @@ use surface::{Fit, G1Report, Tessellation};
 
 use crate::error::JobError;
 use crate::input::{load_owned, InputOptions, Source};
-use crate::limits::{self, check_f64, check_memory, check_usize, BETA_RANGE, C_RANGE};
+use crate::limits::{self, check_memory, check_usize};
 use crate::options::FitOptions;
 use crate::output::{mesh_format_for, refuse_unwritable, write_result, write_result_with};
 use crate::report::{
@@ -53,19 +53,19 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             kept: Kept::default(),
         });
     }
-    let params = options.interior_parameters();
-    check_f64(
-        "beta",
-        params.beta[0],
-        &BETA_RANGE,
-        "the interior points move by ~1/β",
-    )?;
-    check_f64(
-        "c",
-        params.c[0],
-        &C_RANGE,
-        "the cross-boundary field changes by c along an edge",
-    )?;
+    let entry = surface::scheme::entry_by_name(&options.scheme).ok_or_else(|| {
+        // The registry's own refusal, naming the known schemes.
+        surface::scheme_by_name(&options.scheme, &options.scheme_options)
+            .err()
+            .map(JobError::Scheme)
+            .unwrap_or_else(|| {
+                JobError::Scheme(surface::UnknownScheme {
+                    name: options.scheme.clone(),
+                    known: surface::scheme_names().join(", "),
+                })
+            })
+    })?;
+    limits::check_scheme_parameters(entry, &options.scheme_options)?;
     check_usize("tess", options.tess, &limits::SAMPLING_RANGE)?;
     let label = options.input.source.label().to_string();
     if let Source::Data {
@@ -340,16 +340,19 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
     }
     let faces = mesh.num_faces();
     let uses_curves = scheme.uses_curves();
-    let settings = match (fitted.scheme, uses_curves) {
-        ("shirman-sequin", _) => format!(
-            "curves {}, β = {}, c = {}",
-            method.name(),
-            params.beta[0],
-            params.c[0]
-        ),
-        (_, true) => format!("curves {}", method.name()),
-        (_, false) => "its own boundaries".to_string(),
+    // The curves (or not), then every parameter the scheme declares, as set.
+    let mut settings = if uses_curves {
+        format!("curves {}", method.name())
+    } else {
+        "its own boundaries".to_string()
     };
+    for p in entry.parameters {
+        settings.push_str(&format!(
+            ", {} = {}",
+            p.symbol,
+            options.scheme_options.value(p)
+        ));
+    }
     let face_source = loaded.face_source.as_deref();
     let vertex_source = loaded.vertex_source.as_deref();
     let fallback_faces = fitted

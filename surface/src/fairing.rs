@@ -282,7 +282,7 @@ pub fn fit_surface(
         };
         return Ok((first, stats));
     }
-    if scheme.name() != "shirman-sequin" {
+    if !scheme.has_interior_parameters() {
         return Err(crate::fit::FitError::NoInteriorParameters {
             scheme: scheme.name(),
         });

@@ -373,7 +373,7 @@ pub fn fit_curves_into(
 ) -> Result<(), FitError> {
     let verts = mesh.vertices();
     let uses_curves = scheme.uses_curves();
-    if uses_curves && method.name() != "chord" {
+    if uses_curves && method.needs_curvature() {
         if let Some(v) = verts.iter().position(|v| !v.curvature_known) {
             return Err(FitError::NeedsCurvature {
                 method: method.name(),

@@ -32,6 +32,8 @@ use crate::stream::RecordWriter;
 pub struct FitOptions {
     /// Scheme name (`surface::scheme_names`).
     pub scheme: String,
+    /// The schemes' parameters.
+    pub scheme_options: surface::SchemeOptions,
     /// Boundary-curve method (`chord`, `dbhs`, `optimized`).
     pub curves: String,
     /// Estimator for what the file lacks (`none` or an estimator's name).
@@ -104,7 +106,7 @@ pub fn fit<W: std::io::Write>(
     options: &FitOptions,
     out: &mut RecordWriter<W>,
 ) -> Result<(), FilterError> {
-    let scheme = surface::scheme_by_name(&options.scheme, &surface::SchemeOptions::default())
+    let scheme = surface::scheme_by_name(&options.scheme, &options.scheme_options)
         .map_err(|e| FilterError::Usage(e.to_string()))?;
     curves::method_by_name(&options.curves, &curves::MethodOptions::default())
         .map_err(|e| FilterError::Usage(e.to_string()))?;
@@ -131,6 +133,7 @@ pub fn fit<W: std::io::Write>(
     let job = fitjob::FitOptions {
         input,
         scheme: options.scheme.clone(),
+        scheme_options: options.scheme_options.clone(),
         curves: options.curves.clone(),
         measure_g1: false,
         keep: true,

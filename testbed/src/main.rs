@@ -46,15 +46,14 @@ enum Command {
     /// A mesh (any format, sniffed; `.m` included) to BezierTriangle records, or with
     /// `--sample N` straight to Triangle records.
     Fit {
-        /// Surface scheme (flat, shirman-sequin, pn-triangles, phong, clough-tocher,
-        /// powell-sabin).
-        #[arg(long, default_value = surface::DEFAULT_SCHEME)]
-        scheme: String,
-        /// Boundary-curve construction (chord, dbhs, optimized).
-        #[arg(long, default_value = "chord")]
+        /// The surface scheme and the schemes' parameters (generated from the registry).
+        #[command(flatten)]
+        scheme: fitjob::cli::SchemeArgs<fitjob::cli::PatchesOnly>,
+        /// Boundary-curve construction (the registry's).
+        #[arg(long, default_value = "chord", value_parser = fitjob::cli::curve_method_names())]
         curves: String,
-        /// Estimator for what the mesh lacks (`none`, hybrid, jet, …).
-        #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR)]
+        /// Estimator for what the mesh lacks (the registry's, or `none`).
+        #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR, value_parser = fitjob::cli::estimator_names())]
         estimate: String,
         /// Estimate normals even where the mesh has them.
         #[arg(long)]
@@ -359,7 +358,8 @@ fn run(cli: Cli) -> Result<(), FilterError> {
                 }
             };
             let options = FitOptions {
-                scheme,
+                scheme: scheme.scheme,
+                scheme_options: scheme.options,
                 curves,
                 estimate,
                 replace_normals,

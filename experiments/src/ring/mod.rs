@@ -25,7 +25,7 @@ use std::time::Instant;
 use serde_json::{json, Map};
 use surface::AnalyticSurface;
 
-use crate::curve_args::{CurveOptions, InteriorOption, SchemeOption};
+use crate::curve_args::{CurveOptions, InteriorOption};
 use crate::error::ExperimentError;
 use crate::output::{pretty_json, write_result, Staged};
 
@@ -54,7 +54,7 @@ pub struct RingArgs {
     /// The surface scheme of the fitted surfaces (each with every construction of [`METHODS`]
     /// where it takes curves).
     #[command(flatten)]
-    scheme: SchemeOption,
+    scheme: fitjob::cli::SchemeArgs<fitjob::cli::PatchesOnly>,
     /// Output directory.
     #[arg(long, default_value = "results/ring")]
     out: PathBuf,
@@ -98,7 +98,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     stage("data", t);
 
     // Fits.
-    let scheme = args.scheme.build(surface::InteriorParameters::default())?;
+    let scheme = surface::scheme_by_name(&args.scheme.scheme, &args.scheme.options)?;
     let fits = surfaces::fit_methods(
         mesh,
         scheme.as_ref(),

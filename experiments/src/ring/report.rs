@@ -161,13 +161,19 @@ pub(super) fn markdown(
     let _ = writeln!(md, "# The ring study\n");
     let _ = writeln!(
         md,
-        "Written by `cargo run --release -p experiments -- ring --resolution {} --sampling {} --solver {} --dbhs-pick {} --interior {} --scheme {} --out {}`.\n",
+        "Written by `cargo run --release -p experiments -- ring --resolution {} --sampling {} --solver {} --dbhs-pick {} --interior {} --scheme {}{} --out {}`.\n",
         args.resolution,
         args.sampling,
         args.curve.solver,
         args.curve.dbhs_pick,
         args.interior.choice,
         args.scheme.scheme,
+        // The scheme parameters set away from their defaults (the registry's).
+        surface::scheme::parameters_of(surface::scheme::REGISTRY)
+            .iter()
+            .filter(|(p, _)| args.scheme.options.value(p) != p.default)
+            .map(|(p, _)| format!(" --{} {}", p.name, args.scheme.options.value(p)))
+            .collect::<String>(),
         args.out.display()
     );
     let _ = writeln!(

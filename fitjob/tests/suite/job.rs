@@ -221,13 +221,8 @@ fn outputs_are_refused_before_any_work() {
     );
     assert_eq!(stages, 0, "nothing ran");
     let e = quiet(FitOptions {
-        scheme_options: surface::SchemeOptions {
-            interior: surface::InteriorParameters {
-                beta: [100.0; 3],
-                c: [1.0; 3],
-            },
-            ..surface::SchemeOptions::default()
-        },
+        scheme_options: surface::SchemeOptions::default()
+            .with(&surface::scheme::shirman_sequin::BETA, 100.0),
         ..FitOptions::default()
     })
     .err()

@@ -32,7 +32,6 @@ use curves::{CubicBez3, VertexData};
 use nalgebra::Point3;
 
 use crate::fit::FaceFallbackReason;
-use crate::shirman_sequin::InteriorParameters;
 
 /// A point of a face's barycentric domain, `(λ_0, λ_1, λ_2)` with `Σ λ = 1`.
 pub type Bary = [f64; 3];
@@ -164,15 +163,36 @@ impl std::fmt::Display for Continuity {
     }
 }
 
-/// A scheme's free parameter, for help texts and reports.
+/// A scheme's free parameter, declared once (in the scheme's file, listed by its
+/// [`SchemeEntry`]): the command lines' options and `--help`, the range check, the sweeps'
+/// option records and the reports are all generated from it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ParameterSpec {
-    /// Option name (`--beta`, `--phong-alpha` …, without dashes).
+    /// Option name (`beta`, `phong-alpha` …, without dashes); JSON records use it with `_`
+    /// for `-` ([`ParameterSpec::key`]).
     pub name: &'static str,
+    /// How reports write it (`β`, `c`, `α`).
+    pub symbol: &'static str,
     /// Default value.
     pub default: f64,
+    /// The valid values, inclusive.
+    pub range: (f64, f64),
+    /// Why the range is what it is (shown when a value is refused).
+    pub range_reason: &'static str,
     /// What it does.
     pub summary: &'static str,
+}
+
+impl ParameterSpec {
+    /// The name as a JSON key: `phong-alpha` → `phong_alpha`.
+    pub fn key(&self) -> String {
+        self.name.replace('-', "_")
+    }
+
+    /// Whether `value` lies in [`ParameterSpec::range`] (NaN does not).
+    pub fn accepts(&self, value: f64) -> bool {
+        value >= self.range.0 && value <= self.range.1
+    }
 }
 
 /// What one face's construction reads.
@@ -202,9 +222,10 @@ pub trait Scheme: Send + Sync {
     /// (then `--curves` applies); false if the scheme makes its own boundaries.
     fn uses_curves(&self) -> bool;
 
-    /// Its parameters with their defaults.
-    fn parameters(&self) -> &'static [ParameterSpec] {
-        &[]
+    /// True if its interior has parameters a per-face optimization can choose
+    /// (`surface::fairing`'s thin-plate and membrane choices of β and c).
+    fn has_interior_parameters(&self) -> bool {
+        false
     }
 
     /// Builds face `input.face` into `out` (`layout().points_per_face()` points: patch after
@@ -279,21 +300,37 @@ pub fn flat_over_layout(layout: Layout, corners: [Point3<f64>; 3], out: &mut [Po
     }
 }
 
-/// Options every scheme may read (each reads only its own).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The values of the schemes' parameters, by [`ParameterSpec::name`]; a parameter not set
+/// has its default. Each scheme reads only its own ([`SchemeEntry::parameters`]).
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct SchemeOptions {
-    /// Shirman–Séquin interior parameters applied to every face.
-    pub interior: InteriorParameters,
-    /// Phong tessellation's shape factor α (Boubekeur and Alexa recommend 3/4).
-    pub phong_alpha: f64,
+    values: std::collections::BTreeMap<&'static str, f64>,
 }
 
-impl Default for SchemeOptions {
-    fn default() -> Self {
-        SchemeOptions {
-            interior: InteriorParameters::default(),
-            phong_alpha: phong::DEFAULT_ALPHA,
-        }
+impl SchemeOptions {
+    /// The value of `spec`: as set, else its default.
+    pub fn value(&self, spec: &ParameterSpec) -> f64 {
+        self.values.get(spec.name).copied().unwrap_or(spec.default)
+    }
+
+    /// Sets the parameter named `spec.name`.
+    pub fn set(&mut self, spec: &ParameterSpec, value: f64) {
+        self.values.insert(spec.name, value);
+    }
+
+    /// These options with `spec` set to `value`.
+    pub fn with(mut self, spec: &ParameterSpec, value: f64) -> Self {
+        self.set(spec, value);
+        self
+    }
+
+    /// The first parameter of `entry` whose value is out of its range, with the value.
+    pub fn out_of_range(&self, entry: &SchemeEntry) -> Option<(&'static ParameterSpec, f64)> {
+        entry
+            .parameters
+            .iter()
+            .map(|p| (p, self.value(p)))
+            .find(|(p, v)| !p.accepts(*v))
     }
 }
 
@@ -303,7 +340,11 @@ pub struct SchemeEntry {
     pub name: &'static str,
     /// One line for help texts and reports.
     pub summary: &'static str,
-    /// Builds it with the given options.
+    /// Its free parameters (declared in its file): options, ranges and report fields are
+    /// generated from them.
+    pub parameters: &'static [ParameterSpec],
+    /// Builds it with the given options (its own parameters read through
+    /// [`SchemeOptions::value`]).
     pub build: fn(&SchemeOptions) -> Box<dyn Scheme>,
 }
 
@@ -312,47 +353,59 @@ pub const REGISTRY: &[SchemeEntry] = &[
     SchemeEntry {
         name: "flat",
         summary: "the testbed's Fitter0: the data triangle itself (degree 1, C0)",
+        parameters: &[],
         build: |_| Box::new(flat::Flat),
     },
     SchemeEntry {
         name: "shirman-sequin",
         summary:
             "Mann's modified Shirman–Séquin: three quartics per face on cubic edge curves (G1)",
-        build: |o| Box::new(shirman_sequin::ShirmanSequin::uniform(o.interior)),
+        parameters: shirman_sequin::PARAMETERS,
+        build: |o| {
+            Box::new(shirman_sequin::ShirmanSequin::uniform(
+                shirman_sequin::uniform_parameters(o),
+            ))
+        },
     },
     SchemeEntry {
         name: "pn-triangles",
         summary:
             "Vlachos et al. 2001 curved PN triangles: one cubic per face, quadratic normals (C0)",
+        parameters: &[],
         build: |_| Box::new(pn_triangles::PnTriangles),
     },
     SchemeEntry {
         name: "phong",
         summary: "Boubekeur and Alexa 2008 Phong tessellation: one quadratic per face (C0)",
+        parameters: phong::PARAMETERS,
         build: |o| {
             Box::new(phong::Phong {
-                alpha: o.phong_alpha,
+                alpha: o.value(&phong::ALPHA),
             })
         },
     },
     SchemeEntry {
         name: "clough-tocher",
         summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, C1 inside, linear cross-boundary derivative (C0)",
+        parameters: &[],
         build: |_| Box::new(clough_tocher::CloughTocher),
     },
     SchemeEntry {
         name: "powell-sabin",
         summary: "parametric Powell–Sabin 1977: six quadratics per face, boundaries from vertex tangent planes (C0)",
+        parameters: &[],
         build: |_| Box::new(powell_sabin::PowellSabin),
     },
     SchemeEntry {
         name: "nielson",
         summary: "Nielson 1987 transfinite side-vertex interpolant on cubic edge curves, tangent planes along edges from the vertex normals (G1; evaluated, not Bézier)",
+        parameters: &[],
         build: |_| Box::new(nielson::Nielson),
     },
     SchemeEntry {
         name: "discrete-side-vertex",
         summary: "side-vertex interpolant with discrete (vertex-only) cross-boundary data on cubic edge curves (C0; evaluated, not Bézier)",
+        parameters: &[],
         build: |_| Box::new(discrete_side_vertex::DiscreteSideVertex),
     },
 ];
@@ -368,6 +421,26 @@ pub struct UnknownScheme {
     pub name: String,
     /// The registered names, comma-separated.
     pub known: String,
+}
+
+/// The registered entry named `name`.
+pub fn entry_by_name(name: &str) -> Option<&'static SchemeEntry> {
+    REGISTRY.iter().find(|e| e.name == name)
+}
+
+/// Every parameter of the schemes of `registry`, each once (by name, in registry order), with
+/// the names of the schemes that read it: what a command line offers as options.
+pub fn parameters_of(registry: &[SchemeEntry]) -> Vec<(&'static ParameterSpec, Vec<&'static str>)> {
+    let mut out: Vec<(&'static ParameterSpec, Vec<&'static str>)> = Vec::new();
+    for e in registry {
+        for p in e.parameters {
+            match out.iter_mut().find(|(q, _)| q.name == p.name) {
+                Some((_, owners)) => owners.push(e.name),
+                None => out.push((p, vec![e.name])),
+            }
+        }
+    }
+    out
 }
 
 /// The registered names, in registry order.

@@ -30,11 +30,21 @@ pub struct Phong {
     pub alpha: f64,
 }
 
-const PARAMETERS: &[ParameterSpec] = &[ParameterSpec {
+/// The shape factor α. Boubekeur and Alexa (2008) define Phong tessellation for α in [0, 1]: 0
+/// is the flat triangle, 1 the full projection onto the vertex tangent planes; beyond 1 the
+/// surface overshoots the tangent planes (a 1e308 shape factor sent the patches to 5e307 on a
+/// unit octahedron).
+pub const ALPHA: ParameterSpec = ParameterSpec {
     name: "phong-alpha",
+    symbol: "α",
     default: DEFAULT_ALPHA,
-    summary: "shape factor α: 0 is the flat triangle, 3/4 the paper's choice",
-}];
+    range: (0.0, 1.0),
+    range_reason: "0 is the flat triangle, 1 the full projection onto the tangent planes",
+    summary: "shape factor α of `phong` (0: flat triangles; Boubekeur and Alexa: 3/4)",
+};
+
+/// The scheme's parameters.
+pub const PARAMETERS: &[ParameterSpec] = &[ALPHA];
 
 /// Projection of `q` onto the plane through `p` with unit normal `n`.
 fn project(q: &Point3<f64>, p: &Point3<f64>, n: &Vector3<f64>) -> Point3<f64> {
@@ -56,10 +66,6 @@ impl Scheme for Phong {
 
     fn uses_curves(&self) -> bool {
         false
-    }
-
-    fn parameters(&self) -> &'static [ParameterSpec] {
-        PARAMETERS
     }
 
     fn build(

@@ -6,7 +6,7 @@
 
 use nalgebra::Point3;
 
-use super::{Continuity, FaceInput, Layout, ParameterSpec, Scheme, CENTROID_SPLIT};
+use super::{Continuity, FaceInput, Layout, ParameterSpec, Scheme, SchemeOptions, CENTROID_SPLIT};
 use crate::fallback::fallback_patch;
 use crate::fit::FaceFallbackReason;
 use crate::shirman_sequin::{macro_patch, InteriorParameters, DEFAULT_BETA, DEFAULT_C};
@@ -58,18 +58,41 @@ impl<'a> ShirmanSequin<'a> {
     }
 }
 
-const PARAMETERS: &[ParameterSpec] = &[
-    ParameterSpec {
-        name: "beta",
-        default: DEFAULT_BETA,
-        summary: "interior-boundary parameter β of every face (Shirman–Séquin: 1/3)",
-    },
-    ParameterSpec {
-        name: "c",
-        default: DEFAULT_C,
-        summary: "cross-boundary parameter c of every face (Shirman–Séquin: 1)",
-    },
-];
+/// β at every corner. Any β > 0 gives a G1 surface, but the interior points move by `~1/β`
+/// (the `m = 2` step divides by β): below 0.01 the nets reach 100× the triangle's size and the
+/// surface folds; above 10 the first interior points overshoot the triangle tenfold. Appendix A
+/// uses 1/3.
+pub const BETA: ParameterSpec = ParameterSpec {
+    name: "beta",
+    symbol: "β",
+    default: DEFAULT_BETA,
+    range: (0.01, 10.0),
+    range_reason: "the interior points move by ~1/β",
+    summary: "interior-boundary parameter β at every corner (1/3: the Shirman–Séquin default, C1 inside each triangle)",
+};
+
+/// Jensen's c on every edge. `K(t)` is a quadratic in c; at 0.01 or 100 the cross-boundary
+/// field already changes by 100× along an edge, beyond which the patch folds over itself. 1 is
+/// Chiyokura–Kimura.
+pub const C: ParameterSpec = ParameterSpec {
+    name: "c",
+    symbol: "c",
+    default: DEFAULT_C,
+    range: (0.01, 100.0),
+    range_reason: "the cross-boundary field changes by c along an edge",
+    summary: "Jensen's cross-boundary parameter c on every edge (1: Chiyokura–Kimura)",
+};
+
+/// The scheme's parameters.
+pub const PARAMETERS: &[ParameterSpec] = &[BETA, C];
+
+/// The uniform interior parameters `options` set (β at every corner, c on every edge).
+pub fn uniform_parameters(options: &SchemeOptions) -> InteriorParameters {
+    InteriorParameters {
+        beta: [options.value(&BETA); 3],
+        c: [options.value(&C); 3],
+    }
+}
 
 impl Scheme for ShirmanSequin<'_> {
     fn name(&self) -> &'static str {
@@ -88,8 +111,8 @@ impl Scheme for ShirmanSequin<'_> {
         true
     }
 
-    fn parameters(&self) -> &'static [ParameterSpec] {
-        PARAMETERS
+    fn has_interior_parameters(&self) -> bool {
+        true
     }
 
     fn build(

@@ -195,13 +195,13 @@ fn every_scheme_interpolates_is_c0_and_meets_its_continuity_claim() {
         let data = dataset_by_name(name, None).unwrap();
         for e in REGISTRY {
             for round in 0..2 {
-                let options = SchemeOptions {
-                    interior: surface::InteriorParameters {
-                        beta: std::array::from_fn(|_| rng.uniform(0.15, 0.6)),
-                        c: std::array::from_fn(|_| rng.uniform(0.5, 2.0)),
-                    },
-                    phong_alpha: rng.uniform(0.0, 1.0),
-                };
+                // Each declared parameter drawn from half to twice its default (within its
+                // range): β in [1/6, 2/3], c in [1/2, 2], Phong's α in [3/8, 1].
+                let mut options = SchemeOptions::default();
+                for p in e.parameters {
+                    let v = rng.uniform(p.default * 0.5, (p.default * 2.0).min(p.range.1));
+                    options.set(p, v);
+                }
                 let method = ["chord", "dbhs", "optimized"][round + usize::from(name == "ring")];
                 let m = method_by_name(method, &MethodOptions::default()).unwrap();
                 let s = scheme_by_name(e.name, &options).unwrap();
