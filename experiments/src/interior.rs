@@ -239,12 +239,12 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
         md,
         "# Interior degrees of freedom: Section 4's claim, measured\n"
     );
-    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- interior`. Optimized boundary curves; every macro-patch rebuilt for {STEPS} values of β in [0.1, 1] (c = 1) and {STEPS} values of c in [0.25, 4] (β = 1/3). Objectives summed over all faces: Σ (κ_boundary − κn)² over corners and Σ (twist − t_uᵀ S t_v)² over the six corner-patch pairs (definitions in `surface/src/interior.rs`).\n");
+    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- interior`. Optimized boundary curves; every macro-patch rebuilt for {STEPS} values of β in [0.1, 1] (c = 1) and {STEPS} values of c in [0.25, 4] (β = 1/3). Objectives summed over all faces: Σ (κ_boundary − κn)² over corners and Σ (twist − t_uᵀ S t_v)² over the six corner-patch pairs (definitions in `surface/src/measure/interior.rs`).\n");
     let _ = writeln!(md, "| data set | faces | curvature objective | twist objective | largest change of a corner measure over the β sweep | over the c sweep |");
     let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|");
     md.push_str(&md_rows);
     let _ = writeln!(md, "\n![objectives](objectives.png)\n");
-    let _ = writeln!(md, "## Beyond the seed: β and c chosen per triangle\n\nTwo shape energies that do depend on β and c (`surface/src/fairing.rs`): the thin-plate energy ∫|r_xx|² + 2|r_xy|² + |r_yy|² and the membrane energy ∫|r_x|² + |r_y|² of each macro-patch over its flat, centroid-split domain, minimized per triangle over (β₀, β₁, β₂, c₀, c₁, c₂) by the exact-penalty adapter with β ≥ 0.05, c ≥ 0.1, from the defaults. Optimized boundary curves; tessellated at s = 4; errors against the true surface. The same settings are `--interior default|thin-plate|membrane` of `ring`, `sweep` and `fit`.\n");
+    let _ = writeln!(md, "## Beyond the seed: β and c chosen per triangle\n\nTwo shape energies that do depend on β and c (`surface/src/fit/fairing.rs`): the thin-plate energy ∫|r_xx|² + 2|r_xy|² + |r_yy|² and the membrane energy ∫|r_x|² + |r_y|² of each macro-patch over its flat, centroid-split domain, minimized per triangle over (β₀, β₁, β₂, c₀, c₁, c₂) by the exact-penalty adapter with β ≥ 0.05, c ≥ 0.1, from the defaults. Optimized boundary curves; tessellated at s = 4; errors against the true surface. The same settings are `--interior default|thin-plate|membrane` of `ring`, `sweep` and `fit`.\n");
     let _ = writeln!(md, "| data set | interior | position max | position RMS | normal RMS (°) | K RMS | H RMS | G1 (rad) | converged | energy (sum) default → chosen |");
     let _ = writeln!(md, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     md.push_str(&cmp_rows);

@@ -4,27 +4,34 @@
 //! the analytic data sets) is the `mesh` crate's, re-exported here under the same paths
 //! ([`mesh`](mod@mesh), [`repair`], [`frame`], [`testbed_format`], [`datasets`]).
 //!
-//! * [`fallback`] — the C0 macro-patch of a face the scheme cannot fit;
-//! * [`beztri`] — triangular Bézier patches of any degree ([`BezierTriangle`]);
-//! * [`scheme`] — surface schemes as a plug-in family ([`Scheme`], [`scheme::REGISTRY`]):
-//!   `flat`, `shirman-sequin`, `pn-triangles`, `phong`, …;
-//! * [`shirman_sequin`] — the modified Shirman–Séquin split-domain scheme: three quartic
-//!   patches per triangle, G1 by construction (derivation in the module docs);
-//! * [`fit`](mod@fit) — a whole mesh: one curve per edge (shared), one macro-patch per face;
-//! * [`patch_io`] — a fit's patches written as JSON Lines or a compact binary form;
-//! * [`stream`] — a fit measured and written a window of faces at a time, without holding its nets;
-//! * [`metrics`] — errors of a tessellation against the true surface;
-//! * [`fairing`] — thin-plate and membrane energies of a macro-patch in β and c, for optimizing
-//!   the interior parameters;
-//! * [`interior`] — Section 4's corner measures (interior-boundary curvature, twists);
-//! * [`g1`] — the testbed's `G1`: measured normal continuity and interpolation;
-//! * [`patch_g1`] — the same for a list of patches with no mesh, boundaries matched by
-//!   position within a tolerance;
-//! * [`tessellate`](mod@tessellate) — the testbed's `Tess`: patches to one welded triangle mesh carrying
-//!   position, normal, Gaussian and mean curvature;
-//! * [`tessellate_fit`](mod@tessellate_fit) — the same for a fitted mesh, welded by topology and
-//!   in parallel;
-//! * [`weld`] — the weld by position within a tolerance (tessellations, triangle soups);
+//! The files are grouped by the stage of the data flow they serve; every module keeps its path
+//! at the crate root (`surface::g1`, `surface::beztri`, …):
+//!
+//! ```text
+//! mesh ─► construct/ + scheme/ ─► fit/ ─► measure/ ─► tessellate/ ─► io/
+//!         (patches of a face)    (a mesh)  (G1, errors) (triangles)   (patch files)
+//! ```
+//!
+//! * `patch/` — what a patch is: [`beztri`] (triangular Bézier patches of any degree,
+//!   [`BezierTriangle`]), the patch abstraction [`patch`] (any scheme evaluated with exact
+//!   second derivatives), [`side_vertex`] (Nielson's side-vertex form);
+//! * `construct/` — the constructions schemes are made of: [`shirman_sequin`] (the modified
+//!   Shirman–Séquin split-domain macro-patch, G1 by construction; derivation in its docs) and
+//!   [`fallback`] (the C0 macro-patch of a face a scheme cannot fit);
+//! * [`scheme`] — surface schemes as a plug-in family ([`Scheme`], [`scheme::REGISTRY`]),
+//!   one file a scheme, its parameters declared once;
+//! * `fit/` — a whole mesh: [`fit`](mod@fit) (one curve per edge, shared; one macro-patch per
+//!   face), [`stream`] (measured and written a window of faces at a time, without holding the
+//!   nets), [`fairing`] (β and c chosen per triangle by thin-plate or membrane energy);
+//! * `measure/` — [`g1`] (the testbed's `G1`: normal continuity and interpolation),
+//!   [`patch_g1`] (the same for patches with no mesh, boundaries matched within a tolerance),
+//!   [`metrics`] (errors against the true surface), [`interior`] (Section 4's corner
+//!   measures), [`curve_stats`] (boundary-curve statistics);
+//! * `tessellate/` — [`tessellate`](mod@tessellate) (the testbed's `Tess`: patches to one
+//!   welded triangle mesh with position, normal, Gaussian and mean curvature),
+//!   [`tessellate_fit`](mod@tessellate_fit) (a fitted mesh, welded by topology, in parallel),
+//!   [`weld`] (the weld by position within a tolerance);
+//! * `io/` — [`patch_io`] (patches as JSON Lines or the compact binary `.bzp`);
 //! * [`limits`] — memory estimates and the limit checked before large allocations.
 //!
 //! Conventions (docs/conventions.md): normal curvature `κn(d) = dᵀ S d` is positive where the surface
@@ -35,25 +42,21 @@
 // `surface::Mesh`, `surface::repair` and `surface::frame` keep naming the same items.
 pub use ::mesh::{analytic, datasets, frame, mesh, repair, testbed_format, vertex};
 
-pub mod beztri;
-pub mod curve_stats;
-pub mod fairing;
-pub mod fallback;
+mod construct;
 pub mod fit;
-pub mod g1;
-pub mod interior;
+mod io;
 pub mod limits;
-pub mod metrics;
+mod measure;
 pub mod patch;
-pub mod patch_g1;
-pub mod patch_io;
 pub mod scheme;
-pub mod shirman_sequin;
-pub mod side_vertex;
-pub mod stream;
 pub mod tessellate;
-pub mod tessellate_fit;
-pub mod weld;
+
+pub use construct::{fallback, shirman_sequin};
+pub use fit::{fairing, stream};
+pub use io::patch_io;
+pub use measure::{curve_stats, g1, interior, metrics, patch_g1};
+pub use patch::{beztri, side_vertex};
+pub use tessellate::{tessellate_fit, weld};
 
 pub use ::mesh::datasets::{
     dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,

@@ -29,6 +29,9 @@
 //! triangle (or `+z` if that has no area either) and zero curvature, counted the same way:
 //! one bad patch never stops a tessellation.
 
+pub mod tessellate_fit;
+pub mod weld;
+
 use std::collections::HashMap;
 
 use curves::VertexData;

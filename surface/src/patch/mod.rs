@@ -25,6 +25,9 @@
 //! tests of its derivatives), a static instance, and the scheme that builds its data
 //! ([`crate::scheme::Scheme`] with a [`Layout`] whose `form` is `Form::Sampled(&INSTANCE)`).
 
+pub mod beztri;
+pub mod side_vertex;
+
 use nalgebra::{Point3, Vector3};
 
 use crate::beztri::SampleWeights;

@@ -23,6 +23,9 @@
 //! Only a bad parameter (β or c not positive and finite) and a method needing curvature the
 //! mesh lacks stop the whole fit: those are the caller's settings, not the data.
 
+pub mod fairing;
+pub mod stream;
+
 use curves::{BoundaryProblem, CubicBez3, CurveMethod, EdgeError};
 use rayon::prelude::*;
 

@@ -1,0 +1,5 @@
+//! The constructions the schemes are made of: the modified Shirman–Séquin macro-patch and the
+//! C0 fallback patch of a face a scheme cannot fit.
+
+pub mod fallback;
+pub mod shirman_sequin;

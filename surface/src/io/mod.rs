@@ -1,0 +1,3 @@
+//! Patch files: JSON Lines and the compact binary `.bzp`.
+
+pub mod patch_io;

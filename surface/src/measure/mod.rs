@@ -1,0 +1,8 @@
+//! Measures of a fit: G1 across patch boundaries (of a fitted mesh, or of bare patches),
+//! errors against the true surface, Section 4's corner measures, boundary-curve statistics.
+
+pub mod curve_stats;
+pub mod g1;
+pub mod interior;
+pub mod metrics;
+pub mod patch_g1;
