@@ -390,7 +390,7 @@ fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), 
         summary.fallbacks.len()
     );
     let mut rows = Vec::new();
-    for method in crate::ring::METHODS {
+    for method in crate::ring::methods() {
         let m = method_by_name(method, &MethodOptions::default()).map_err(ExperimentError::from)?;
         for (label, mesh) in [("exact", &data.mesh), ("estimated", &estimated)] {
             let subject = || format!("ring/{method} ({label} data)");

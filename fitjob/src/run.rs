@@ -30,6 +30,8 @@ pub struct Kept {
     pub fit: Option<Fit>,
     /// The tessellation (in world coordinates), when one was made.
     pub tessellation: Option<Tessellation>,
+    /// The whole G1 measurement (with where its maxima are), when it was made.
+    pub g1: Option<G1Report>,
 }
 
 /// A finished job: its report, and what [`FitOptions::keep`] asked to keep.
@@ -425,6 +427,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             frame: Some(frame),
             fit: Some(fitted),
             tessellation: kept_tessellation,
+            g1: (stream || options.measure_g1).then_some(g1),
         }
     } else {
         Kept::default()

@@ -29,11 +29,13 @@ use crate::curve_args::{CurveOptions, InteriorOption};
 use crate::error::ExperimentError;
 use crate::output::{pretty_json, write_result, Staged};
 
-/// The constructions the study compares, in the order of the seeds' Figure 5: a deliberate
-/// choice, not every registered construction (Figure 2's rule and the findings name `chord` and
-/// `dbhs`, and the pictures have one column per surface). `estimation` rebuilds the study with
-/// the same ones.
-pub const METHODS: [&str; 3] = ["chord", "dbhs", "optimized"];
+/// The constructions the study compares: every registered one, in registry order
+/// (`curves::REGISTRY`: `chord`, `dbhs`, `optimized` — the order of the seeds' Figure 5); a
+/// construction added to the registry joins the study, its tables and its pictures (one column
+/// a surface). `estimation` rebuilds the study with the same ones.
+pub fn methods() -> impl Iterator<Item = &'static str> {
+    curves::REGISTRY.iter().map(|e| e.name)
+}
 
 /// Options of the `ring` experiment.
 #[derive(clap::Args, Debug)]
@@ -51,7 +53,7 @@ pub struct RingArgs {
     /// The interior parameters of the fitted surfaces.
     #[command(flatten)]
     interior: InteriorOption,
-    /// The surface scheme of the fitted surfaces (each with every construction of [`METHODS`]
+    /// The surface scheme of the fitted surfaces (each with every construction of [`methods`]
     /// where it takes curves).
     #[command(flatten)]
     scheme: fitjob::cli::SchemeArgs<fitjob::cli::PatchesOnly>,
@@ -98,14 +100,12 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     stage("data", t);
 
     // Fits.
-    let scheme = surface::scheme_by_name(&args.scheme.scheme, &args.scheme.options)?;
     let fits = surfaces::fit_methods(
-        mesh,
-        scheme.as_ref(),
+        args.resolution,
+        &args.scheme,
         &problems,
         &args.curve.method_options(),
         args.interior.choice,
-        args.curve.solver,
     )?;
     stage("fit_and_g1", t_all);
 

@@ -3,20 +3,16 @@
 //! study's curve constructions (with its G1 defect and boundary-curve measures), each
 //! tessellated and compared with the torus; and the view of them the renderer takes.
 
-use std::time::Instant;
-
-use curves::{method_by_name, BoundaryProblem, MethodOptions};
+use curves::{BoundaryProblem, MethodOptions};
 use surface::analytic::torus_point;
 use surface::curve_stats::CurveStats;
 use surface::fairing::InteriorChoice;
 use surface::{
-    compare_with_truth, measure_g1, tessellate, AnalyticSurface, BezierTriangle, Fit, G1Report,
-    Mesh, SurfaceErrors, Tessellation,
+    compare_with_truth, tessellate, AnalyticSurface, BezierTriangle, Fit, G1Report, Mesh,
+    SurfaceErrors, Tessellation,
 };
 
 use crate::error::ExperimentError;
-
-use super::METHODS;
 
 /// Grid of the "true ring" picture: fine enough that smooth shading shows no facets.
 const TRUE_GRID: (usize, usize) = (96, 48);
@@ -33,7 +29,7 @@ pub(super) struct Surface {
 
 /// The surface fitted with one curve construction, and its measures.
 pub(super) struct FittedMethod {
-    /// The construction's name ([`METHODS`]).
+    /// The construction's name (`curves::REGISTRY`).
     pub(super) name: &'static str,
     /// The fit (nets, per-edge α).
     pub(super) fit: Fit,
@@ -108,35 +104,51 @@ fn flat_triangles(mesh: &Mesh, s: usize) -> Result<Tessellation, ExperimentError
     })
 }
 
-/// The mesh fitted with each of [`METHODS`] (interior parameters as `interior` chooses them,
-/// fairing by `solver`), measured.
+/// The ring at `resolution` fitted with every registered curve construction
+/// (`curves::REGISTRY`) by the fit job (`fitjob::run`, the fit and G1 every front end gets),
+/// interior parameters as `interior` chooses them (`--interior`, the solver of `options`).
 pub(super) fn fit_methods(
-    mesh: &Mesh,
-    scheme: &dyn surface::Scheme,
+    resolution: usize,
+    scheme: &fitjob::cli::SchemeArgs<fitjob::cli::PatchesOnly>,
     problems: &[BoundaryProblem],
     options: &MethodOptions,
     interior: InteriorChoice,
-    solver: solver::SolverKind,
 ) -> Result<Vec<FittedMethod>, ExperimentError> {
     let mut fits = Vec::new();
-    for name in METHODS {
-        let t = Instant::now();
-        let m = method_by_name(name, options).map_err(ExperimentError::from)?;
-        let fit_error = |source| ExperimentError::Fit {
-            subject: format!("ring/{name}"),
-            source,
+    for entry in curves::REGISTRY {
+        let name = entry.name;
+        let outcome = fitjob::run(
+            fitjob::FitOptions {
+                input: fitjob::InputOptions {
+                    source: fitjob::Source::DataSet {
+                        name: "ring".into(),
+                        resolution: Some(resolution),
+                    },
+                    ..fitjob::InputOptions::default()
+                },
+                scheme: scheme.scheme.clone(),
+                scheme_options: scheme.options.clone(),
+                curves: name.into(),
+                method_options: *options,
+                interior,
+                keep: true,
+                ..fitjob::FitOptions::default()
+            },
+            &mut |_| {},
+        )?;
+        let (Some(f), Some(g1)) = (outcome.kept.fit, outcome.kept.g1) else {
+            return Err(ExperimentError::from(fitjob::JobError::Write {
+                path: "ring".into(),
+                source: std::io::Error::other("the fit job kept no fit"),
+            }));
         };
-        let (f, _) = surface::fairing::fit_surface(mesh, scheme, m.as_ref(), interior, solver)
-            .map_err(fit_error)?;
-        let fit_time = t.elapsed().as_secs_f64();
-        let g1 = measure_g1(mesh, &f, 9);
         let cs = surface::curve_stats::curve_stats(problems, &f);
         fits.push(FittedMethod {
             name,
             fit: f,
             g1,
             curves: cs,
-            fit_time_seconds: fit_time,
+            fit_time_seconds: outcome.report.time.fit,
         });
     }
     Ok(fits)
