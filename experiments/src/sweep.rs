@@ -16,10 +16,10 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use curves::{method_by_name, MethodOptions};
+use curves::MethodOptions;
 use serde_json::{json, Value};
 use solver::SolverKind;
-use surface::{compare_with_truth, measure_g1};
+use surface::compare_with_truth;
 
 use crate::curve_args::InteriorOption;
 use crate::error::ExperimentError;
@@ -189,7 +189,7 @@ pub struct MergeArgs {
 fn run_task(
     t: &Task,
     interior: surface::fairing::InteriorChoice,
-    scheme: &dyn surface::Scheme,
+    scheme: &fitjob::cli::SchemeArgs,
 ) -> Result<Value, ExperimentError> {
     let start = Instant::now();
     let data = surface::dataset_by_name(t.dataset, None).map_err(ExperimentError::from)?;
@@ -198,28 +198,39 @@ fn run_task(
         solver: t.solver.unwrap_or(SolverKind::ExactPenalty),
         ..MethodOptions::default()
     };
-    let m = method_by_name(t.curves, &options).map_err(ExperimentError::from)?;
     let problems = surface::curve_stats::edge_problems(mesh).map_err(|source| {
         ExperimentError::EdgeProblems {
             subject: t.id(),
             source,
         }
     })?;
-    let fit_error = |source| ExperimentError::Fit {
-        subject: t.id(),
-        source,
+    // The fit and its G1 by the fit job, as every front end gets them.
+    let outcome = fitjob::run(
+        fitjob::FitOptions {
+            input: fitjob::InputOptions {
+                source: fitjob::Source::DataSet {
+                    name: t.dataset.into(),
+                    resolution: None,
+                },
+                ..fitjob::InputOptions::default()
+            },
+            scheme: scheme.scheme.clone(),
+            scheme_options: scheme.options.clone(),
+            curves: t.curves.into(),
+            method_options: options,
+            interior,
+            keep: true,
+            ..fitjob::FitOptions::default()
+        },
+        &mut |_| {},
+    )?;
+    let fit_time = outcome.report.time.fit;
+    let (Some(f), Some(g1)) = (outcome.kept.fit, outcome.kept.g1) else {
+        return Err(ExperimentError::from(fitjob::JobError::Write {
+            path: t.id().into(),
+            source: std::io::Error::other("the fit job kept no fit"),
+        }));
     };
-    let t_fit = Instant::now();
-    let (f, _) = surface::fairing::fit_surface(
-        mesh,
-        scheme,
-        m.as_ref(),
-        interior,
-        t.solver.unwrap_or(SolverKind::ExactPenalty),
-    )
-    .map_err(fit_error)?;
-    let fit_time = t_fit.elapsed().as_secs_f64();
-    let g1 = measure_g1(mesh, &f, 9);
     let cs = surface::curve_stats::curve_stats(&problems, &f);
     let tess = surface::tessellate_fit(mesh, &f, SAMPLING).map_err(|source| {
         ExperimentError::Tessellate {
@@ -251,14 +262,10 @@ fn run_task(
 /// Runs the sweep (or one shard of it).
 pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     let subdivision = args.scheme.is_subdivision();
-    let scheme = if subdivision {
-        None
-    } else {
-        Some(surface::scheme_by_name(
-            &args.scheme.scheme,
-            &args.scheme.options,
-        )?)
-    };
+    // A bad scheme or parameter is refused before any task runs.
+    if !subdivision {
+        surface::scheme_by_name(&args.scheme.scheme, &args.scheme.options)?;
+    }
     let all = tasks_for(&args.scheme.scheme);
     let mine: Vec<(usize, &Task)> = all
         .iter()
@@ -271,9 +278,10 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         if tty {
             say_inline!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
         }
-        let mut v = match &scheme {
-            Some(scheme) => run_task(t, args.interior.choice, scheme.as_ref())?,
-            None => run_subdivision_task(t, &args.scheme.scheme)?,
+        let mut v = if subdivision {
+            run_subdivision_task(t, &args.scheme.scheme)?
+        } else {
+            run_task(t, args.interior.choice, &args.scheme)?
         };
         v["interior"] = json!(args.interior.choice.to_string());
         v["index"] = json!(k);
