@@ -34,12 +34,12 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Instant;
 
-use curves::{method_by_name, MethodOptions};
+use curves::MethodOptions;
 use estimate::{vertex_normals, Estimator, NormalWeighting, ESTIMATORS};
 use nalgebra::Vector3;
 use render::{LineChart, Series};
 use serde_json::{json, Map, Value};
-use surface::{compare_with_truth, fit, measure_g1, AnalyticSurface, InteriorParameters, Mesh};
+use surface::{compare_with_truth, AnalyticSurface, Mesh};
 
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, write_result, Staged};
@@ -391,16 +391,16 @@ fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), 
     );
     let mut rows = Vec::new();
     for method in crate::ring::methods() {
-        let m = method_by_name(method, &MethodOptions::default()).map_err(ExperimentError::from)?;
         for (label, mesh) in [("exact", &data.mesh), ("estimated", &estimated)] {
             let subject = || format!("ring/{method} ({label} data)");
-            let f =
-                fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).map_err(|source| {
-                    ExperimentError::Fit {
-                        subject: subject(),
-                        source,
-                    }
-                })?;
+            let (f, g1, _) = crate::input::fit_prepared(
+                &subject(),
+                mesh,
+                surface::Frame::identity(),
+                surface::DEFAULT_SCHEME,
+                method,
+                MethodOptions::default(),
+            )?;
             let tess = surface::tessellate_fit(mesh, &f, 4).map_err(|source| {
                 ExperimentError::Tessellate {
                     subject: subject(),
@@ -408,7 +408,6 @@ fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), 
                 }
             })?;
             let errs = compare_with_truth(&tess, truth);
-            let g1 = measure_g1(mesh, &f, 9);
             let _ = writeln!(
                 md,
                 "| {method} | {label} | {:.2e} | {:.2} | {:.3} | {:.3} | {:.1e} |",

@@ -47,3 +47,41 @@ impl InputArgs {
 pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
     Ok(fitjob::input::load(&args.job_input())?)
 }
+
+/// A study's fit of an already prepared mesh (`mesh` in its working `frame`) with `scheme` on
+/// `curves` (with `method_options`), through the fit job (`fitjob::run` with [`fitjob::Source::Prepared`], the fit and
+/// G1 every front end gets): the fit, its whole G1 measurement and the fit's time in seconds.
+pub fn fit_prepared(
+    label: &str,
+    mesh: &surface::Mesh,
+    frame: surface::Frame,
+    scheme: &str,
+    curves: &str,
+    method_options: curves::MethodOptions,
+) -> Result<(surface::Fit, surface::G1Report, f64), ExperimentError> {
+    let outcome = fitjob::run(
+        fitjob::FitOptions {
+            input: fitjob::InputOptions {
+                source: fitjob::Source::Prepared {
+                    label: label.to_string(),
+                    mesh: Box::new(mesh.clone()),
+                    frame,
+                },
+                ..fitjob::InputOptions::default()
+            },
+            scheme: scheme.to_string(),
+            curves: curves.to_string(),
+            method_options,
+            keep: true,
+            ..fitjob::FitOptions::default()
+        },
+        &mut |_| {},
+    )?;
+    match (outcome.kept.fit, outcome.kept.g1) {
+        (Some(fit), Some(g1)) => Ok((fit, g1, outcome.report.time.fit)),
+        _ => Err(ExperimentError::from(fitjob::JobError::Write {
+            path: label.into(),
+            source: std::io::Error::other("the fit job kept no fit"),
+        })),
+    }
+}

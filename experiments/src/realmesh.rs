@@ -12,14 +12,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use curves::{method_by_name, MethodOptions};
 use nalgebra::{Point3, Vector3};
 use render::colors as colormap;
 use render::{
     render, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions, Tile,
 };
 use serde_json::{json, Map, Value};
-use surface::{fit, measure_g1, InteriorParameters};
 
 use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
@@ -115,18 +113,14 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             .unwrap_or_default();
         let mut per_method = Map::new();
         for method in curves::REGISTRY.iter().map(|e| e.name) {
-            let m =
-                method_by_name(method, &MethodOptions::default()).map_err(ExperimentError::from)?;
-            let t = Instant::now();
-            let f =
-                fit(mesh, m.as_ref(), &|_| InteriorParameters::default()).map_err(|source| {
-                    ExperimentError::Fit {
-                        subject: format!("{} ({method} curves)", path.display()),
-                        source,
-                    }
-                })?;
-            let t_fit = t.elapsed().as_secs_f64();
-            let g1 = measure_g1(mesh, &f, 9);
+            let (f, g1, t_fit) = crate::input::fit_prepared(
+                &format!("{} ({method} curves)", path.display()),
+                mesh,
+                loaded.frame,
+                surface::DEFAULT_SCHEME,
+                method,
+                curves::MethodOptions::default(),
+            )?;
             let finite = f.points.iter().all(|q| q.iter().all(|c| c.is_finite()));
             let _ = writeln!(
                 md,

@@ -28,8 +28,8 @@ use render::{
 use serde_json::{json, Value};
 use surface::scheme::REGISTRY;
 use surface::{
-    compare_with_truth, dataset_by_name, fit_scheme, measure_g1, scheme_by_name, Continuity,
-    SchemeOptions, Tessellation, DATASET_NAMES,
+    compare_with_truth, dataset_by_name, scheme_by_name, Continuity, SchemeOptions, Tessellation,
+    DATASET_NAMES,
 };
 
 use crate::curve_args::CurveOptions;
@@ -165,7 +165,8 @@ fn fmt_e(x: f64) -> String {
 pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
     let start = Instant::now();
     crate::limits::check_usize("density", args.density, &crate::limits::SAMPLING_RANGE)?;
-    let method = method_by_name(&args.curves, &args.curve.method_options())?;
+    // An unknown construction is refused before any work.
+    method_by_name(&args.curves, &args.curve.method_options())?;
     let staged = Staged::begin(&args.out)?;
     let out = staged.path().to_path_buf();
     let mut records = Vec::new();
@@ -192,16 +193,16 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
         let mut tessellations = Vec::new();
         for entry in REGISTRY {
             let scheme = scheme_by_name(entry.name, &SchemeOptions::default())?;
-            let t0 = Instant::now();
             let subject = format!("{name}/{}", entry.name);
-            let f = fit_scheme(mesh, scheme.as_ref(), method.as_ref()).map_err(|source| {
-                ExperimentError::Fit {
-                    subject: subject.clone(),
-                    source,
-                }
-            })?;
-            let fit_ms = t0.elapsed().as_secs_f64() * 1e3;
-            let g1 = measure_g1(mesh, &f, 9);
+            let (f, g1, fit_seconds) = crate::input::fit_prepared(
+                &subject,
+                mesh,
+                surface::Frame::identity(),
+                entry.name,
+                &args.curves,
+                args.curve.method_options(),
+            )?;
+            let fit_ms = fit_seconds * 1e3;
             let s = segments(args.density, f.layout.patches_per_face());
             let tess = surface::tessellate_fit(mesh, &f, s)
                 .map_err(|source| ExperimentError::Tessellate { subject, source })?;

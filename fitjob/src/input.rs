@@ -29,6 +29,18 @@ pub enum Source {
         /// Its resolution (its default when absent).
         resolution: Option<usize>,
     },
+    /// A mesh already repaired and complete (every vertex with its normal and, for curve
+    /// methods that need it, its shape tensor), in its working frame: fitted as it is, with no
+    /// repair and no estimation (a study fitting one loaded mesh several ways; the job gives
+    /// the mesh back in [`crate::Kept::mesh`] when asked to keep it).
+    Prepared {
+        /// What to call it in messages and reports.
+        label: String,
+        /// The mesh.
+        mesh: Box<Mesh>,
+        /// The way back to the input's coordinates.
+        frame: Frame,
+    },
     /// A raw mesh already in memory (positions, polygons, optional normals and shape tensors),
     /// treated as a file's content: repaired and completed.
     Raw {
@@ -45,6 +57,7 @@ impl Source {
         match self {
             Source::Data { data, .. } => data,
             Source::DataSet { name, .. } => name,
+            Source::Prepared { label, .. } => label,
             Source::Raw { label, .. } => label,
         }
     }
@@ -139,7 +152,22 @@ pub fn load(options: &InputOptions) -> Result<Loaded, JobError> {
             }
         }
         Source::DataSet { name, resolution } => dataset(name, *resolution),
+        Source::Prepared { mesh, frame, .. } => Ok(prepared((**mesh).clone(), *frame)),
         Source::Raw { label, raw } => prepare((**raw).clone(), options, PathBuf::from(label), 0.0),
+    }
+}
+
+/// A mesh taken as it is.
+fn prepared(mesh: Mesh, frame: Frame) -> Loaded {
+    Loaded {
+        mesh,
+        frame,
+        notes: Vec::new(),
+        repairs: None,
+        face_source: None,
+        vertex_source: None,
+        peak_after_read: None,
+        time: InputTime::default(),
     }
 }
 
@@ -157,6 +185,7 @@ pub fn load_owned(options: InputOptions) -> Result<Loaded, JobError> {
             };
             prepare(*raw, &rest, PathBuf::from(label), 0.0)
         }
+        Source::Prepared { mesh, frame, .. } => Ok(prepared(*mesh, frame)),
         source => load(&InputOptions { source, ..options }),
     }
 }

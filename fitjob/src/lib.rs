@@ -1,4 +1,5 @@
-//! The end-to-end fit as one library job: a data set, a mesh file or a raw mesh in memory is
+//! The end-to-end fit as one library job: a data set, a mesh file, a raw mesh in memory or a
+//! prepared mesh is
 //! read, repaired, completed by an estimator, fitted with a surface scheme on boundary curves,
 //! measured (G1 and interpolation), optionally tessellated, and written, with the memory
 //! estimates checked before the large allocations and every output path checked before any

@@ -43,6 +43,10 @@ pub fn run(options: &FitOptions) -> Result<FitReport, JobError> {
             subdiv::PolyMesh::from_triangles(positions, d.mesh.faces()).map_err(subject)?
         }
         (None, Source::Raw { raw, .. }) => subdiv::PolyMesh::from_raw(raw).map_err(subject)?,
+        (None, Source::Prepared { mesh, .. }) => {
+            let positions = mesh.vertices().iter().map(|v| v.data.p).collect();
+            subdiv::PolyMesh::from_triangles(positions, mesh.faces()).map_err(subject)?
+        }
         (None, _) => {
             let raw = meshio::read_file(Path::new(&label)).map_err(JobError::MeshIo)?;
             subdiv::PolyMesh::from_raw(&raw).map_err(subject)?
