@@ -41,7 +41,7 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     loaded.frame.mesh_to_world(&mut world);
     let mesh = &world;
     let mut raw = surface::repair::mesh_to_raw(mesh, true);
-    if format.name() == "ply" && mesh.vertices().iter().all(|v| v.curvature_known) {
+    if format.writes_properties() && mesh.vertices().iter().all(|v| v.curvature_known) {
         let (k, h): (Vec<f64>, Vec<f64>) = mesh
             .vertices()
             .iter()

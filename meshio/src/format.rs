@@ -66,6 +66,12 @@ pub trait MeshFormat: Sync {
         true
     }
 
+    /// True if its writer keeps [`RawMesh::properties`] (named per-vertex scalars such as
+    /// `gaussian` and `mean`), so that a caller adds them only where they are written.
+    fn writes_properties(&self) -> bool {
+        false
+    }
+
     /// Parses a whole file.
     fn read(&self, bytes: &[u8]) -> Result<RawMesh, ReadError>;
 

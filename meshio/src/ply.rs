@@ -58,6 +58,10 @@ impl MeshFormat for Ply {
         bytes.starts_with(b"ply\n") || bytes.starts_with(b"ply\r\n")
     }
 
+    fn writes_properties(&self) -> bool {
+        true
+    }
+
     fn read(&self, bytes: &[u8]) -> Result<RawMesh, ReadError> {
         read_ply(bytes)
     }
