@@ -152,7 +152,47 @@ impl PatchFormat {
     }
 }
 
-/// [`PatchFormat::format`] for JSON Lines.
+/// Patch number `patch` of a fit with `layout` (its net `net`, each point mapped by
+/// `to_world`) as the record every patch writer of the workbench emits: `type`
+/// (`BezierTriangle`, or `SampledPatch` with its `form`), `degree`, `points`, `face`,
+/// `subpatch`, in that order. This is the record's one definition: the JSON Lines writer
+/// ([`PatchFormat::JsonLines`]) formats the same fields without building it (for speed; a test
+/// checks the bytes are those of this record serialized), and the pipeline's `fit` writes it
+/// in any of its stream formats.
+pub fn patch_record(
+    layout: &Layout,
+    patch: usize,
+    net: &[Point3<f64>],
+    to_world: &(dyn Fn(&Point3<f64>) -> Point3<f64> + Sync),
+) -> serde_json::Map<String, serde_json::Value> {
+    use serde_json::Value;
+    let per_face = layout.patches_per_face().max(1);
+    let mut m = serde_json::Map::new();
+    match layout.form {
+        Form::Bezier => {
+            m.insert("type".into(), Value::from("BezierTriangle"));
+            m.insert("degree".into(), Value::from(layout.degree));
+        }
+        Form::Sampled(f) => {
+            m.insert("type".into(), Value::from("SampledPatch"));
+            m.insert("form".into(), Value::from(f.name()));
+        }
+    }
+    let points = net
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let q = mapped(layout.form, k, p, to_world);
+            Value::Array(vec![q.x.into(), q.y.into(), q.z.into()])
+        })
+        .collect();
+    m.insert("points".into(), Value::Array(points));
+    m.insert("face".into(), Value::from(patch / per_face));
+    m.insert("subpatch".into(), Value::from(patch % per_face));
+    m
+}
+
+/// [`PatchFormat::format`] for JSON Lines: [`patch_record`]'s fields, formatted directly.
 fn format_jsonl(
     layout: &Layout,
     first_patch: usize,
@@ -344,4 +384,42 @@ pub fn read_binary(bytes: &[u8]) -> Result<(usize, usize, Vec<Point3<f64>>), Pat
         })
         .collect();
     Ok((degree, ppf, points))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The JSON Lines writer's bytes are [`patch_record`] serialized, record by record, for a
+    /// Bézier layout (the ring, Shirman–Séquin) and an evaluated one (Nielson's, whose
+    /// normals are directions), through a scaling map to world coordinates.
+    #[test]
+    fn the_json_lines_writer_writes_the_one_patch_record() {
+        let data = mesh::dataset_by_name("ring", None).expect("ring");
+        let method =
+            curves::method_by_name("chord", &curves::MethodOptions::default()).expect("chord");
+        let to_world = |p: &Point3<f64>| Point3::from(p.coords * 2.5) + nalgebra::Vector3::x();
+        for name in ["shirman-sequin", "nielson"] {
+            let scheme = crate::scheme::scheme_by_name(name, &Default::default()).expect(name);
+            let fit =
+                crate::fit::fit_scheme(&data.mesh, scheme.as_ref(), method.as_ref()).expect("fit");
+            let mut fast = Vec::new();
+            write_jsonl(&fit, &to_world, &mut fast).expect("written");
+            let mut generic = Vec::new();
+            for (i, net) in fit.nets().enumerate() {
+                let record = patch_record(&fit.layout, i, net, &to_world);
+                generic.extend_from_slice(
+                    serde_json::to_string(&record)
+                        .expect("serializes")
+                        .as_bytes(),
+                );
+                generic.push(b'\n');
+            }
+            assert_eq!(
+                String::from_utf8_lossy(&fast),
+                String::from_utf8_lossy(&generic),
+                "{name}"
+            );
+        }
+    }
 }
