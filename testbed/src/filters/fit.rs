@@ -67,7 +67,17 @@ pub struct FitArgs {
 
 impl Filter for Fit {
     const NAME: &'static str = "fit";
-    const SUMMARY: &'static str = "A mesh (any format, sniffed; `.m` included) to BezierTriangle records, or with `--sample N` straight to Triangle records";
+    const SUMMARY: &'static str = "\
+        A mesh (any format, sniffed; `.m` included) to BezierTriangle records, or with `--sample \
+        N` straight to Triangle records";
+    const DESCRIPTION: &'static str = "\
+        The mesh (--input, standard input, or --dataset) is read whole, its format sniffed from \
+        the content, repaired and completed by --estimate (the file's normals kept unless \
+        --replace-normals), fitted by --scheme and written back in its own coordinates: one \
+        BezierTriangle per patch with `face`, `subpatch` and `scheme` after the points. A scheme \
+        whose patches are not Bézier nets is always sampled here, as with --sample 8 unless \
+        --sample says otherwise. The output is JSON Lines unless --format says otherwise; \
+        --keep-going has nothing to skip.";
     type Args = FitArgs;
 
     fn run(args: FitArgs, stream: StreamOptions) -> Result<(), FilterError> {
@@ -407,4 +417,15 @@ fn patch_meshes<'a>(
         m.insert("scheme".into(), scheme.clone());
         Some(Value::Object(m))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The help's description names the density an evaluated scheme is sampled at.
+    #[test]
+    fn the_description_names_the_sampled_density() {
+        assert!(Fit::DESCRIPTION.contains(&format!("--sample {SAMPLED_DENSITY} ")));
+    }
 }

@@ -53,6 +53,13 @@ impl Filter for G1 {
     const NAME: &'static str = "g1";
     const SUMMARY: &'static str =
         "Passes records through; measures normal angles along shared patch boundaries";
+    const DESCRIPTION: &'static str = "\
+        Every record is written unchanged. The BezierTriangles are kept aside and measured at \
+        the end of the stream: two patch edges are one boundary when their control points agree \
+        within a tolerance relative to the patches' size (never bit for bit), and the angle \
+        between the two normals is sampled along it. The report goes to standard error: the \
+        largest angle and where, border and mismatched edges (not even C0), boundaries with no \
+        defined normal.";
     type Args = G1Args;
 
     fn run(args: G1Args, stream: StreamOptions) -> Result<(), FilterError> {

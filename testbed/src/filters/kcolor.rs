@@ -57,7 +57,15 @@ impl Colouring for KColor {
 
 impl Filter for KColor {
     const NAME: &'static str = "kcolor";
-    const SUMMARY: &'static str = "Diverging colours of the curvature (default range ±the 95% quantile of |kg| over the first --block triangles)";
+    const SUMMARY: &'static str = "\
+        Diverging colours of the curvature (default range ±the 95% quantile of |kg| over the \
+        first --block triangles)";
+    const DESCRIPTION: &'static str = "\
+        The curvature must be in the records (tess --kg, --km). Without --range the first \
+        --block triangles are held, the range is taken from them and printed on standard error, \
+        and the rest of the stream is coloured as it comes with the same range. Sets `color` in \
+        each vertex of a Triangle and in the `color` column of a TriangleMesh, in place when \
+        present, appended otherwise; records of other types keep their place.";
     type Args = KColorArgs;
 
     fn run(args: KColorArgs, stream: StreamOptions) -> Result<(), FilterError> {

@@ -35,6 +35,10 @@ impl Colouring for Mat0 {
 impl Filter for Mat0 {
     const NAME: &'static str = "mat0";
     const SUMMARY: &'static str = "The uniform material colour at every vertex";
+    const DESCRIPTION: &'static str = "\
+        Sets `color` in each vertex of a Triangle and in the `color` column of a TriangleMesh, \
+        in place when present, appended otherwise. Records of other types pass through \
+        unchanged.";
     type Args = Mat0Args;
 
     fn run(_: Mat0Args, stream: StreamOptions) -> Result<(), FilterError> {

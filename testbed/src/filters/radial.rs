@@ -32,6 +32,12 @@ impl Filter for Radial {
     const NAME: &'static str = "radial";
     const SUMMARY: &'static str =
         "Sequential colours of the distance to the true surface (and `dist` at each vertex)";
+    const DESCRIPTION: &'static str = "\
+        The distance is signed (`dist`), the colour follows its magnitude. Without --range the \
+        first --block triangles are held, the range is taken from them and printed on standard \
+        error, and the rest of the stream is coloured as it comes with the same range. Sets \
+        `color` and `dist` in each vertex of a Triangle and as columns of a TriangleMesh, in \
+        place when present, appended otherwise; records of other types keep their place.";
     type Args = RadialArgs;
 
     fn run(args: RadialArgs, stream: StreamOptions) -> Result<(), FilterError> {

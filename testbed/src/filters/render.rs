@@ -12,6 +12,11 @@ pub struct Render;
 impl Filter for Render {
     const NAME: &'static str = "render";
     const SUMMARY: &'static str = "A shaded picture of the triangles, PNG";
+    const DESCRIPTION: &'static str = "\
+        The triangles are drawn as they come, unwelded (a Triangle's own three vertices, a \
+        TriangleMesh's shared as in the record), with their normals (the geometric normal where \
+        a vertex has none) and colours (the uniform material where a vertex has none); the \
+        camera frames their bounding box from --view. Other records are ignored.";
     type Args = PictureArgs;
 
     fn run(args: PictureArgs, stream: StreamOptions) -> Result<(), FilterError> {

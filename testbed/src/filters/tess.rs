@@ -34,7 +34,15 @@ pub struct TessArgs {
 
 impl Filter for Tess {
     const NAME: &'static str = "tess";
-    const SUMMARY: &'static str = "BezierTriangles to Triangles (s² per patch) or, with --mesh, one TriangleMesh per patch; a patch's other fields go to its records";
+    const SUMMARY: &'static str = "\
+        BezierTriangles to Triangles (s² per patch) or, with --mesh, one TriangleMesh per patch; \
+        a patch's other fields go to its records";
+    const DESCRIPTION: &'static str = "\
+        Each triangle (or TriangleMesh) gets its vertices first, then every field of its patch \
+        but `type`, `degree` and `points`, in the patch's order: `face`, `subpatch`, `scheme` \
+        and anything added upstream. Records of other types pass through unchanged. Each vertex \
+        carries its own patch's normal (and curvature); one patch is held at a time, and an -s \
+        whose patch would not fit in memory is refused before it is tessellated.";
     type Args = TessArgs;
 
     fn run(args: TessArgs, stream: StreamOptions) -> Result<(), FilterError> {

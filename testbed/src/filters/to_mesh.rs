@@ -24,7 +24,15 @@ pub struct ToMeshArgs {
 
 impl Filter for ToMesh {
     const NAME: &'static str = "to-mesh";
-    const SUMMARY: &'static str = "The triangles as a mesh file (welded by position within a tolerance: the library's weld), format by extension";
+    const SUMMARY: &'static str = "\
+        The triangles as a mesh file (welded by position within a tolerance: the library's \
+        weld), format by extension";
+    const DESCRIPTION: &'static str = "\
+        Reads every Triangle and every triangle of a TriangleMesh; other records are ignored. \
+        Corners closer than a tolerance relative to the triangles' size are one vertex (the weld \
+        surface::tessellate uses, so patches tessellated one by one close up); triangles the \
+        weld collapses are dropped and counted on standard error. Normals and colours are \
+        written when every vertex has them. The file is written atomically.";
     type Args = ToMeshArgs;
 
     fn run(args: ToMeshArgs, stream: StreamOptions) -> Result<(), FilterError> {

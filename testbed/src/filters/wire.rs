@@ -13,6 +13,9 @@ impl Filter for Wire {
     const NAME: &'static str = "wire";
     const SUMMARY: &'static str =
         "A wire-frame picture of the triangles (every edge), PNG: the seed's XRender";
+    const DESCRIPTION: &'static str = "\
+        Every edge of every Triangle and of every triangle of a TriangleMesh is drawn, the \
+        camera framing their bounding box from --view. Other records are ignored.";
     type Args = PictureArgs;
 
     fn run(args: PictureArgs, stream: StreamOptions) -> Result<(), FilterError> {
