@@ -78,6 +78,8 @@ impl Filter for Fit {
         whose patches are not Bézier nets is always sampled here, as with --sample 8 unless \
         --sample says otherwise. The output is JSON Lines unless --format says otherwise; \
         --keep-going has nothing to skip.";
+    const SEED: &'static str =
+        "Fitter0, Shirman–Séquin, … (Piper not recovered); Nielson, a sampling fitter (Herron not recovered)";
     type Args = FitArgs;
 
     fn run(args: FitArgs, stream: StreamOptions) -> Result<(), FilterError> {

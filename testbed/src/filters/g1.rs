@@ -60,6 +60,7 @@ impl Filter for G1 {
         between the two normals is sampled along it. The report goes to standard error: the \
         largest angle and where, border and mismatched edges (not even C0), boundaries with no \
         defined normal.";
+    const SEED: &'static str = "G1";
     type Args = G1Args;
 
     fn run(args: G1Args, stream: StreamOptions) -> Result<(), FilterError> {

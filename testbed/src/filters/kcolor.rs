@@ -66,6 +66,7 @@ impl Filter for KColor {
         and the rest of the stream is coloured as it comes with the same range. Sets `color` in \
         each vertex of a Triangle and in the `color` column of a TriangleMesh, in place when \
         present, appended otherwise; records of other types keep their place.";
+    const SEED: &'static str = "KColor";
     type Args = KColorArgs;
 
     fn run(args: KColorArgs, stream: StreamOptions) -> Result<(), FilterError> {

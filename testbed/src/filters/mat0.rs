@@ -39,6 +39,7 @@ impl Filter for Mat0 {
         Sets `color` in each vertex of a Triangle and in the `color` column of a TriangleMesh, \
         in place when present, appended otherwise. Records of other types pass through \
         unchanged.";
+    const SEED: &'static str = "Mat0";
     type Args = Mat0Args;
 
     fn run(_: Mat0Args, stream: StreamOptions) -> Result<(), FilterError> {

@@ -1,7 +1,8 @@
 //! The pipeline's filters, one module a filter, and their registry ([`FILTERS`]): the seed's
 //! Fitter0/Nielson ([`fit`](mod@fit)), Tess, G1, Mat0, KColor, Radial, and its ends Render,
 //! XRender and a mesh file. `testbed` builds its command line from the registry, in its
-//! order.
+//! order, and `testbed/README.md`'s table of filters is rendered from it
+//! ([`markdown_table`], checked by the tests).
 //!
 //! **A filter** is a unit struct implementing [`Filter`]: its name, a one-line summary (the
 //! `testbed --help` line and the README's), optionally a longer description (`testbed NAME
@@ -61,6 +62,9 @@ pub trait Filter {
     const SUMMARY: &'static str;
     /// More about it, after the summary in `testbed NAME --help` (empty: the summary alone).
     const DESCRIPTION: &'static str = "";
+    /// The module(s) of the seed testbed (Lounsbery et al. 1990) the filter stands for, for
+    /// the README's table (empty: none).
+    const SEED: &'static str = "";
     /// The filter's own options (not the stream options, which every filter takes).
     type Args: Args + 'static;
     /// Runs the filter with its options over the streams `stream` names.
@@ -79,6 +83,8 @@ pub trait Registered: Sync {
     fn summary(&self) -> &'static str;
     /// [`Filter::DESCRIPTION`] (empty when there is none).
     fn description(&self) -> &'static str;
+    /// [`Filter::SEED`] (empty when there is none).
+    fn seed(&self) -> &'static str;
     /// The subcommand: the filter's options, then the stream options; the summary as its
     /// `about`, with the description as its long help.
     fn command(&self) -> Command;
@@ -98,6 +104,10 @@ impl<F: Filter + Sync + 'static> Registered for F {
 
     fn description(&self) -> &'static str {
         F::DESCRIPTION
+    }
+
+    fn seed(&self) -> &'static str {
+        F::SEED
     }
 
     fn command(&self) -> Command {
@@ -144,4 +154,21 @@ registry! {
 /// The registered filter named `name`.
 pub fn find(name: &str) -> Option<&'static dyn Registered> {
     FILTERS.iter().copied().find(|f| f.name() == name)
+}
+
+/// The README's table of filters: one row a filter, in registry order: its name, its summary
+/// and the seed's module(s) it stands for (`—` for none), as Markdown (`|` escaped).
+pub fn markdown_table() -> String {
+    let cell = |s: &str| s.replace('|', "\\|");
+    let mut table = String::from("| filter | what it does | seed module |\n|---|---|---|\n");
+    for f in FILTERS {
+        let seed = if f.seed().is_empty() { "—" } else { f.seed() };
+        table.push_str(&format!(
+            "| `{}` | {} | {} |\n",
+            f.name(),
+            cell(f.summary()),
+            cell(seed)
+        ));
+    }
+    table
 }

@@ -38,6 +38,7 @@ impl Filter for Radial {
         error, and the rest of the stream is coloured as it comes with the same range. Sets \
         `color` and `dist` in each vertex of a Triangle and as columns of a TriangleMesh, in \
         place when present, appended otherwise; records of other types keep their place.";
+    const SEED: &'static str = "Radial";
     type Args = RadialArgs;
 
     fn run(args: RadialArgs, stream: StreamOptions) -> Result<(), FilterError> {

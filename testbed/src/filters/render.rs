@@ -17,6 +17,7 @@ impl Filter for Render {
         TriangleMesh's shared as in the record), with their normals (the geometric normal where \
         a vertex has none) and colours (the uniform material where a vertex has none); the \
         camera frames their bounding box from --view. Other records are ignored.";
+    const SEED: &'static str = "Sgp | Render";
     type Args = PictureArgs;
 
     fn run(args: PictureArgs, stream: StreamOptions) -> Result<(), FilterError> {

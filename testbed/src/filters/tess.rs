@@ -43,6 +43,7 @@ impl Filter for Tess {
         and anything added upstream. Records of other types pass through unchanged. Each vertex \
         carries its own patch's normal (and curvature); one patch is held at a time, and an -s \
         whose patch would not fit in memory is refused before it is tessellated.";
+    const SEED: &'static str = "Tess";
     type Args = TessArgs;
 
     fn run(args: TessArgs, stream: StreamOptions) -> Result<(), FilterError> {

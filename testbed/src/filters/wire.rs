@@ -16,6 +16,7 @@ impl Filter for Wire {
     const DESCRIPTION: &'static str = "\
         Every edge of every Triangle and of every triangle of a TriangleMesh is drawn, the \
         camera framing their bounding box from --view. Other records are ignored.";
+    const SEED: &'static str = "Sgp | XRender";
     type Args = PictureArgs;
 
     fn run(args: PictureArgs, stream: StreamOptions) -> Result<(), FilterError> {
