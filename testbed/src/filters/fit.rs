@@ -89,9 +89,8 @@ impl Filter for Fit {
                 let (name, bytes) = match &stream.input {
                     Some(p) => (
                         p.clone(),
-                        std::fs::read(p).map_err(|e| {
-                            StreamError::io(format!("reading {}", p.display()), e)
-                        })?,
+                        std::fs::read(p)
+                            .map_err(|e| StreamError::io(format!("reading {}", p.display()), e))?,
                     ),
                     None => {
                         let mut b = Vec::new();

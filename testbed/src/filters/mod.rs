@@ -8,7 +8,8 @@
 //! `testbed --help` line and the README's), optionally a longer description (`testbed NAME
 //! --help`), its own options as one `clap::Args` struct, and how it runs given them and the
 //! options every filter takes ([`StreamOptions`]: `--input`, `--output`, `--format`,
-//! `--keep-going`). Adding a filter is a module here and one line in the registry below.
+//! `--keep-going`). Adding a filter is a module here (and its `pub mod` line) and one line in
+//! the registry, [`FILTERS`].
 //!
 //! **Pass-through.** Every filter writes the records it does not use unchanged and in order,
 //! and keeps the fields it does not use in the records it changes, in order:
@@ -128,28 +129,29 @@ impl<F: Filter + Sync + 'static> Registered for F {
     }
 }
 
-/// Declares the filters' modules and lists them in [`FILTERS`], in the order given.
-macro_rules! registry {
-    ($($module:ident :: $filter:ident),* $(,)?) => {
-        $(pub mod $module;)*
+pub mod fit;
+pub mod g1;
+pub mod kcolor;
+pub mod mat0;
+pub mod radial;
+pub mod render;
+pub mod tess;
+pub mod to_mesh;
+pub mod wire;
 
-        /// Every filter, in the order `testbed --help` and the README list them.
-        pub static FILTERS: &[&dyn Registered] = &[$(&$module::$filter),*];
-    };
-}
-
-// The registry: one line a filter (its module and its `Filter`).
-registry! {
-    fit::Fit,
-    tess::Tess,
-    g1::G1,
-    mat0::Mat0,
-    kcolor::KColor,
-    radial::Radial,
-    render::Render,
-    wire::Wire,
-    to_mesh::ToMesh,
-}
+/// The registry: every filter, one line each, in the order `testbed --help` and the README
+/// list them.
+pub static FILTERS: &[&dyn Registered] = &[
+    &fit::Fit,
+    &tess::Tess,
+    &g1::G1,
+    &mat0::Mat0,
+    &kcolor::KColor,
+    &radial::Radial,
+    &render::Render,
+    &wire::Wire,
+    &to_mesh::ToMesh,
+];
 
 /// The registered filter named `name`.
 pub fn find(name: &str) -> Option<&'static dyn Registered> {
