@@ -30,9 +30,11 @@ use std::io::Write;
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
+use testbed::binders::{Colouring, DEFAULT_BLOCK};
 use testbed::draw::{self, View};
-use testbed::filters::{Colouring, IndexedPatch, KColor, PatchTessellator};
+use testbed::filters::KColor;
 use testbed::record::Vertex;
+use testbed::tessellator::{IndexedPatch, PatchTessellator};
 
 /// Runs per configuration (median reported): enough to steady a 2-core shared machine's noise.
 const RUNS: usize = 5;
@@ -165,11 +167,7 @@ fn in_process(obj_bytes: &[u8], shared: bool) -> f64 {
         corners.clone_from(&kg);
     }
     // The range as kcolor's default takes it: from the first block of triangles.
-    let mut first: Vec<f64> = corners
-        .iter()
-        .take(3 * testbed::filters::DEFAULT_BLOCK)
-        .copied()
-        .collect();
+    let mut first: Vec<f64> = corners.iter().take(3 * DEFAULT_BLOCK).copied().collect();
     let range = KColor.default_range(&mut first);
     for (c, k) in mesh.colors.iter_mut().zip(&kg) {
         *c = KColor.color(*k, range);

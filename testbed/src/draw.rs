@@ -1,5 +1,6 @@
-//! The ends of the pipeline: `render` (the seed's Sgp | Render), `wire` (Sgp | XRender) and
-//! `to-mesh` (a mesh file).
+//! The ends of the pipeline: reading the triangles of a stream (`render`, `wire`, `to-mesh`),
+//! and the pictures of `render` (the seed's Sgp | Render) and `wire` (Sgp | XRender): their
+//! options ([`PictureArgs`]), drawing, PNG.
 //!
 //! The triangles are drawn as they come, unwelded (each Triangle record's three vertices; a
 //! TriangleMesh's vertices shared as in the record), with their normals (the geometric normal
@@ -7,13 +8,13 @@
 //! camera frames the triangles' bounding box from the given azimuth and elevation.
 
 use std::io::Write;
-use std::path::Path;
 
 use nalgebra::{Point3, Vector3};
 use render::{Camera, Image, RenderMesh, RenderOptions};
 
 use crate::error::FilterError;
-use crate::filters::Pipe;
+use crate::options::pair;
+use crate::pipe::{Pipe, StreamOptions};
 use crate::record::{self, Vertex};
 use crate::stream::Record;
 use crate::triangle_mesh::{self, TriangleMesh};
@@ -149,6 +150,49 @@ fn bounds(m: &RenderMesh) -> (Point3<f64>, Point3<f64>) {
     }
 }
 
+/// Picture options (`render`, `wire`).
+#[derive(clap::Args, Debug, Clone, Default, PartialEq, Eq)]
+pub struct PictureArgs {
+    /// View direction `AZ,EL` in degrees.
+    #[arg(long, allow_hyphen_values = true)]
+    pub view: Option<String>,
+    /// Size `WxH` in pixels.
+    #[arg(long)]
+    pub size: Option<String>,
+}
+
+impl PictureArgs {
+    /// The view they ask for (the defaults where not given), shaded or `wire`-frame: `--view`
+    /// two finite angles, `--size` two whole numbers (their range is checked when drawing,
+    /// [`draw_mesh`]).
+    pub fn view(&self, wire: bool) -> Result<View, FilterError> {
+        let view = match &self.view {
+            Some(v) => pair::<f64>(v, ',', "--view")?,
+            None => DEFAULT_VIEW,
+        };
+        if !(view.0.is_finite() && view.1.is_finite()) {
+            return Err(FilterError::Usage("--view: finite angles".into()));
+        }
+        let size = match &self.size {
+            Some(s) => pair::<u32>(&s.to_ascii_lowercase(), 'x', "--size")?,
+            None => DEFAULT_SIZE,
+        };
+        Ok(View { view, size, wire })
+    }
+}
+
+/// Runs a picture filter named `name`: the triangles read straight into a render mesh, drawn
+/// with `view`, PNG out.
+pub fn picture(name: &'static str, stream: &StreamOptions, view: &View) -> Result<(), FilterError> {
+    let mesh = stream.read(name, &mut collect_mesh)?;
+    if mesh.faces.is_empty() {
+        eprintln!("{name}: no triangles in the input");
+    }
+    let image = draw_mesh(&mesh, view)?;
+    drop(mesh);
+    stream.with_output(&mut |out| write_png(&image, out))
+}
+
 /// How a picture is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct View {
@@ -189,74 +233,4 @@ pub fn draw_mesh(mesh: &RenderMesh, view: &View) -> Result<Image, FilterError> {
 /// Encodes an image as PNG (`render::write_png`).
 pub fn write_png(image: &Image, out: &mut dyn Write) -> Result<(), FilterError> {
     render::write_png(image, out).map_err(|e| FilterError::Png(e.to_string()))
-}
-
-/// Triangles welded by position with the library's weld ([`surface::weld::weld_triangles`]:
-/// corners closer than [`surface::tessellate::WELD_RELATIVE`] times the diagonal of the
-/// triangles' bounding box are one vertex, so patches tessellated one by one, whose shared
-/// boundary samples differ by rounding, close up), into a raw mesh with normals (the first
-/// seen at a vertex) and colours (when every vertex has one); triangles the weld collapses are
-/// dropped (counted in the second value).
-pub fn to_raw(tris: &[[Vertex; 3]]) -> (meshio::RawMesh, surface::weld::WeldedTriangles) {
-    let corners: Vec<[Point3<f64>; 3]> = tris.iter().map(|t| t.each_ref().map(|v| v.pos)).collect();
-    let welded = surface::weld::weld_triangles(&corners);
-    drop(corners);
-    let all_normals = tris.iter().flatten().all(|v| v.norm.is_some());
-    let all_colors = tris.iter().flatten().all(|v| v.color.is_some());
-    let corner = |c: usize| tris.get(c / 3).and_then(|t| t.get(c % 3));
-    let mut raw = meshio::RawMesh::from_triangles(welded.positions.clone(), &welded.faces);
-    if all_normals {
-        raw.normals = Some(
-            welded
-                .source
-                .iter()
-                .map(|&c| corner(c).and_then(|v| v.norm).unwrap_or_else(Vector3::z))
-                .collect(),
-        );
-    }
-    if all_colors {
-        raw.colors = Some(
-            welded
-                .source
-                .iter()
-                .map(|&c| {
-                    corner(c)
-                        .and_then(|v| v.color)
-                        .unwrap_or(render::colors::MATERIAL)
-                })
-                .collect(),
-        );
-    }
-    (raw, welded)
-}
-
-/// Writes triangles as a mesh file, the format by `path`'s extension, atomically.
-pub fn write_mesh(tris: &[[Vertex; 3]], path: &Path) -> Result<(), FilterError> {
-    let format = meshio::format_for_path(path)
-        .filter(|f| f.can_write())
-        .ok_or_else(|| {
-            FilterError::Usage(format!(
-                "to-mesh: {} names no writable mesh format (.ply, .obj, .glb, .stl, .off, .m)",
-                path.display()
-            ))
-        })?;
-    let (raw, welded) = to_raw(tris);
-    let bytes = meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|e| {
-        FilterError::MeshWrite {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        }
-    })?;
-    meshio::outfile::write_atomic(path, &bytes).map_err(render::RenderError::from)?;
-    eprintln!(
-        "to-mesh: {} triangles, {} vertices ({} corners welded within {:.1e}: {:.0e} of the size; {} collapsed triangles dropped) → {}",
-        raw.num_faces(),
-        raw.num_vertices(),
-        welded.welds,
-        welded.tolerance,
-        surface::tessellate::WELD_RELATIVE,
-        welded.collapsed,
-        path.display()
-    );
-    Ok(())
 }

@@ -12,28 +12,38 @@
 //!   into typed structs;
 //! * [`triangle_mesh`] — the shared-vertex record `TriangleMesh` (a patch's vertices once,
 //!   its triangles as indices): `tess --mesh` writes it, every filter reads it;
-//! * [`fit`](mod@fit) — the head: a mesh file to patches (Fitter0, Piper, … by the
-//!   workbench's schemes), or sampled straight to triangles (Example 5);
-//! * [`filters`] — Tess, Mat0, KColor, Radial, and the pass-through rules;
-//! * [`g1`](mod@g1) — G1 as a filter: records through, normal angles along shared boundaries
-//!   on standard error;
-//! * [`draw`] — the tail: Render (shaded PNG), XRender (wire-frame PNG), a mesh file.
+//! * [`filters`] — the filters, one module each, and their registry (`testbed`'s
+//!   subcommands): [`fit`](mod@filters::fit) (the head: a mesh file to patches, or sampled
+//!   straight to triangles), `tess`, [`g1`](mod@filters::g1), `mat0`, `kcolor`, `radial`,
+//!   `render`, `wire`, `to-mesh`;
+//! * the filters' shared machinery: [`pipe`] (the stream options every filter takes and the
+//!   [`Pipe`](pipe::Pipe) it reads and writes through), [`sample`] (tessellated vertices and
+//!   the `Triangle` records built from them), [`tessellator`] (the patch tessellator),
+//!   [`binders`] (the colour binders of `mat0`, `kcolor`, `radial`), [`draw`] (reading the
+//!   triangles at the end of the pipeline, the pictures), [`options`] (option values parsed
+//!   alike).
 //!
 //! Every filter keeps the fields and records it does not use (see [`filters`] for the fields
 //! a transforming filter carries over), so a field added at the head arrives at the end.
 
 pub mod binary;
+pub mod binders;
 pub mod draw;
 pub mod dstruct;
 pub mod error;
 pub mod filters;
-pub mod fit;
-pub mod g1;
 pub mod json;
+pub mod options;
+pub mod pipe;
 pub mod record;
+pub mod sample;
 pub mod stream;
 pub mod tape;
+pub mod tessellator;
 pub mod triangle_mesh;
+
+/// The `g1` filter at its former path (`testbed::g1`).
+pub use filters::g1;
 
 pub use error::{FieldError, FilterError, Position, StreamError};
 pub use stream::{Format, Record, RecordReader, RecordWriter};

@@ -24,9 +24,10 @@ use std::ops::Range;
 use nalgebra::{Point3, Vector3};
 
 use crate::error::FieldError;
-use crate::filters::{CurvatureFields, IndexedPatch};
 use crate::record::{self, Vertex};
+use crate::sample::CurvatureFields;
 use crate::tape::{Span, Tape, Tok};
+use crate::tessellator::IndexedPatch;
 
 /// The record's `type`.
 pub const KIND: &str = "TriangleMesh";
@@ -384,7 +385,7 @@ mod tests {
     #[test]
     fn built_records_read_back_exactly() {
         let patch = tape(json!({"type": "BezierTriangle", "degree": 1, "face": 7, "note": "n"}));
-        let sample = |x: f64| crate::filters::Sample {
+        let sample = |x: f64| crate::sample::Sample {
             pos: Point3::new(x, 2.0 * x, 0.1),
             norm: Vector3::new(0.0, 0.6, 0.8),
             kg: x - 1.0,
@@ -395,7 +396,7 @@ mod tests {
             triangles: vec![[0, 1, 2]],
         };
         let mut carried = Vec::new();
-        crate::filters::carried_fields(&patch, &mut carried);
+        crate::sample::carried_fields(&patch, &mut carried);
         // `face` and `note`: key and value tokens 5..7 and 7..9 of the patch.
         assert_eq!(carried, [5..7, 7..9]);
         let mut b = MeshTapes::default();

@@ -4,3 +4,4 @@
 mod examples;
 mod library;
 mod pipeline;
+mod registry;

@@ -21,7 +21,8 @@ use surface::patch_g1::{self, PatchG1Report};
 use surface::BezierTriangle;
 
 use crate::error::FilterError;
-use crate::filters::Pipe;
+use crate::filters::Filter;
+use crate::pipe::{Pipe, StreamOptions};
 use crate::record;
 
 /// Largest normal angle (radians) along a shared boundary still called G1 by `--strict`:
@@ -32,6 +33,52 @@ pub const G1_TOLERANCE: f64 = 1e-6;
 
 /// Default samples per boundary (ends included).
 pub const DEFAULT_SAMPLES: usize = 9;
+
+/// `testbed g1`: the seed's G1.
+pub struct G1;
+
+/// Options of `g1`.
+#[derive(clap::Args, Debug)]
+pub struct G1Args {
+    /// Exit with an error when the largest angle exceeds the tolerance (1e-6 rad), when a
+    /// boundary could not be measured, or when nothing was measured.
+    #[arg(long)]
+    pub strict: bool,
+    /// Samples per boundary, ends included (at least 3: the ends alone say nothing).
+    #[arg(long, default_value_t = DEFAULT_SAMPLES, value_parser = samples_option)]
+    pub samples: usize,
+}
+
+impl Filter for G1 {
+    const NAME: &'static str = "g1";
+    const SUMMARY: &'static str =
+        "Passes records through; measures normal angles along shared patch boundaries";
+    const DESCRIPTION: &'static str = "\
+        Every record is written unchanged. The BezierTriangles are kept aside and measured at \
+        the end of the stream: two patch edges are one boundary when their control points agree \
+        within a tolerance relative to the patches' size (never bit for bit), and the angle \
+        between the two normals is sampled along it. The report goes to standard error: the \
+        largest angle and where, border and mismatched edges (not even C0), boundaries with no \
+        defined normal.";
+    const SEED: &'static str = "G1";
+    type Args = G1Args;
+
+    fn run(args: G1Args, stream: StreamOptions) -> Result<(), FilterError> {
+        stream.filter(Self::NAME, &mut |p| g1(p, args.strict, args.samples))
+    }
+}
+
+/// `g1 --samples N`: a whole number of at least [`surface::patch_g1::MIN_SAMPLES`] (clap
+/// refuses anything else as a usage error, exit status 2).
+fn samples_option(s: &str) -> Result<usize, String> {
+    let min = patch_g1::MIN_SAMPLES;
+    match s.parse::<usize>() {
+        Ok(n) if n >= min => Ok(n),
+        _ => Err(format!(
+            "at least {min} samples per boundary (with 2 only the ends are sampled, where every interpolating scheme has the vertex normal on both sides)"
+        )),
+    }
+}
 
 /// What the G1 measurement found: the library's report, with record numbers.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -14,18 +14,117 @@
 //! `discrete-side-vertex`: `surface::patch`) is always sampled here, at
 //! [`SAMPLED_DENSITY`] unless `sample` says otherwise, as the seed's non-Bézier fitters were.
 
+use std::path::{Path, PathBuf};
+
+use serde_json::{Map, Value};
+
+use crate::error::{FilterError, Position, StreamError};
+use crate::filters::Filter;
+use crate::pipe::StreamOptions;
+use crate::record;
+use crate::sample::{triangle_value, CurvatureFields, Sample};
+use crate::stream::{Format, RecordWriter};
+
 /// The density a non-Bézier scheme is sampled at when `--sample` is not given (the seed's
 /// Example 5: `Nielson -s 8`).
 pub const SAMPLED_DENSITY: usize = 8;
 
-use std::path::Path;
+/// `testbed fit`: the head of the pipeline.
+pub struct Fit;
 
-use serde_json::{Map, Value};
+/// Options of `fit`.
+#[derive(clap::Args, Debug)]
+pub struct FitArgs {
+    /// The surface scheme and the schemes' parameters (generated from the registry).
+    #[command(flatten)]
+    pub scheme: fitjob::cli::SchemeArgs<fitjob::cli::PatchesOnly>,
+    /// Boundary-curve construction (the registry's).
+    #[arg(long, default_value = "chord", value_parser = fitjob::cli::curve_method_names())]
+    pub curves: String,
+    /// Estimator for what the mesh lacks (the registry's, or `none`).
+    #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR, value_parser = fitjob::cli::estimator_names())]
+    pub estimate: String,
+    /// Estimate normals even where the mesh has them.
+    #[arg(long)]
+    pub replace_normals: bool,
+    /// A named data set (ring, sphere, capsule, octa; `NAME:RESOLUTION`) instead of a mesh.
+    #[arg(long)]
+    pub dataset: Option<String>,
+    /// Tessellate here at N segments per patch edge and write triangles (Example 5).
+    #[arg(long)]
+    pub sample: Option<usize>,
+    /// With --sample: write Gaussian curvature.
+    #[arg(long)]
+    pub kg: bool,
+    /// With --sample: write mean curvature.
+    #[arg(long)]
+    pub km: bool,
+    /// With --sample (or an evaluated scheme): one shared-vertex TriangleMesh record per
+    /// patch instead of Triangle records (as `tess --mesh`).
+    #[arg(long)]
+    pub mesh: bool,
+}
 
-use crate::error::{FilterError, Position};
-use crate::filters::{triangle_value, CurvatureFields, Sample};
-use crate::record;
-use crate::stream::RecordWriter;
+impl Filter for Fit {
+    const NAME: &'static str = "fit";
+    const SUMMARY: &'static str = "\
+        A mesh (any format, sniffed; `.m` included) to BezierTriangle records, or with `--sample \
+        N` straight to Triangle records";
+    const DESCRIPTION: &'static str = "\
+        The mesh (--input, standard input, or --dataset) is read whole, its format sniffed from \
+        the content, repaired and completed by --estimate (the file's normals kept unless \
+        --replace-normals), fitted by --scheme and written back in its own coordinates: one \
+        BezierTriangle per patch with `face`, `subpatch` and `scheme` after the points. A scheme \
+        whose patches are not Bézier nets is always sampled here, as with --sample 8 unless \
+        --sample says otherwise. The output is JSON Lines unless --format says otherwise; \
+        --keep-going has nothing to skip.";
+    const SEED: &'static str =
+        "Fitter0, Shirman–Séquin, … (Piper not recovered); Nielson, a sampling fitter (Herron not recovered)";
+    type Args = FitArgs;
+
+    fn run(args: FitArgs, stream: StreamOptions) -> Result<(), FilterError> {
+        let input = match &args.dataset {
+            Some(d) => dataset(d)?,
+            None => {
+                let (name, bytes) = match &stream.input {
+                    Some(p) => (
+                        p.clone(),
+                        std::fs::read(p)
+                            .map_err(|e| StreamError::io(format!("reading {}", p.display()), e))?,
+                    ),
+                    None => {
+                        let mut b = Vec::new();
+                        std::io::Read::read_to_end(&mut std::io::stdin().lock(), &mut b)
+                            .map_err(|e| StreamError::io("reading the input", e))?;
+                        (PathBuf::from("<standard input>"), b)
+                    }
+                };
+                input_from_bytes(&name, &bytes, &args.estimate, args.replace_normals)?
+            }
+        };
+        let options = FitOptions {
+            scheme: args.scheme.scheme,
+            scheme_options: args.scheme.options,
+            curves: args.curves,
+            estimate: args.estimate,
+            replace_normals: args.replace_normals,
+            sample: args.sample,
+            fields: CurvatureFields {
+                kg: args.kg,
+                km: args.km,
+            },
+            mesh: args.mesh,
+        };
+        let mut input = Some(input);
+        stream.with_output(&mut |out| {
+            let mut w = RecordWriter::new(out, stream.format.or(Some(Format::Json)));
+            match input.take() {
+                Some(input) => fit(input, &options, &mut w),
+                None => Ok(()),
+            }
+        })
+    }
+}
 
 /// How to fit.
 #[derive(Clone, Debug, PartialEq)]
@@ -319,4 +418,15 @@ fn patch_meshes<'a>(
         m.insert("scheme".into(), scheme.clone());
         Some(Value::Object(m))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The help's description names the density an evaluated scheme is sampled at.
+    #[test]
+    fn the_description_names_the_sampled_density() {
+        assert!(Fit::DESCRIPTION.contains(&format!("--sample {SAMPLED_DENSITY} ")));
+    }
 }
