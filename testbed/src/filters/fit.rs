@@ -293,23 +293,11 @@ pub fn fit<W: std::io::Write>(
             out.write(&v, at)?;
         }
     } else {
+        // The workspace's one patch record (`surface::patch_io::patch_record`, the record of
+        // `experiments fit --out`), then the scheme's name.
+        let to_world = |p: &nalgebra::Point3<f64>| frame.to_world(p);
         for (i, net) in fitted.nets().enumerate() {
-            let mut m = Map::new();
-            m.insert("type".into(), Value::from("BezierTriangle"));
-            m.insert("degree".into(), Value::from(fitted.layout.degree));
-            m.insert(
-                "points".into(),
-                Value::Array(
-                    net.iter()
-                        .map(|p| {
-                            let q = frame.to_world(p);
-                            record::arr3([q.x, q.y, q.z])
-                        })
-                        .collect(),
-                ),
-            );
-            m.insert("face".into(), Value::from(i / per_face));
-            m.insert("subpatch".into(), Value::from(i % per_face));
+            let mut m = surface::patch_io::patch_record(&fitted.layout, i, net, &to_world);
             m.insert("scheme".into(), scheme_name.clone());
             at.record += 1;
             out.write(&Value::Object(m), at)?;
