@@ -27,8 +27,8 @@ use surface::{
 /// `measure_g1`, so the maximum measured here is taken at the same points as its.
 const SAMPLES: usize = 9;
 
-/// C0: the two sides of a shared boundary are the same curve (the same control points, one side
-/// in reverse order) evaluated from two patches, so they agree to rounding. Coordinates are of
+/// C0: the two sides of a shared boundary are the same curve (for Bézier patches the same
+/// control points, one side in reverse order) evaluated from two patches, so they agree to rounding. Coordinates are of
 /// order one; the largest gap measured over every boundary here is 4.5e-16, and this bound
 /// leaves three orders of magnitude of margin while any real gap (a curve not shared, a wrong
 /// orientation) is far above it.
@@ -41,9 +41,9 @@ const C0_TOL: f64 = 1e-12;
 const ANGLE_AGREEMENT: f64 = 1e-12;
 
 /// The measured normal jump must be within this fraction of its recorded value. The figures
-/// are deterministic (rounding moves them by ~1e-15, the optimized curves' solver tolerance by
-/// far less than 1e-3 relative); 1% lets a change of summation order or solver tolerance pass
-/// but not a change of a scheme's construction. Records closer than that to each other (the
+/// are deterministic (the same run gives the same bits; rounding alone moves them by ~1e-15);
+/// 1% lets a change of summation order or of the optimized curves' solver tolerance pass but
+/// not a change of a scheme's construction. Records closer than that to each other (the
 /// sphere's dbhs and optimized curves, 0.15% apart; the ring's chord and optimized curves,
 /// 0.02%) are not told apart by it: the table pins each scheme's magnitude.
 const JUMP_RELATIVE: f64 = 0.01;
@@ -56,10 +56,10 @@ const JUMP_RELATIVE: f64 = 0.01;
 /// * clough-tocher and discrete-side-vertex measure the same jump (to 1e-15) on every data set
 ///   and curve construction: both take the tangents across an edge from its two vertices' data
 ///   alone, on the same cubic boundary;
-/// * on the octahedron every scheme with cubic boundaries, and Powell–Sabin, measure the same
-///   0.680 rad, whatever the curves;
-/// * dbhs curves on the ring (0.573 rad) and the capsule (0.193 rad) give ten times the jump and more of
-///   chord or optimized curves (0.057; 0.011 and 0.022).
+/// * on the octahedron the two schemes on curves, whatever the curves, and Powell–Sabin measure
+///   the same 0.680 rad;
+/// * dbhs curves on the ring (0.573 rad) and the capsule (0.193 rad) give about ten times the
+///   jump of chord or optimized curves (0.057; 0.011 and 0.022).
 const EXPECTED_JUMP: &[(&str, &str, &str, f64)] = &[
     ("sphere", "pn-triangles", "-", 3.523128e-2),
     ("sphere", "phong", "-", 1.657281e-1),
