@@ -1,6 +1,7 @@
 //! The integration tests of `surface`, one test binary for all of them (one link, not one a
 //! file): a module a topic.
 
+mod c0_continuity;
 mod fallback;
 mod interior;
 mod mesh_invariants;
