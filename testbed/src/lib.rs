@@ -28,6 +28,7 @@
 
 pub mod binary;
 pub mod binders;
+pub mod bzp;
 pub mod draw;
 pub mod dstruct;
 pub mod error;

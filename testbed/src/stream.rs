@@ -31,6 +31,10 @@ pub enum Format {
     Dstruct,
     /// The self-describing binary form.
     Binary,
+    /// The workspace's binary patch file (`.bzp`, `surface::patch_io`): read by every filter
+    /// (its patches become `BezierTriangle` records), written by `fit` only (it holds the
+    /// patches of one fit; the filters after it write `binary` by default).
+    Bzp,
 }
 
 impl Format {
@@ -40,6 +44,7 @@ impl Format {
             Format::Json => "json",
             Format::Dstruct => "dstruct",
             Format::Binary => "binary",
+            Format::Bzp => "bzp",
         }
     }
 }
@@ -75,6 +80,7 @@ pub struct RecordReader<R: BufRead> {
     line: usize,
     buf: Vec<u8>,
     decoder: binary::Decoder,
+    bzp: crate::bzp::Decoder,
     fatal: bool,
 }
 
@@ -88,6 +94,7 @@ impl<R: BufRead> RecordReader<R> {
             line: 1,
             buf: Vec::new(),
             decoder: binary::Decoder::default(),
+            bzp: crate::bzp::Decoder::default(),
             fatal: false,
         }
     }
@@ -147,6 +154,16 @@ impl<R: BufRead> RecordReader<R> {
                 }
                 Format::Binary
             }
+            b'B' => {
+                if let Err(message) = self.bzp.start(&mut self.inner) {
+                    self.fatal = true;
+                    return Err(StreamError::Binary {
+                        at: Position::default(),
+                        message,
+                    });
+                }
+                Format::Bzp
+            }
             other => {
                 self.fatal = true;
                 return Err(StreamError::UnknownFormat {
@@ -183,6 +200,7 @@ impl<R: BufRead> RecordReader<R> {
             Format::Json => self.next_json(record),
             Format::Dstruct => self.next_dstruct(record),
             Format::Binary => self.next_binary(record),
+            Format::Bzp => self.next_bzp(record),
         };
         match result {
             Ok(false) => None,
@@ -338,6 +356,24 @@ impl<R: BufRead> RecordReader<R> {
     }
 }
 
+impl<R: BufRead> RecordReader<R> {
+    fn next_bzp(&mut self, record: &mut Record) -> Result<bool, StreamError> {
+        let at = Position {
+            record: self.count + 1,
+            line: 0,
+        };
+        record.at = at;
+        match self.bzp.next_into(&mut self.inner, &mut record.tape) {
+            Ok(false) => Ok(false),
+            Ok(true) => {
+                self.count += 1;
+                Ok(true)
+            }
+            Err(message) => Err(StreamError::Binary { at, message }),
+        }
+    }
+}
+
 /// Line (from 0) and column (from 0, bytes) of `offset` in `text`.
 fn line_col(text: &[u8], offset: usize) -> (usize, usize) {
     let before = text.get(..offset).unwrap_or(text);
@@ -372,9 +408,14 @@ impl<W: Write> RecordWriter<W> {
     }
 
     /// Sets the format if none was chosen (a filter's output follows its input's format).
+    /// The format to write when none was asked for: the input's (the self-describing binary
+    /// form for a `.bzp` input, which only `fit` writes).
     pub fn default_format(&mut self, format: Option<Format>) {
         if self.format.is_none() {
-            self.format = format;
+            self.format = format.map(|f| match f {
+                Format::Bzp => Format::Binary,
+                f => f,
+            });
         }
     }
 
@@ -413,6 +454,11 @@ impl<W: Write> RecordWriter<W> {
                     .write(record, &mut self.buf)
                     .map_err(unwritable)?
             }
+            Format::Bzp => {
+                return Err(unwritable(
+                    "the binary patch file holds the patches of one fit: only `fit` writes it (choose json, dstruct or binary)".into(),
+                ))
+            }
         }
         self.written += 1;
         if self.buf.len() >= FLUSH_BYTES {
@@ -427,6 +473,18 @@ impl<W: Write> RecordWriter<W> {
             .map_err(|e| StreamError::io("writing the output", e))?;
         self.buf.clear();
         Ok(())
+    }
+
+    /// The output underneath, everything buffered written first: for a writer of a form that is
+    /// no record stream (`fit`'s `.bzp`).
+    pub fn raw(&mut self) -> Result<&mut W, StreamError> {
+        self.flush_buf()?;
+        Ok(&mut self.out)
+    }
+
+    /// The format being written (`None` until the first record when none was asked for).
+    pub fn format(&self) -> Option<Format> {
+        self.format
     }
 
     /// Writes out everything buffered and flushes.

@@ -152,39 +152,71 @@ impl PatchFormat {
     }
 }
 
+/// What a patch record says it is: a Bézier net of a degree, or the data of an evaluated form.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RecordKind<'a> {
+    /// `{"type":"BezierTriangle","degree":n,…}`.
+    Bezier {
+        /// The degree.
+        degree: usize,
+    },
+    /// `{"type":"SampledPatch","form":"name",…}`.
+    Sampled {
+        /// The form's name.
+        form: &'a str,
+    },
+}
+
 /// Patch number `patch` of a fit with `layout` (its net `net`, each point mapped by
-/// `to_world`) as the record every patch writer of the workbench emits: `type`
-/// (`BezierTriangle`, or `SampledPatch` with its `form`), `degree`, `points`, `face`,
-/// `subpatch`, in that order. This is the record's one definition: the JSON Lines writer
-/// ([`PatchFormat::JsonLines`]) formats the same fields without building it (for speed; a test
-/// checks the bytes are those of this record serialized), and the pipeline's `fit` writes it
-/// in any of its stream formats.
+/// `to_world`) as the record every patch writer of the workbench emits ([`record_of`]).
 pub fn patch_record(
     layout: &Layout,
     patch: usize,
     net: &[Point3<f64>],
     to_world: &(dyn Fn(&Point3<f64>) -> Point3<f64> + Sync),
 ) -> serde_json::Map<String, serde_json::Value> {
-    use serde_json::Value;
-    let per_face = layout.patches_per_face().max(1);
-    let mut m = serde_json::Map::new();
-    match layout.form {
-        Form::Bezier => {
-            m.insert("type".into(), Value::from("BezierTriangle"));
-            m.insert("degree".into(), Value::from(layout.degree));
-        }
-        Form::Sampled(f) => {
-            m.insert("type".into(), Value::from("SampledPatch"));
-            m.insert("form".into(), Value::from(f.name()));
-        }
-    }
-    let points = net
+    let points: Vec<Point3<f64>> = net
         .iter()
         .enumerate()
-        .map(|(k, p)| {
-            let q = mapped(layout.form, k, p, to_world);
-            Value::Array(vec![q.x.into(), q.y.into(), q.z.into()])
-        })
+        .map(|(k, p)| mapped(layout.form, k, p, to_world))
+        .collect();
+    let kind = match layout.form {
+        Form::Bezier => RecordKind::Bezier {
+            degree: layout.degree,
+        },
+        Form::Sampled(f) => RecordKind::Sampled { form: f.name() },
+    };
+    record_of(kind, layout.patches_per_face(), patch, &points)
+}
+
+/// The patch record, defined once: `type` (with `degree`, or `form`), `points` (as given:
+/// world coordinates), `face` and `subpatch` (patch `patch` of faces of `per_face` patches),
+/// in that order. The JSON Lines writer ([`PatchFormat::JsonLines`]) formats the same fields
+/// without building it (for speed; a test checks the bytes are those of this record
+/// serialized); the pipeline's `fit` writes it in any of its stream formats, and its readers
+/// of `.bzp` files make it from each patch read.
+pub fn record_of(
+    kind: RecordKind<'_>,
+    per_face: usize,
+    patch: usize,
+    points: &[Point3<f64>],
+) -> serde_json::Map<String, serde_json::Value> {
+    use serde_json::Value;
+    let per_face = per_face.max(1);
+    let mut m = serde_json::Map::new();
+    match kind {
+        RecordKind::Bezier { degree } => {
+            m.insert("type".into(), Value::from("BezierTriangle"));
+            m.insert("degree".into(), Value::from(degree));
+        }
+        RecordKind::Sampled { form } => {
+            m.insert("type".into(), Value::from("SampledPatch"));
+            m.insert("form".into(), Value::from(form));
+        }
+    }
+    let points = points
+        .iter()
+        .map(|q| Value::Array(vec![q.x.into(), q.y.into(), q.z.into()]))
         .collect();
     m.insert("points".into(), Value::Array(points));
     m.insert("face".into(), Value::from(patch / per_face));
@@ -331,7 +363,67 @@ pub fn write_binary<W: Write + ?Sized>(
     write_patches(fit, PatchFormat::Binary, to_world, out)
 }
 
-/// The layout and control points of a binary patch file: `(degree, patches_per_face, points)`.
+/// The header line of the binary form: what its patches are, and how many.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BinaryHeader {
+    /// Degree of the patches.
+    pub degree: usize,
+    /// Patches per mesh face.
+    pub patches_per_face: usize,
+    /// Mesh faces.
+    pub faces: usize,
+    /// Points stored per patch.
+    pub points_per_patch: usize,
+    /// The evaluated form's name for a non-Bézier layout (`None`: Bézier nets).
+    pub form: Option<String>,
+}
+
+impl BinaryHeader {
+    /// Parses the header line (the JSON between [`BINARY_MAGIC`] and the first newline).
+    pub fn parse(line: &[u8]) -> Result<BinaryHeader, PatchReadError> {
+        let header: serde_json::Value =
+            serde_json::from_slice(line).map_err(|e| PatchReadError::Header(e.to_string()))?;
+        let field = |k: &str| {
+            header[k]
+                .as_u64()
+                .and_then(|v| usize::try_from(v).ok())
+                .ok_or_else(|| PatchReadError::Header(format!("missing `{k}`")))
+        };
+        let (degree, patches_per_face, faces, points_per_patch) = (
+            field("degree")?,
+            field("patches_per_face")?,
+            field("faces")?,
+            field("points_per_patch")?,
+        );
+        let form = match header.get("form") {
+            None => None,
+            Some(f) if f == "bezier" => None,
+            Some(f) => Some(f.as_str().unwrap_or_default().to_string()),
+        };
+        if header["scalar"] != "f64le"
+            || (form.is_none() && points_per_patch != crate::beztri::num_points(degree))
+        {
+            return Err(PatchReadError::Header(
+                "unsupported scalar type or point count".into(),
+            ));
+        }
+        Ok(BinaryHeader {
+            degree,
+            patches_per_face,
+            faces,
+            points_per_patch,
+            form,
+        })
+    }
+
+    /// Patches in the file (`faces × patches_per_face`; `None` on overflow).
+    pub fn patches(&self) -> Option<usize> {
+        self.faces.checked_mul(self.patches_per_face)
+    }
+}
+
+/// Reads a binary patch file back: `(degree, patches_per_face, points)` (points in world
+/// coordinates, patch after patch in net order).
 pub fn read_binary(bytes: &[u8]) -> Result<(usize, usize, Vec<Point3<f64>>), PatchReadError> {
     let rest = bytes
         .strip_prefix(BINARY_MAGIC)
@@ -340,26 +432,8 @@ pub fn read_binary(bytes: &[u8]) -> Result<(usize, usize, Vec<Point3<f64>>), Pat
         .iter()
         .position(|b| *b == b'\n')
         .ok_or_else(|| PatchReadError::Header("no end of line".into()))?;
-    let header: serde_json::Value =
-        serde_json::from_slice(&rest[..end]).map_err(|e| PatchReadError::Header(e.to_string()))?;
-    let field = |k: &str| {
-        header[k]
-            .as_u64()
-            .map(|v| v as usize)
-            .ok_or_else(|| PatchReadError::Header(format!("missing `{k}`")))
-    };
-    let (degree, ppf, faces, np) = (
-        field("degree")?,
-        field("patches_per_face")?,
-        field("faces")?,
-        field("points_per_patch")?,
-    );
-    let bezier = header.get("form").is_none_or(|f| f == "bezier");
-    if header["scalar"] != "f64le" || (bezier && np != crate::beztri::num_points(degree)) {
-        return Err(PatchReadError::Header(
-            "unsupported scalar type or point count".into(),
-        ));
-    }
+    let h = BinaryHeader::parse(&rest[..end])?;
+    let (degree, ppf, faces, np) = (h.degree, h.patches_per_face, h.faces, h.points_per_patch);
     let body = &rest[end + 1..];
     let expected = faces
         .checked_mul(ppf)

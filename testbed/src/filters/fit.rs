@@ -117,7 +117,13 @@ impl Filter for Fit {
         };
         let mut input = Some(input);
         stream.with_output(&mut |out| {
-            let mut w = RecordWriter::new(out, stream.format.or(Some(Format::Json)));
+            // JSON Lines unless asked, or the binary patch file for an output named `.bzp`.
+            let bzp_name = stream
+                .output
+                .as_ref()
+                .is_some_and(|p| p.extension().is_some_and(|e| e == "bzp"));
+            let default = if bzp_name { Format::Bzp } else { Format::Json };
+            let mut w = RecordWriter::new(out, stream.format.or(Some(default)));
             match input.take() {
                 Some(input) => fit(input, &options, &mut w),
                 None => Ok(()),
@@ -296,6 +302,14 @@ pub fn fit<W: std::io::Write>(
         // The workspace's one patch record (`surface::patch_io::patch_record`, the record of
         // `experiments fit --out`), then the scheme's name.
         let to_world = |p: &nalgebra::Point3<f64>| frame.to_world(p);
+        if out.format() == Some(Format::Bzp) {
+            // The workspace's binary patch file, as `experiments fit --out FILE.bzp` writes it.
+            let raw = out.raw()?;
+            surface::patch_io::write_binary(&fitted, &to_world, raw)
+                .map_err(|e| StreamError::io("writing the output", e))?;
+            out.finish()?;
+            return Ok(());
+        }
         for (i, net) in fitted.nets().enumerate() {
             let mut m = surface::patch_io::patch_record(&fitted.layout, i, net, &to_world);
             m.insert("scheme".into(), scheme_name.clone());

@@ -28,7 +28,7 @@ const CAPSULE_VERTICES_AT_8: usize = 36_866;
 /// times the G1 tolerance.
 const C0_JUMP_AT_LEAST: f64 = 1e-2;
 
-fn testbed(args: &[&str], input: &[u8]) -> Output {
+pub(crate) fn testbed(args: &[&str], input: &[u8]) -> Output {
     let mut child = Command::new(env!("CARGO_BIN_EXE_testbed"))
         .args(args)
         .stdin(Stdio::piped())
@@ -47,7 +47,7 @@ fn testbed(args: &[&str], input: &[u8]) -> Output {
     out
 }
 
-fn ok(args: &[&str], input: &[u8]) -> Vec<u8> {
+pub(crate) fn ok(args: &[&str], input: &[u8]) -> Vec<u8> {
     let out = testbed(args, input);
     assert!(
         out.status.success(),

@@ -1,6 +1,7 @@
 //! The integration tests of `testbed`, one test binary for all of them (one link, not one a
 //! file): a module a topic.
 
+mod bzp;
 mod examples;
 mod library;
 mod pipeline;
