@@ -188,22 +188,9 @@ fn data_hint(e: &surface::DataSetError) -> String {
     }
 }
 
-/// An error and its causes as the user sees them: the error on the first line, then each cause
-/// on its own `caused by:` line, leaving out a cause whose text is already shown (errors of other
-/// crates often repeat their source in their own message).
-pub fn chain(e: &dyn std::error::Error) -> String {
-    let mut text = e.to_string();
-    let mut cause = e.source();
-    while let Some(c) = cause {
-        let line = c.to_string();
-        if !text.contains(&line) {
-            text.push_str("\n  caused by: ");
-            text.push_str(&line);
-        }
-        cause = c.source();
-    }
-    text
-}
+/// An error and its causes as the user sees them (the fit job's [`fitjob::chain`], so every
+/// front end shows causes alike).
+pub use fitjob::chain;
 
 #[cfg(test)]
 mod tests {

@@ -236,14 +236,5 @@ fn dataset(data: &str, resolution: Option<usize>) -> Result<Loaded, JobError> {
         },
         source,
     })?;
-    Ok(Loaded {
-        mesh: set.mesh,
-        frame: Frame::identity(),
-        notes: Vec::new(),
-        repairs: None,
-        face_source: None,
-        vertex_source: None,
-        peak_after_read: None,
-        time: InputTime::default(),
-    })
+    Ok(prepared(set.mesh, Frame::identity()))
 }

@@ -3,7 +3,7 @@
 //! the `BezierTriangle` records of its patches, and a damaged or hostile file is an error
 //! naming what is wrong, not a crash or an allocation.
 
-use crate::library::{ok, testbed};
+use crate::support::{ok, testbed};
 
 const OCTA: &[u8] = include_bytes!("../../../data/octa.m");
 

@@ -9,6 +9,8 @@ use std::io::Write;
 use std::process::{Command, Output, Stdio};
 
 use serde_json::Value;
+
+use crate::support::{json_records, ok, testbed};
 use testbed::filters::Pipe;
 
 /// The built-in ring (`ring(16, 8)`): 256 faces, 768 quartic patches, 1152 boundaries between
@@ -28,45 +30,8 @@ const CAPSULE_VERTICES_AT_8: usize = 36_866;
 /// times the G1 tolerance.
 const C0_JUMP_AT_LEAST: f64 = 1e-2;
 
-pub(crate) fn testbed(args: &[&str], input: &[u8]) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_testbed"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawns");
-    let mut stdin = child.stdin.take().expect("stdin");
-    let data = input.to_vec();
-    let writer = std::thread::spawn(move || {
-        // A filter that fails early closes its input: a broken pipe here is expected.
-        let _ = stdin.write_all(&data);
-    });
-    let out = child.wait_with_output().expect("runs");
-    let _ = writer.join();
-    out
-}
-
-pub(crate) fn ok(args: &[&str], input: &[u8]) -> Vec<u8> {
-    let out = testbed(args, input);
-    assert!(
-        out.status.success(),
-        "testbed {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
-}
-
 fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn json_records(bytes: &[u8]) -> Vec<Value> {
-    bytes
-        .split(|&c| c == b'\n')
-        .filter(|l| !l.is_empty())
-        .map(|l| serde_json::from_slice(l).expect("json line"))
-        .collect()
 }
 
 /// `g1` run in this process on a stream, for its summary.

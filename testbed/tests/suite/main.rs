@@ -6,3 +6,4 @@ mod examples;
 mod library;
 mod pipeline;
 mod registry;
+mod support;

@@ -2,50 +2,12 @@
 //! `--keep-going`, and hostile streams (truncated, mutated) that must never panic.
 #![allow(clippy::expect_used, clippy::unwrap_used)] // tests: a failed step should stop loudly
 
-use std::io::Write;
-use std::process::{Command, Output, Stdio};
-
 use serde_json::Value;
 
-fn testbed(args: &[&str], input: &[u8]) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_testbed"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawns");
-    let mut stdin = child.stdin.take().expect("stdin");
-    let data = input.to_vec();
-    let writer = std::thread::spawn(move || {
-        // A filter that fails early closes its input: a broken pipe here is expected.
-        let _ = stdin.write_all(&data);
-    });
-    let out = child.wait_with_output().expect("runs");
-    let _ = writer.join();
-    out
-}
-
-fn ok(args: &[&str], input: &[u8]) -> Vec<u8> {
-    let out = testbed(args, input);
-    assert!(
-        out.status.success(),
-        "testbed {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
-}
+use crate::support::{json_records, ok, testbed};
 
 fn octa() -> Vec<u8> {
     std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../data/octa.m")).expect("octa.m")
-}
-
-fn json_records(bytes: &[u8]) -> Vec<Value> {
-    bytes
-        .split(|&c| c == b'\n')
-        .filter(|l| !l.is_empty())
-        .map(|l| serde_json::from_slice(l).expect("json line"))
-        .collect()
 }
 
 /// The top-level keys of record `r`, in order.

@@ -1,0 +1,50 @@
+//! What the pipeline's integration tests share: running the `testbed` binary on bytes, and
+//! reading JSON Lines back.
+
+#![allow(clippy::expect_used)] // test fixtures fail loudly by design
+
+use std::io::Write;
+use std::process::{Command, Output, Stdio};
+
+use serde_json::Value;
+
+/// `testbed ARGS` with `input` on its standard input (written from another thread, so a
+/// filter that fails early and closes its input cannot block the test).
+pub fn testbed(args: &[&str], input: &[u8]) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_testbed"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawns");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let data = input.to_vec();
+    let writer = std::thread::spawn(move || {
+        // A filter that fails early closes its input: a broken pipe here is expected.
+        let _ = stdin.write_all(&data);
+    });
+    let out = child.wait_with_output().expect("runs");
+    let _ = writer.join();
+    out
+}
+
+/// `testbed ARGS` that must succeed: its standard output.
+pub fn ok(args: &[&str], input: &[u8]) -> Vec<u8> {
+    let out = testbed(args, input);
+    assert!(
+        out.status.success(),
+        "testbed {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+/// The records of a JSON Lines stream.
+pub fn json_records(bytes: &[u8]) -> Vec<Value> {
+    bytes
+        .split(|&c| c == b'\n')
+        .filter(|l| !l.is_empty())
+        .map(|l| serde_json::from_slice(l).expect("json line"))
+        .collect()
+}
