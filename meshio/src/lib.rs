@@ -30,6 +30,7 @@
 pub mod error;
 pub mod format;
 pub mod glb;
+pub mod hash;
 pub mod obj;
 pub mod off;
 pub mod outfile;
