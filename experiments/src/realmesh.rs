@@ -13,6 +13,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use curves::{method_by_name, MethodOptions};
+use meshio::BoundingBox;
 use nalgebra::{Point3, Vector3};
 use render::colors as colormap;
 use render::{
@@ -63,18 +64,6 @@ fn corpus_files(dir: &Path) -> Result<Vec<PathBuf>, ExperimentError> {
         .collect();
     files.sort();
     Ok(files)
-}
-
-fn bbox(points: &[Point3<f64>]) -> (Point3<f64>, Point3<f64>) {
-    let mut lo = Point3::from(Vector3::repeat(f64::INFINITY));
-    let mut hi = Point3::from(Vector3::repeat(f64::NEG_INFINITY));
-    for p in points {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (lo, hi)
 }
 
 /// Runs the experiment.
@@ -161,8 +150,8 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                         source,
                     }
                 })?;
-                let (lo, hi) = bbox(&tess.positions);
-                shots.push((name.clone(), tess, (hi - lo).norm()));
+                let size = BoundingBox::of(&tess.positions).diagonal();
+                shots.push((name.clone(), tess, size));
             }
         }
         report.insert(
@@ -230,8 +219,8 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                     colors,
                     faces: t.faces.clone(),
                 };
-                let (lo, hi) = bbox(&mesh.positions);
-                let cam = Camera::framing(lo, hi, az, el);
+                let b = BoundingBox::of(&mesh.positions);
+                let cam = Camera::framing(b.min, b.max, az, el);
                 tiles.push(Tile {
                     image: render(&mesh, &cam, &options)?,
                     label: format!("{name} — {vname}"),

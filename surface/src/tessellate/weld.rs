@@ -11,9 +11,9 @@
 //! record stream), and [`crate::patch_g1`] matches patch corners with it.
 
 use meshio::hash::FxHashMap;
+use meshio::BoundingBox;
 use nalgebra::Point3;
 
-use crate::mesh::bounding_size;
 use crate::tessellate::WELD_RELATIVE;
 
 /// Kept points by grid cell, hashed with the workbench's one fast hasher (`meshio::hash`,
@@ -117,11 +117,7 @@ impl PositionWeld {
 /// The diagonal of the bounding box of the finite points (0 when there are none): the model
 /// size tolerances are relative to, not made infinite or NaN by one bad coordinate.
 pub fn finite_size<'a>(points: impl IntoIterator<Item = &'a Point3<f64>>) -> f64 {
-    bounding_size(
-        points
-            .into_iter()
-            .filter(|p| p.iter().all(|c| c.is_finite())),
-    )
+    BoundingBox::of_finite(points).diagonal()
 }
 
 /// A triangle soup welded by position ([`weld_triangles`]).
