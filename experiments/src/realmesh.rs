@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+use meshio::BoundingBox;
 use nalgebra::{Point3, Vector3};
 use render::colors as colormap;
 use render::{
@@ -61,18 +62,6 @@ fn corpus_files(dir: &Path) -> Result<Vec<PathBuf>, ExperimentError> {
         .collect();
     files.sort();
     Ok(files)
-}
-
-fn bbox(points: &[Point3<f64>]) -> (Point3<f64>, Point3<f64>) {
-    let mut lo = Point3::from(Vector3::repeat(f64::INFINITY));
-    let mut hi = Point3::from(Vector3::repeat(f64::NEG_INFINITY));
-    for p in points {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (lo, hi)
 }
 
 /// Runs the experiment.
@@ -155,8 +144,8 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                         source,
                     }
                 })?;
-                let (lo, hi) = bbox(&tess.positions);
-                shots.push((name.clone(), tess, (hi - lo).norm()));
+                let size = BoundingBox::of(&tess.positions).diagonal();
+                shots.push((name.clone(), tess, size));
             }
         }
         report.insert(
@@ -224,8 +213,8 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                     colors,
                     faces: t.faces.clone(),
                 };
-                let (lo, hi) = bbox(&mesh.positions);
-                let cam = Camera::framing(lo, hi, az, el);
+                let b = BoundingBox::of(&mesh.positions);
+                let cam = Camera::framing(b.min, b.max, az, el);
                 tiles.push(Tile {
                     image: render(&mesh, &cam, &options)?,
                     label: format!("{name} — {vname}"),

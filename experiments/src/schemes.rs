@@ -20,7 +20,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use curves::method_by_name;
-use nalgebra::{Point3, Vector3};
+use meshio::BoundingBox;
+use nalgebra::Point3;
 use render::colors as colormap;
 use render::{
     render, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions, Tile,
@@ -143,18 +144,6 @@ fn coloured(t: &Tessellation, colour: impl Fn(usize) -> [f32; 3]) -> RenderMesh 
         colors: (0..t.positions.len()).map(colour).collect(),
         faces: t.faces.clone(),
     }
-}
-
-fn bounds(t: &Tessellation) -> (Point3<f64>, Point3<f64>) {
-    let mut lo = Point3::from(Vector3::repeat(f64::INFINITY));
-    let mut hi = Point3::from(Vector3::repeat(f64::NEG_INFINITY));
-    for p in &t.positions {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (lo, hi)
 }
 
 fn fmt_e(x: f64) -> String {
@@ -290,14 +279,8 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
             .unwrap_or(1.0)
             .max(1e-12);
         // Framing: the union of every scheme's bounds, so no picture is clipped.
-        let (lo, hi) = tessellations.iter().map(|(_, t)| bounds(t)).fold(
-            (
-                Point3::from(Vector3::repeat(f64::INFINITY)),
-                Point3::from(Vector3::repeat(f64::NEG_INFINITY)),
-            ),
-            |(lo, hi), (a, b)| (lo.inf(&a), hi.sup(&b)),
-        );
-        let cam = Camera::framing(lo, hi, VIEW.0, VIEW.1);
+        let b = BoundingBox::of(tessellations.iter().flat_map(|(_, t)| &t.positions));
+        let cam = Camera::framing(b.min, b.max, VIEW.0, VIEW.1);
         let options = RenderOptions {
             width: TILE.0,
             height: TILE.1,

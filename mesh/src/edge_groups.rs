@@ -192,13 +192,8 @@ mod tests {
     fn groups_are_those_of_a_full_sort() {
         // Small (one piece) and large (several pieces) random soups, with repeated vertices,
         // non-manifold edges and unused vertex numbers.
-        let mut state = 7u64;
-        let mut rnd = |n: usize| {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((state >> 33) % n as u64) as usize
-        };
+        let mut rng = fixtures::SplitMix64::new(7);
+        let mut rnd = |n: usize| rng.below(n);
         for (faces, verts) in [(0, 1), (1, 3), (5, 4), (40, 9), (30_000, 900), (40_000, 40)] {
             let tris: Vec<[usize; 3]> = (0..faces)
                 .map(|_| [rnd(verts) + 3, rnd(verts) + 3, rnd(verts)])

@@ -9,7 +9,7 @@
 //! (tested in `surface/tests/suite/shirman_sequin.rs`), so fitting in the working frame and mapping back is
 //! the same surface.
 
-use meshio::RawMesh;
+use meshio::{BoundingBox, RawMesh};
 use nalgebra::{Matrix3, Point3, Vector3};
 
 /// A similarity between the working frame and the file's (world) coordinates.
@@ -51,18 +51,14 @@ impl Frame {
     pub fn of_points<'a>(
         points: impl IntoIterator<Item = &'a Point3<f64>>,
     ) -> Result<Self, FrameError> {
-        let mut lo = Vector3::repeat(f64::INFINITY);
-        let mut hi = Vector3::repeat(f64::NEG_INFINITY);
-        for p in points {
-            lo = lo.inf(&p.coords);
-            hi = hi.sup(&p.coords);
-        }
-        if !lo.x.is_finite() {
+        let b = BoundingBox::of(points);
+        if !b.min.x.is_finite() {
             return Ok(Frame::identity());
         }
-        // The centre as lo/2 + hi/2, which cannot overflow; the extent as hi − lo, which can.
-        let center = lo * 0.5 + hi * 0.5;
-        let extent = (hi - lo).max();
+        // The centre as min/2 + max/2, which cannot overflow; the extent as max − min, which
+        // can.
+        let center = b.center().coords;
+        let extent = b.extent().max();
         if !extent.is_finite() {
             return Err(FrameError::Overflow(extent));
         }

@@ -798,29 +798,16 @@ impl Mesh {
         Ok(out)
     }
 
-    /// Length of the longest bounding-box side, the scale for relative tolerances (0 for an
-    /// empty mesh).
+    /// The diagonal of the vertices' bounding box ([`bounding_size`]), the scale for relative
+    /// tolerances (0 for an empty mesh).
     pub fn size(&self) -> f64 {
         bounding_size(self.vertices.iter().map(|v| &v.data.p))
     }
 }
 
-/// Diagonal of the axis-aligned bounding box of some points (0 for none).
-pub fn bounding_size<'a>(points: impl IntoIterator<Item = &'a Point3<f64>>) -> f64 {
-    let mut lo = Vector3::repeat(f64::INFINITY);
-    let mut hi = Vector3::repeat(f64::NEG_INFINITY);
-    let mut any = false;
-    for p in points {
-        lo = lo.inf(&p.coords);
-        hi = hi.sup(&p.coords);
-        any = true;
-    }
-    if any {
-        (hi - lo).norm()
-    } else {
-        0.0
-    }
-}
+/// The diagonal of the bounding box of some points (0 for none): the workbench's one bounding
+/// box, `meshio::BoundingBox`, re-exported here where the mesh's users look for it.
+pub use meshio::bounds::bounding_size;
 
 #[cfg(test)]
 mod tests {

@@ -27,9 +27,11 @@
 //! Every file the workbench writes, mesh or not, goes through [`outfile`]: atomically, only
 //! over a regular file or nothing, with temporaries removed on failure and on interruption.
 
+pub mod bounds;
 pub mod error;
 pub mod format;
 pub mod glb;
+pub mod hash;
 pub mod obj;
 pub mod off;
 pub mod outfile;
@@ -39,6 +41,7 @@ pub mod stl;
 pub mod testbed;
 mod util;
 
+pub use bounds::{bounding_size, BoundingBox};
 pub use error::{Location, MeshIoError, ReadError, WriteError};
 pub use format::{
     format_by_name, format_for_path, read_bytes, read_file, readable_extensions, sniff_format,

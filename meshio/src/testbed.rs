@@ -49,6 +49,7 @@ use nalgebra::{Matrix3, Point3, Vector3};
 
 use crate::error::{ReadError, WriteError};
 use crate::format::{MeshFormat, WriteOptions};
+use crate::hash::FxBuildHasher;
 use crate::raw::{Polygons, RawMesh};
 use crate::util::{show, validate_for_write};
 
@@ -485,56 +486,10 @@ enum Def {
     Field,
 }
 
-/// A small fast hasher for the names of a file (FxHash's multiply–rotate, seeded per read so
-/// that collisions cannot be planted in a file): a million names hash in milliseconds.
-#[derive(Clone, Copy)]
-struct NameHasher(u64);
-
-impl std::hash::Hasher for NameHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        let mut chunks = bytes.chunks_exact(8);
-        for c in &mut chunks {
-            let mut w = [0u8; 8];
-            w.copy_from_slice(c);
-            self.add(u64::from_le_bytes(w));
-        }
-        let rest = chunks.remainder();
-        if !rest.is_empty() {
-            let mut w = [0u8; 8];
-            w[..rest.len()].copy_from_slice(rest);
-            self.add(u64::from_le_bytes(w) ^ 0xff);
-        }
-    }
-
-    fn write_usize(&mut self, n: usize) {
-        self.add(n as u64);
-    }
-
-    fn finish(&self) -> u64 {
-        // The multiply leaves the low bits depending on the low input bits only (names that
-        // differ in their last characters would share buckets): fold the high bits down.
-        let x = self.0 ^ (self.0 >> 32);
-        x.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ (x >> 29)
-    }
-}
-
-impl NameHasher {
-    fn add(&mut self, w: u64) {
-        self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-}
-
-#[derive(Clone, Copy)]
-struct NameHash(u64);
-
-impl std::hash::BuildHasher for NameHash {
-    type Hasher = NameHasher;
-    fn build_hasher(&self) -> NameHasher {
-        NameHasher(self.0)
-    }
-}
-
-type Names<'a> = HashMap<&'a [u8], (Def, usize), NameHash>;
+/// The defined names: hashed with the workbench's one fast hasher, seeded per read so that
+/// collisions cannot be planted in a file ([`crate::hash`]): a million names hash in
+/// milliseconds.
+type Names<'a> = HashMap<&'a [u8], (Def, usize), FxBuildHasher>;
 
 /// A name in the input and the line it is on.
 type NameAt<'a> = (&'a [u8], usize);
@@ -545,7 +500,7 @@ fn read_testbed(bytes: &[u8]) -> Result<RawMesh, Failure> {
     let mut p = Parser::new(bytes)?;
     let mut points: Vec<Point<'_>> = Vec::new();
     // Every defined name (but `mesh`): what it is and its line.
-    let mut defined: Names<'_> = HashMap::with_hasher(NameHash(seed));
+    let mut defined: Names<'_> = HashMap::with_hasher(FxBuildHasher::with_seed(seed));
     // Face corners as point indices, resolved as the face is read when the name is a point's
     // own number (`v17`), [`UNRESOLVED`] otherwise, with the name kept in `deferred`.
     let mut corners: Vec<usize> = Vec::new();

@@ -233,11 +233,10 @@ mod tests {
         .iter()
         .map(|s| s.to_string())
         .collect();
-        let mut state = 1u64;
+        // Random strings of 0 to 15 characters, one 4-bit draw each, from one 64-bit draw.
+        let mut rng = rng::SplitMix64::new(1);
         for _ in 0..2000 {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
+            let state = rng.next_u64();
             let len = (state >> 60) as usize;
             let s: String = (0..len)
                 .map(|k| b"0123456789-+/x9"[((state >> (4 * k)) % 15) as usize] as char)

@@ -6,6 +6,7 @@ use std::f64::consts::PI;
 
 use meshio::Polygons;
 use nalgebra::{Point3, Vector3};
+use rng::SplitMix64;
 
 use crate::error::SubdivError;
 use crate::mesh::PolyMesh;
@@ -181,38 +182,19 @@ fn plane_grid(nu: usize, nv: usize) -> (Vec<Point3<f64>>, Vec<[usize; 4]>) {
     (positions, quads)
 }
 
-/// SplitMix64: a small deterministic generator for the irregular shapes.
-#[derive(Clone, Debug)]
-pub struct SplitMix(pub u64);
-
-impl SplitMix {
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)`.
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// A triangle mesh with irregular valences: each face of `mesh` is split 1→3 at its centroid
 /// (lifted by `lift` times the face's size along its normal) with probability `fraction`, so
 /// new vertices have valence 3 and their corners gain one each; then every position is moved
 /// by up to `jitter` times the mean edge length in each coordinate. Non-triangular faces are
-/// kept as they are.
+/// kept as they are. The draws come from the workbench's one generator, [`SplitMix64`] seeded
+/// with `seed`.
 pub fn irregular(mesh: &PolyMesh, fraction: f64, lift: f64, jitter: f64, seed: u64) -> PolyMesh {
-    let mut rng = SplitMix(seed);
+    let mut rng = SplitMix64::new(seed);
     let mut positions = mesh.positions().to_vec();
     let mut polygons = Polygons::new();
     for face in mesh.faces() {
         let f: Vec<usize> = face.iter().map(|&v| v as usize).collect();
-        if f.len() == 3 && rng.unit() < fraction {
+        if f.len() == 3 && rng.next_f64() < fraction {
             let p: Vec<Point3<f64>> = f.iter().map(|&v| mesh.positions()[v]).collect();
             let n = (p[1] - p[0]).cross(&(p[2] - p[0]));
             let size = n.norm().sqrt();
@@ -241,7 +223,7 @@ pub fn irregular(mesh: &PolyMesh, fraction: f64, lift: f64, jitter: f64, seed: u
     };
     for p in &mut positions {
         for c in p.coords.iter_mut() {
-            *c += (2.0 * rng.unit() - 1.0) * jitter * mean_edge;
+            *c += (2.0 * rng.next_f64() - 1.0) * jitter * mean_edge;
         }
     }
     let creases: Vec<[usize; 2]> = mesh.creases();
@@ -284,10 +266,10 @@ pub fn irregular_small(seed: u64) -> PolyMesh {
             final_tris.push(t);
         }
     }
-    let mut rng = SplitMix(seed);
+    let mut rng = SplitMix64::new(seed);
     for p in &mut positions {
         for c in p.coords.iter_mut() {
-            *c += (2.0 * rng.unit() - 1.0) * 0.05;
+            *c += (2.0 * rng.next_f64() - 1.0) * 0.05;
         }
     }
     known_good(PolyMesh::from_triangles(positions, &final_tris))

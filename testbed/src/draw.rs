@@ -9,7 +9,7 @@
 
 use std::io::Write;
 
-use nalgebra::{Point3, Vector3};
+use nalgebra::Point3;
 use render::{Camera, Image, RenderMesh, RenderOptions};
 
 use crate::error::FilterError;
@@ -131,22 +131,14 @@ pub fn render_mesh(tris: &[[Vertex; 3]], default_color: [f32; 3]) -> RenderMesh 
     m
 }
 
-/// Bounding box of the mesh's finite positions (a unit box at the origin when empty).
+/// Bounding box of the mesh's finite positions (a unit box at the origin when empty):
+/// `meshio::BoundingBox`, the workspace's one box.
 fn bounds(m: &RenderMesh) -> (Point3<f64>, Point3<f64>) {
-    let mut lo = Point3::from(Vector3::repeat(f64::INFINITY));
-    let mut hi = Point3::from(Vector3::repeat(f64::NEG_INFINITY));
-    for p in m
-        .positions
-        .iter()
-        .filter(|p| p.iter().all(|x| x.is_finite()))
-    {
-        lo = lo.inf(p);
-        hi = hi.sup(p);
-    }
-    if lo.x > hi.x {
+    let b = meshio::BoundingBox::of_finite(&m.positions);
+    if b.is_empty() {
         (Point3::origin(), Point3::new(1.0, 1.0, 1.0))
     } else {
-        (lo, hi)
+        (b.min, b.max)
     }
 }
 

@@ -35,7 +35,7 @@ fn check(
 
 #[test]
 fn curvature_and_twist_gradients_match_finite_differences() {
-    let mut rng = Rng(42);
+    let mut rng = Rng::new(42);
     for _ in 0..200 {
         let n = (rng.vec() + Vector3::z() * 2.0).normalize();
         let p = Matrix3::identity() - n * n.transpose();

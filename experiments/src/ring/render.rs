@@ -4,7 +4,8 @@
 
 use std::path::Path;
 
-use nalgebra::{Point3, Vector3};
+use meshio::BoundingBox;
+use nalgebra::Vector3;
 use render::colors as colormap;
 use render::{write_composite, Camera, Image, Legend, LegendKind, RenderMesh, RenderOptions, Tile};
 use serde_json::{json, Value};
@@ -73,20 +74,6 @@ fn render_mesh(s: &SurfaceView<'_>, colouring: &Colouring) -> RenderMesh {
     }
 }
 
-fn bbox(views: &[SurfaceView<'_>]) -> (Point3<f64>, Point3<f64>) {
-    let mut lo = Point3::from(Vector3::repeat(f64::INFINITY));
-    let mut hi = Point3::from(Vector3::repeat(f64::NEG_INFINITY));
-    for v in views {
-        for p in &v.tess.positions {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-    }
-    (lo, hi)
-}
-
 /// The Gaussian-curvature colour limit shared by pictures and PLY colours: the true ring's
 /// largest |K|.
 fn gaussian_limit(views: &[SurfaceView<'_>]) -> f64 {
@@ -100,7 +87,8 @@ fn gaussian_limit(views: &[SurfaceView<'_>]) -> f64 {
 
 /// Renders the three composites; returns their description for the report.
 pub fn render_all(out: &Path, views: &[SurfaceView<'_>]) -> Result<Value, ExperimentError> {
-    let (lo, hi) = bbox(views);
+    let BoundingBox { min: lo, max: hi } =
+        BoundingBox::of(views.iter().flat_map(|v| &v.tess.positions));
     // Colour limits shared by every surface so the pictures compare: the true ring's largest
     // |K|, and twice the median over the fitted surfaces of their largest distance (so the
     // typical fitted surface uses the lower half of the scale; lumps and flat triangles

@@ -6,3 +6,4 @@ mod golden;
 mod limits;
 mod reproduction;
 mod robustness;
+mod shapes;

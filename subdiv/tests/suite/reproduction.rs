@@ -4,7 +4,8 @@
 
 use nalgebra::{Matrix3, Point3, Vector3};
 use proptest::prelude::*;
-use subdiv::shapes::{irregular_small, quad_grid, triangle_grid, SplitMix};
+use rng::SplitMix64;
+use subdiv::shapes::{irregular_small, quad_grid, triangle_grid};
 use subdiv::{subdivide, CatmullClark, Loop, LoopWeights, PolyMesh, Subdivision, VertexKind};
 
 /// Coordinates of order 10 after a few exact-in-binary steps; rounding stays below this.
@@ -20,14 +21,14 @@ fn with_height(mesh: &PolyMesh, f: impl Fn(f64, f64) -> f64) -> PolyMesh {
 }
 
 fn jittered(mesh: &PolyMesh, seed: u64) -> PolyMesh {
-    let mut rng = SplitMix(seed);
+    let mut rng = SplitMix64::new(seed);
     let pos = mesh
         .positions()
         .iter()
         .map(|p| {
             Point3::new(
-                p.x + 0.3 * (rng.unit() - 0.5),
-                p.y + 0.3 * (rng.unit() - 0.5),
+                p.x + 0.3 * (rng.next_f64() - 0.5),
+                p.y + 0.3 * (rng.next_f64() - 0.5),
                 p.z,
             )
         })
@@ -115,8 +116,8 @@ fn linear_functions_are_their_own_limit() {
 #[test]
 fn loop_is_the_box_spline_on_regular_triangulations() {
     let grid = triangle_grid(6, 6);
-    let mut rng = SplitMix(11);
-    let heights: Vec<f64> = (0..grid.num_vertices()).map(|_| rng.unit()).collect();
+    let mut rng = SplitMix64::new(11);
+    let heights: Vec<f64> = (0..grid.num_vertices()).map(|_| rng.next_f64()).collect();
     let pos = grid
         .positions()
         .iter()

@@ -10,43 +10,17 @@
 //! welds a triangle soup (the testbed's `to-mesh`, whose triangles come one by one from a
 //! record stream), and [`crate::patch_g1`] matches patch corners with it.
 
-use std::collections::HashMap;
-
+use meshio::hash::FxHashMap;
+use meshio::BoundingBox;
 use nalgebra::Point3;
 
-use crate::mesh::bounding_size;
 use crate::tessellate::WELD_RELATIVE;
 
-/// A multiply–rotate hash (FxHash's) for grid cells: the cells are small integer triples from
-/// our own samples, not adversarial keys, and SipHash cost a quarter of a tessellation.
-#[derive(Clone, Copy, Default)]
-struct CellHasher(u64);
-
-impl std::hash::Hasher for CellHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for b in bytes {
-            self.write_u64(u64::from(*b));
-        }
-    }
-
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn write_i64(&mut self, x: i64) {
-        self.write_u64(x as u64);
-    }
-
-    fn write_usize(&mut self, x: usize) {
-        self.write_u64(x as u64);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
-    }
-}
-
-type CellMap = HashMap<[i64; 3], Vec<usize>, std::hash::BuildHasherDefault<CellHasher>>;
+/// Kept points by grid cell, hashed with the workbench's one fast hasher (`meshio::hash`,
+/// unseeded): the cells are small integer triples from our own samples, not adversarial keys,
+/// and SipHash cost a quarter of a tessellation. Only looked up, never iterated, so the weld
+/// does not depend on the hash values.
+type CellMap = FxHashMap<[i64; 3], Vec<usize>>;
 
 /// A spatial hash of kept points for welding within an absolute tolerance (module docs). It
 /// stores indices; the positions live in the caller's list, passed to [`PositionWeld::find`].
@@ -143,11 +117,7 @@ impl PositionWeld {
 /// The diagonal of the bounding box of the finite points (0 when there are none): the model
 /// size tolerances are relative to, not made infinite or NaN by one bad coordinate.
 pub fn finite_size<'a>(points: impl IntoIterator<Item = &'a Point3<f64>>) -> f64 {
-    bounding_size(
-        points
-            .into_iter()
-            .filter(|p| p.iter().all(|c| c.is_finite())),
-    )
+    BoundingBox::of_finite(points).diagonal()
 }
 
 /// A triangle soup welded by position ([`weld_triangles`]).

@@ -182,10 +182,10 @@ fn appendix_b_chiyokura_kimura() {
 
 /// Deterministic pseudo-random numbers in [0, 1).
 /// The workspace's one test generator.
-use fixtures::SplitMix64 as Lcg;
+use fixtures::SplitMix64 as Rng;
 
 fn random_params(seed: u64, faces: usize) -> Vec<InteriorParameters> {
-    let mut rng = Lcg::new(seed);
+    let mut rng = Rng::new(seed);
     (0..faces)
         .map(|_| InteriorParameters {
             beta: std::array::from_fn(|_| 0.2 + 0.6 * rng.next_f64()),
@@ -233,7 +233,7 @@ fn g1_on_curved_data_for_every_construction() {
 fn g1_with_perturbed_normals() {
     for (i, name) in ["sphere", "ring", "capsule"].iter().enumerate() {
         let mut data = dataset_by_name(name, None).unwrap();
-        let mut rng = Lcg::new(99 + i as u64);
+        let mut rng = Rng::new(99 + i as u64);
         for v in data.mesh.vertices_mut() {
             // Tilt each normal by up to 0.05 rad about a random tangent axis (larger tilts fold
             // the projected edges of the capsule's thinnest triangles over each other, where no
@@ -289,7 +289,7 @@ fn g1_with_perturbed_normals() {
 }
 
 fn planar_triangle(seed: u64) -> ([VertexData; 3], Rotation3<f64>, Vector3<f64>) {
-    let mut rng = Lcg::new(seed);
+    let mut rng = Rng::new(seed);
     let rot = Rotation3::new(Vector3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) * 3.0);
     let shift =
         Vector3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) * 10.0 - Vector3::repeat(5.0);

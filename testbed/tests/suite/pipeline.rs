@@ -472,12 +472,10 @@ fn sampled_fits_write_mesh_records_that_draw_as_their_triangles() {
     assert!(!out.status.success() && err.contains("--sample"), "{err}");
 }
 
-/// Deterministic pseudo-random numbers (xorshift), so failures reproduce.
-fn xorshift(state: &mut u64) -> u64 {
-    *state ^= *state << 13;
-    *state ^= *state >> 7;
-    *state ^= *state << 17;
-    *state
+/// The next of the workspace's seeded pseudo-random numbers (`rng::SplitMix64`), so failures
+/// reproduce.
+fn draw(state: &mut rng::SplitMix64) -> u64 {
+    state.next_u64()
 }
 
 #[test]
@@ -489,7 +487,7 @@ fn truncated_and_mutated_streams_never_panic() {
         streams.push(tris);
         streams.push(ok(&["g1", "--format", format], &patches));
     }
-    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut seed = rng::SplitMix64::new(0x9e37_79b9_7f4a_7c15);
     // Panics exit with 101; errors with 1.
     const PANIC_STATUS: i32 = 101;
     for s in &streams {
@@ -497,8 +495,8 @@ fn truncated_and_mutated_streams_never_panic() {
         for _ in 0..12 {
             let mut m = s.clone();
             for _ in 0..4 {
-                let i = (xorshift(&mut seed) as usize) % m.len();
-                m[i] = (xorshift(&mut seed) & 0xff) as u8;
+                let i = (draw(&mut seed) as usize) % m.len();
+                m[i] = (draw(&mut seed) & 0xff) as u8;
             }
             cases.push(m);
         }
@@ -538,7 +536,7 @@ fn damaged_streams_with_mesh_records_never_panic_in_any_filter() {
         .copied()
         .collect();
     let note = b"{\"type\":\"Note\",\"x\":[1,2]}\n";
-    let mut seed = 0x5851_f42d_4c95_7f2du64;
+    let mut seed = rng::SplitMix64::new(0x5851_f42d_4c95_7f2d);
     let fields = CurvatureFields { kg: true, km: true };
     for format in ["json", "dstruct", "binary"] {
         let tris = ok(
@@ -560,16 +558,16 @@ fn damaged_streams_with_mesh_records_never_panic_in_any_filter() {
         });
         for _ in 0..CASES {
             let mut m = stream.clone();
-            for _ in 0..1 + xorshift(&mut seed) % 4 {
-                let at = (xorshift(&mut seed) as usize) % m.len();
-                match xorshift(&mut seed) % 3 {
-                    0 => m[at] = xorshift(&mut seed) as u8,
+            for _ in 0..1 + draw(&mut seed) % 4 {
+                let at = (draw(&mut seed) as usize) % m.len();
+                match draw(&mut seed) % 3 {
+                    0 => m[at] = draw(&mut seed) as u8,
                     1 => {
                         m.remove(at);
                     }
                     _ => {
                         let bytes = b"{}[]()\",.;%:-0e9\n";
-                        m.insert(at, bytes[(xorshift(&mut seed) as usize) % bytes.len()])
+                        m.insert(at, bytes[(draw(&mut seed) as usize) % bytes.len()])
                     }
                 }
             }
