@@ -4,7 +4,11 @@ use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
 
-/// The solver adapters, selectable by name (`FromStr`/`Display` round-trip).
+/// The solver adapters, selectable by name (`FromStr`/`Display` round-trip): the family's
+/// registry is this closed enum and [`SolverKind::ALL`], because `solve` dispatches to each
+/// adapter's fast paths monomorphized for the problem's sizes (const generics), which a `dyn`
+/// trait object cannot carry. A new adapter is one file, one variant, one entry in `ALL` and
+/// its name here; every `--solver` option, report and agreement test then takes it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SolverKind {
@@ -38,9 +42,10 @@ impl fmt::Display for SolverKind {
     }
 }
 
-/// A solver name that is not one of [`SolverKind::ALL`].
+/// A solver name that is not one of [`SolverKind::ALL`] (the message lists them, from the
+/// registry).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown solver `{0}`; expected one of: exact-penalty, lbfgs, lm")]
+#[error("unknown solver `{name}`; expected one of: {known}", name = .0, known = SolverKind::ALL.map(SolverKind::name).join(", "))]
 pub struct UnknownSolver(
     /// The name that was given.
     pub String,
