@@ -36,6 +36,14 @@ impl Filter for ToMesh {
     type Args = ToMeshArgs;
 
     fn run(args: ToMeshArgs, stream: StreamOptions) -> Result<(), FilterError> {
+        // The mesh is its own file: an --output would be written empty (a file that looks
+        // like a result and holds nothing), so it is refused before anything is read.
+        if let Some(o) = &stream.output {
+            return Err(FilterError::Usage(format!(
+                "--output {}: to-mesh writes its mesh to --out and nothing else (leave --output out)",
+                o.display()
+            )));
+        }
         let tris = stream.read(Self::NAME, &mut draw::collect_triangles)?;
         if tris.is_empty() {
             eprintln!("{}: no triangles in the input", Self::NAME);

@@ -273,3 +273,28 @@ fn fit_sample_beyond_memory_is_refused_before_allocating() {
     assert!(text.contains("would need about"), "{text}");
     assert!(out.stdout.is_empty());
 }
+
+#[test]
+fn to_mesh_refuses_an_output_it_would_leave_empty() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("m.ply");
+    let stray = dir.path().join("stray.out");
+    let tris = ok(
+        &["tess", "-s", "1"],
+        &ok(&["fit", "--dataset", "octa"], b""),
+    );
+    let args = [
+        "to-mesh",
+        "--out",
+        mesh.to_str().unwrap(),
+        "--output",
+        stray.to_str().unwrap(),
+    ];
+    let out = testbed(&args, &tris);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("--output"), "{}", stderr(&out));
+    assert!(!stray.exists() && !mesh.exists(), "nothing written");
+    // Without it, the mesh is written.
+    ok(&["to-mesh", "--out", mesh.to_str().unwrap()], &tris);
+    assert!(std::fs::metadata(&mesh).unwrap().len() > 0);
+}
