@@ -48,9 +48,31 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
     Ok(fitjob::input::load(&args.job_input())?)
 }
 
-/// A study's fit of an already prepared mesh (`mesh` in its working `frame`) with `scheme` on
-/// `curves` (with `method_options`), through the fit job (`fitjob::run` with [`fitjob::Source::Prepared`], the fit and
-/// G1 every front end gets): the fit, its whole G1 measurement and the fit's time in seconds.
+/// A study's fit through the fit job (`fitjob::run`, the fit and G1 every front end gets), the
+/// fit kept: the fit, its whole G1 measurement and the fit's time in seconds.
+pub fn fit_kept(
+    options: fitjob::FitOptions,
+) -> Result<(surface::Fit, surface::G1Report, f64), ExperimentError> {
+    let label = options.input.source.label().to_string();
+    let outcome = fitjob::run(
+        fitjob::FitOptions {
+            keep: true,
+            ..options
+        },
+        &mut |_| {},
+    )?;
+    match (outcome.kept.fit, outcome.kept.g1) {
+        (Some(fit), Some(g1)) => Ok((fit, g1, outcome.report.time.fit)),
+        // A subdivision scheme: no patches to keep.
+        _ => Err(ExperimentError::from(fitjob::JobError::Write {
+            path: label.into(),
+            source: std::io::Error::other("the fit job kept no fit"),
+        })),
+    }
+}
+
+/// [`fit_kept`] of an already prepared mesh (`mesh` in its working `frame`, as
+/// [`fitjob::Source::Prepared`]) with `scheme` on `curves` (with `method_options`).
 pub fn fit_prepared(
     label: &str,
     mesh: &surface::Mesh,
@@ -59,29 +81,18 @@ pub fn fit_prepared(
     curves: &str,
     method_options: curves::MethodOptions,
 ) -> Result<(surface::Fit, surface::G1Report, f64), ExperimentError> {
-    let outcome = fitjob::run(
-        fitjob::FitOptions {
-            input: fitjob::InputOptions {
-                source: fitjob::Source::Prepared {
-                    label: label.to_string(),
-                    mesh: Box::new(mesh.clone()),
-                    frame,
-                },
-                ..fitjob::InputOptions::default()
+    fit_kept(fitjob::FitOptions {
+        input: fitjob::InputOptions {
+            source: fitjob::Source::Prepared {
+                label: label.to_string(),
+                mesh: Box::new(mesh.clone()),
+                frame,
             },
-            scheme: scheme.to_string(),
-            curves: curves.to_string(),
-            method_options,
-            keep: true,
-            ..fitjob::FitOptions::default()
+            ..fitjob::InputOptions::default()
         },
-        &mut |_| {},
-    )?;
-    match (outcome.kept.fit, outcome.kept.g1) {
-        (Some(fit), Some(g1)) => Ok((fit, g1, outcome.report.time.fit)),
-        _ => Err(ExperimentError::from(fitjob::JobError::Write {
-            path: label.into(),
-            source: std::io::Error::other("the fit job kept no fit"),
-        })),
-    }
+        scheme: scheme.to_string(),
+        curves: curves.to_string(),
+        method_options,
+        ..fitjob::FitOptions::default()
+    })
 }

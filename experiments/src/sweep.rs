@@ -205,32 +205,21 @@ fn run_task(
         }
     })?;
     // The fit and its G1 by the fit job, as every front end gets them.
-    let outcome = fitjob::run(
-        fitjob::FitOptions {
-            input: fitjob::InputOptions {
-                source: fitjob::Source::DataSet {
-                    name: t.dataset.into(),
-                    resolution: None,
-                },
-                ..fitjob::InputOptions::default()
+    let (f, g1, fit_time) = crate::input::fit_kept(fitjob::FitOptions {
+        input: fitjob::InputOptions {
+            source: fitjob::Source::DataSet {
+                name: t.dataset.into(),
+                resolution: None,
             },
-            scheme: scheme.scheme.clone(),
-            scheme_options: scheme.options.clone(),
-            curves: t.curves.into(),
-            method_options: options,
-            interior,
-            keep: true,
-            ..fitjob::FitOptions::default()
+            ..fitjob::InputOptions::default()
         },
-        &mut |_| {},
-    )?;
-    let fit_time = outcome.report.time.fit;
-    let (Some(f), Some(g1)) = (outcome.kept.fit, outcome.kept.g1) else {
-        return Err(ExperimentError::from(fitjob::JobError::Write {
-            path: t.id().into(),
-            source: std::io::Error::other("the fit job kept no fit"),
-        }));
-    };
+        scheme: scheme.scheme.clone(),
+        scheme_options: scheme.options.clone(),
+        curves: t.curves.into(),
+        method_options: options,
+        interior,
+        ..fitjob::FitOptions::default()
+    })?;
     let cs = surface::curve_stats::curve_stats(&problems, &f);
     let tess = surface::tessellate_fit(mesh, &f, SAMPLING).map_err(|source| {
         ExperimentError::Tessellate {

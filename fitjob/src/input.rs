@@ -146,14 +146,26 @@ pub fn load(options: &InputOptions) -> Result<Loaded, JobError> {
                 let t = std::time::Instant::now();
                 let raw = meshio::read_file(path).map_err(JobError::MeshIo)?;
                 let read_time = t.elapsed().as_secs_f64();
-                prepare(raw, options, path.to_path_buf(), read_time)
+                prepare(
+                    raw,
+                    &options.estimate,
+                    options.replace_normals,
+                    path.to_path_buf(),
+                    read_time,
+                )
             } else {
                 dataset(data, *resolution)
             }
         }
         Source::DataSet { name, resolution } => dataset(name, *resolution),
         Source::Prepared { mesh, frame, .. } => Ok(prepared((**mesh).clone(), *frame)),
-        Source::Raw { label, raw } => prepare((**raw).clone(), options, PathBuf::from(label), 0.0),
+        Source::Raw { label, raw } => prepare(
+            (**raw).clone(),
+            &options.estimate,
+            options.replace_normals,
+            PathBuf::from(label),
+            0.0,
+        ),
     }
 }
 
@@ -175,16 +187,13 @@ fn prepared(mesh: Mesh, frame: Frame) -> Loaded {
 /// first (a large mesh is not held twice).
 pub fn load_owned(options: InputOptions) -> Result<Loaded, JobError> {
     match options.source {
-        Source::Raw { label, raw } => {
-            let rest = InputOptions {
-                source: Source::DataSet {
-                    name: label.clone(),
-                    resolution: None,
-                },
-                ..options
-            };
-            prepare(*raw, &rest, PathBuf::from(label), 0.0)
-        }
+        Source::Raw { label, raw } => prepare(
+            *raw,
+            &options.estimate,
+            options.replace_normals,
+            PathBuf::from(label),
+            0.0,
+        ),
         Source::Prepared { mesh, frame, .. } => Ok(prepared(*mesh, frame)),
         source => load(&InputOptions { source, ..options }),
     }
@@ -193,18 +202,19 @@ pub fn load_owned(options: InputOptions) -> Result<Loaded, JobError> {
 /// A raw mesh repaired and completed.
 fn prepare(
     mut raw: meshio::RawMesh,
-    options: &InputOptions,
+    estimator: &str,
+    replace_normals: bool,
     path: PathBuf,
     read_time: f64,
 ) -> Result<Loaded, JobError> {
-    let choice = EstimateChoice::parse(&options.estimate).map_err(|source| JobError::Estimate {
-        value: options.estimate.clone(),
+    let choice = EstimateChoice::parse(estimator).map_err(|source| JobError::Estimate {
+        value: estimator.to_string(),
         source,
     })?;
     let peak_read = crate::limits::peak_resident_bytes();
     let mut notes: Vec<String> = std::mem::take(&mut raw.notes);
     // The raw mesh is handed over and freed once repaired: a large file is not held twice.
-    let prepared = estimate::prepare_owned(raw, choice, options.replace_normals)
+    let prepared = estimate::prepare_owned(raw, choice, replace_normals)
         .map_err(|source| JobError::Prepare { path, source })?;
     notes.extend(prepared.summary_lines());
     notes.push(format!(

@@ -10,7 +10,7 @@ use surface::stream::{StreamError, Streamed};
 use surface::{Fit, G1Report, Tessellation};
 
 use crate::error::JobError;
-use crate::input::{load_owned, InputOptions, Source};
+use crate::input::{load_owned, Source};
 use crate::limits::{self, check_memory, check_usize};
 use crate::options::FitOptions;
 use crate::output::{mesh_format_for, refuse_unwritable, write_result, write_result_with};
@@ -55,18 +55,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             kept: Kept::default(),
         });
     }
-    let entry = surface::scheme::entry_by_name(&options.scheme).ok_or_else(|| {
-        // The registry's own refusal, naming the known schemes.
-        surface::scheme_by_name(&options.scheme, &options.scheme_options)
-            .err()
-            .map(JobError::Scheme)
-            .unwrap_or_else(|| {
-                JobError::Scheme(surface::UnknownScheme {
-                    name: options.scheme.clone(),
-                    known: surface::scheme_names().join(", "),
-                })
-            })
-    })?;
+    let entry = surface::scheme::entry_by_name(&options.scheme)?;
     limits::check_scheme_parameters(entry, &options.scheme_options)?;
     check_usize("tess", options.tess, &limits::SAMPLING_RANGE)?;
     let label = options.input.source.label().to_string();
@@ -103,16 +92,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
     };
     let t0 = Instant::now();
     // The input is taken (a raw mesh moves into the repair); what follows reads only its label.
-    let input = std::mem::replace(
-        &mut options.input,
-        InputOptions {
-            source: Source::DataSet {
-                name: label.clone(),
-                resolution: None,
-            },
-            ..InputOptions::default()
-        },
-    );
+    let input = std::mem::take(&mut options.input);
     let loaded = load_owned(input)?;
     for note in &loaded.notes {
         log(&format!("  {note}"));
@@ -148,7 +128,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         subject: label.clone(),
         source,
     };
-    let scheme = surface::scheme_by_name(&options.scheme, &options.scheme_options)?;
+    let scheme = (entry.build)(&options.scheme_options);
     // Streamed when nothing needs the whole fit's nets afterwards (no interior optimization,
     // which refits from a first fit; nothing kept): the same report and file, bit for bit,
     // without the nets in memory (`surface::stream`). With a tessellation too, when the layout

@@ -117,38 +117,28 @@ pub(super) fn fit_methods(
     let mut fits = Vec::new();
     for entry in curves::REGISTRY {
         let name = entry.name;
-        let outcome = fitjob::run(
-            fitjob::FitOptions {
-                input: fitjob::InputOptions {
-                    source: fitjob::Source::DataSet {
-                        name: "ring".into(),
-                        resolution: Some(resolution),
-                    },
-                    ..fitjob::InputOptions::default()
+        let (f, g1, fit_time_seconds) = crate::input::fit_kept(fitjob::FitOptions {
+            input: fitjob::InputOptions {
+                source: fitjob::Source::DataSet {
+                    name: "ring".into(),
+                    resolution: Some(resolution),
                 },
-                scheme: scheme.scheme.clone(),
-                scheme_options: scheme.options.clone(),
-                curves: name.into(),
-                method_options: *options,
-                interior,
-                keep: true,
-                ..fitjob::FitOptions::default()
+                ..fitjob::InputOptions::default()
             },
-            &mut |_| {},
-        )?;
-        let (Some(f), Some(g1)) = (outcome.kept.fit, outcome.kept.g1) else {
-            return Err(ExperimentError::from(fitjob::JobError::Write {
-                path: "ring".into(),
-                source: std::io::Error::other("the fit job kept no fit"),
-            }));
-        };
+            scheme: scheme.scheme.clone(),
+            scheme_options: scheme.options.clone(),
+            curves: name.into(),
+            method_options: *options,
+            interior,
+            ..fitjob::FitOptions::default()
+        })?;
         let cs = surface::curve_stats::curve_stats(problems, &f);
         fits.push(FittedMethod {
             name,
             fit: f,
             g1,
             curves: cs,
-            fit_time_seconds: outcome.report.time.fit,
+            fit_time_seconds,
         });
     }
     Ok(fits)

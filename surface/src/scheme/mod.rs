@@ -424,8 +424,14 @@ pub struct UnknownScheme {
 }
 
 /// The registered entry named `name`.
-pub fn entry_by_name(name: &str) -> Option<&'static SchemeEntry> {
-    REGISTRY.iter().find(|e| e.name == name)
+pub fn entry_by_name(name: &str) -> Result<&'static SchemeEntry, UnknownScheme> {
+    REGISTRY
+        .iter()
+        .find(|e| e.name == name)
+        .ok_or_else(|| UnknownScheme {
+            name: name.to_string(),
+            known: scheme_names().join(", "),
+        })
 }
 
 /// Every parameter of the schemes of `registry`, each once (by name, in registry order), with
@@ -453,12 +459,5 @@ pub fn scheme_by_name(
     name: &str,
     options: &SchemeOptions,
 ) -> Result<Box<dyn Scheme>, UnknownScheme> {
-    REGISTRY
-        .iter()
-        .find(|e| e.name == name)
-        .map(|e| (e.build)(options))
-        .ok_or_else(|| UnknownScheme {
-            name: name.to_string(),
-            known: scheme_names().join(", "),
-        })
+    entry_by_name(name).map(|e| (e.build)(options))
 }
