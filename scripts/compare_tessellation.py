@@ -14,8 +14,8 @@ one diagonal, default 320 × 160 = 102 400 triangles) with area-weighted vertex 
 as OBJ with its normals. Output counts match: Loop with L levels gives F·4^L triangles, a
 tessellation at s segments per edge F·s², so s = 2^L (s = 4 ↔ L = 2, s = 8 ↔ L = 3).
 
-* ours: `experiments fit --data mesh.obj --estimate none --curves chord --scheme S --tess s
-  --mesh-out out.ply`; the time is the sum of the `fit` and `tessellate` stage times it prints
+* ours: `experiments fit --data mesh.obj --estimate none --curves chord --scheme S --segments s
+  --mesh-output out.ply`; the time is the sum of the `fit` and `tessellate` stage times it prints
   (reading, G1 measurement, conversion and writing are outside, as they are for the others). Our
   tessellation also computes normals, Gaussian and mean curvature and shape tensors per vertex,
   and welds the output into one mesh.
@@ -152,8 +152,8 @@ def ours(obj, scheme, s, tmp):
     for _ in range(RUNS):
         r = subprocess.run(
             ["target/release/experiments", "fit", "--data", str(obj), "--estimate", "none",
-             "--curves", "chord", "--scheme", scheme, "--tess", str(s),
-             "--mesh-out", str(Path(tmp) / "out.ply")],
+             "--curves", "chord", "--scheme", scheme, "--segments", str(s),
+             "--mesh-output", str(Path(tmp) / "out.ply")],
             capture_output=True, text=True, check=True,
         )
         err = r.stderr

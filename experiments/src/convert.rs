@@ -24,8 +24,8 @@ pub struct ConvertArgs {
     #[command(flatten)]
     input: InputArgs,
     /// The output file; its extension names the format (.m, .obj, .ply, .off, .stl, .glb).
-    #[arg(long)]
-    out: PathBuf,
+    #[arg(short = 'o', long)]
+    output: PathBuf,
     /// Write text instead of binary where the format offers both (PLY, STL).
     #[arg(long)]
     ascii: bool,
@@ -34,9 +34,9 @@ pub struct ConvertArgs {
 /// Runs the conversion.
 pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     let t0 = Instant::now();
-    let format = crate::output::mesh_format_for("--out", &args.out)?;
+    let format = crate::output::mesh_format_for("--output", &args.output)?;
     let loaded = load(&args.input)?;
-    crate::output::refuse_overwriting_input("--out", &args.out, &args.input.data)?;
+    crate::output::refuse_overwriting_input("--output", &args.output, &args.input.data)?;
     let mut world = loaded.mesh.clone();
     loaded.frame.mesh_to_world(&mut world);
     let mesh = &world;
@@ -60,11 +60,11 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     };
     let bytes = meshio::write_bytes(&raw, format, &options).map_err(|source| {
         ExperimentError::MeshWrite {
-            path: args.out.clone(),
+            path: args.output.clone(),
             source,
         }
     })?;
-    write_result(Some(&args.out), &bytes)?;
+    write_result(Some(&args.output), &bytes)?;
     for note in &loaded.notes {
         say!("  {note}");
     }
@@ -73,7 +73,7 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
         args.input.data,
         mesh.num_vertices(),
         mesh.num_faces(),
-        args.out.display(),
+        args.output.display(),
         bytes.len(),
         format.name(),
         t0.elapsed().as_secs_f64()

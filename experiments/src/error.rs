@@ -163,12 +163,33 @@ pub enum ExperimentError {
         /// Shard files read.
         files: usize,
     },
+    /// Options that cannot be used together, or a value the parser could not check (exit
+    /// status 2, like the parser's own usage errors).
+    #[error("{0}")]
+    Usage(String),
     /// `--corpus` holds no readable mesh file.
     #[error("--corpus {path}: no mesh files (readable: {})", meshio::readable_extensions(), path = .path.display())]
     EmptyCorpus {
         /// The directory given.
         path: PathBuf,
     },
+}
+
+impl ExperimentError {
+    /// The exit status this error ends the run with (docs/conventions.md, "The command
+    /// language"): 2 for a usage error (an unknown name, a value outside its range, options that
+    /// cannot go together: the command line is wrong whatever the input), 1 for everything else
+    /// (the input, the machine or the output refused).
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            ExperimentError::Usage(_)
+            | ExperimentError::DataOption { .. }
+            | ExperimentError::Method(_)
+            | ExperimentError::Scheme(_) => 2,
+            ExperimentError::Job(e) if e.is_usage() => 2,
+            _ => 1,
+        }
+    }
 }
 
 impl From<fitjob::JobError> for ExperimentError {

@@ -1,7 +1,7 @@
 //! `experiments -- fit`: fit a data set or mesh file with a surface scheme (`--scheme`, default
 //! the modified Shirman–Séquin, or a subdivision scheme with `--levels`), streamed a window of
-//! faces at a time unless `--interior` needs the whole fit, and write the patches to `--out`
-//! (JSON Lines, or the binary `.bzp` form) and the tessellation to `--mesh-out` (any mesh
+//! faces at a time unless `--interior` needs the whole fit, and write the patches to `--output`
+//! (JSON Lines, or the binary `.bzp` form) and the tessellation to `--mesh-output` (any mesh
 //! format, by extension).
 //!
 //! Each JSON Lines output line is one record, `{"type": "BezierTriangle", "degree": n, "points":
@@ -27,19 +27,19 @@ pub struct FitArgs {
     /// The construction, its options and the interior parameters.
     #[command(flatten)]
     fit: FitOptions,
-    /// Where to write the patches: JSON Lines, or the compact binary form when the name ends in
-    /// `.bzp` (`surface::patch_io`); none are written when absent. Without `--interior`, the
+    /// Where to write the patches: JSON Lines (`-`: standard output), or the compact binary form
+    /// when the name ends in `.bzp` (`surface::patch_io`); none are written when absent. Without `--interior`, the
     /// patches are streamed: built, measured and written a window of faces at a time, never all
-    /// held (`surface::stream`; the same report and file); a `--mesh-out` tessellation then
+    /// held (`surface::stream`; the same report and file); a `--mesh-output` tessellation then
     /// builds each face's patches again where it samples them (the same mesh).
-    #[arg(long)]
-    out: Option<PathBuf>,
+    #[arg(short = 'o', long)]
+    output: Option<PathBuf>,
     /// Tessellate the patches at this many segments per patch edge (the testbed's `Tess -s`)
-    /// and write the welded triangle mesh to `--mesh-out`.
-    #[arg(long, default_value_t = fitjob::options::DEFAULT_TESS)]
-    tess: usize,
+    /// and write the welded triangle mesh to `--mesh-output`.
+    #[arg(short = 's', long, default_value_t = fitjob::options::DEFAULT_TESS)]
+    segments: usize,
     /// Subdivision steps for `--scheme loop|loop-warren|catmull-clark` (the control mesh after
-    /// them goes to `--mesh-out`).
+    /// them goes to `--mesh-output`).
     #[arg(long, default_value_t = fitjob::options::DEFAULT_LEVELS)]
     levels: u32,
     /// Exit with status 1 when anything was not as asked: a repaired file, a fallback face, a
@@ -51,10 +51,10 @@ pub struct FitArgs {
     /// .stl, .glb, .m): positions and normals; PLY and glTF also get vertex colours by Gaussian
     /// curvature (the testbed's KColor), PLY the curvatures as properties `gaussian`, `mean`.
     #[arg(long)]
-    mesh_out: Option<PathBuf>,
+    mesh_output: Option<PathBuf>,
     /// Write the whole report as JSON here: every count the summary prints, every fallback face
     /// with its reason and every degenerate edge (the summary lists the first ten), the G1
-    /// split, the timings (under `time`) and the peak memory.
+    /// split, the timings (under `time`) and the peak memory. `-`: standard output.
     #[arg(long)]
     report: Option<PathBuf>,
 }
@@ -69,12 +69,12 @@ impl FitArgs {
             curves: self.fit.curves.clone(),
             method_options: self.fit.curve.method_options(),
             interior: self.fit.interior.choice,
-            tess: self.tess,
+            tess: self.segments,
             levels: self.levels,
             g1_samples: fitjob::options::DEFAULT_G1_SAMPLES,
             measure_g1: true,
-            patches_out: self.out.clone(),
-            mesh_out: self.mesh_out.clone(),
+            patches_out: self.output.clone(),
+            mesh_out: self.mesh_output.clone(),
             keep: false,
         }
     }
@@ -83,20 +83,26 @@ impl FitArgs {
 /// Runs the experiment: the fit job ([`fitjob::run`]), its progress and summary on stderr,
 /// the report to `--report`.
 pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
-    if let Some(path) = &args.report {
+    let report_to = args.report.as_deref().map(fitjob::destination);
+    if let Some(Some(path)) = report_to {
         crate::output::refuse_unwritable("--report", path, &args.input.data)?;
+    }
+    if report_to == Some(None) && args.output.as_deref().map(fitjob::destination) == Some(None) {
+        return Err(ExperimentError::Usage(
+            "--output - and --report - both name standard output; send one to a file".into(),
+        ));
     }
     let outcome = fitjob::run(args.job(), &mut |line| say!("{line}"))?;
     let report = outcome.report;
     for line in report.summary_lines() {
         say!("{line}");
     }
-    if let Some(path) = &args.report {
+    if let Some(path) = report_to {
         let text = report.to_json().map_err(|source| ExperimentError::Json {
             what: "the fit report",
             source,
         })?;
-        write_result(Some(path), text.as_bytes())?;
+        write_result(path, text.as_bytes())?;
     }
     let found: Vec<String> = report
         .departures()

@@ -115,7 +115,7 @@ fn main() -> ExitCode {
         Err(e) => {
             // The error, then each cause on its own `caused by:` line.
             say!("error: {}", error::chain(&e));
-            ExitCode::from(2)
+            ExitCode::from(e.exit_code())
         }
     }
 }

@@ -88,7 +88,7 @@ pub enum JobError {
     /// An output option names a file whose extension no mesh writer handles.
     #[error("{option} {path}: unsupported output format (writable: {writable})", path = .path.display())]
     UnsupportedOutputFormat {
-        /// The option (`--out`, `--mesh-out`).
+        /// The option (`--output`, `--mesh-output`).
         option: &'static str,
         /// The file given.
         path: PathBuf,
@@ -98,7 +98,7 @@ pub enum JobError {
     /// An output option names the input file (by any path): writing would destroy the input.
     #[error("{option} {path}: the output is the input file; choose another output path", path = .path.display())]
     OutputIsInput {
-        /// The option (`--out`, `--mesh-out`, `--output`).
+        /// The option (`--output`, `--mesh-output`).
         option: &'static str,
         /// The file given.
         path: PathBuf,
@@ -126,13 +126,31 @@ pub enum JobError {
     /// A setting would need more memory than the machine has available.
     #[error("{what} would need about {:.1} GB, more than this machine has available ({:.1} GB): choose a smaller setting", *needed_bytes as f64 / 1e9, *budget_bytes as f64 / 1e9)]
     TooMuchMemory {
-        /// The options responsible (`--resolution 4096 --sampling 4`).
+        /// The options responsible (`--resolution 4096 --segments 4`).
         what: String,
         /// Estimated need, bytes.
         needed_bytes: u128,
         /// What the run may use, bytes.
         budget_bytes: u128,
     },
+}
+
+impl JobError {
+    /// Whether the command line is at fault whatever the input (an unknown name, a value
+    /// outside its range, an output that is the input or has no writer): front ends exit with
+    /// status 2 for these and 1 for the rest (docs/conventions.md, "The command language").
+    pub fn is_usage(&self) -> bool {
+        matches!(
+            self,
+            JobError::Estimate { .. }
+                | JobError::DataOption { .. }
+                | JobError::Method(_)
+                | JobError::Scheme(_)
+                | JobError::UnsupportedOutputFormat { .. }
+                | JobError::OutputIsInput { .. }
+                | JobError::OutOfRange { .. }
+        )
+    }
 }
 
 /// The second half of a [`JobError::DataOption`] message.

@@ -44,4 +44,4 @@ pub use error::{chain, JobError};
 pub use input::{InputOptions, Source};
 pub use options::FitOptions;
 pub use report::FitReport;
-pub use run::{run, FitOutcome, Kept};
+pub use run::{destination, run, FitOutcome, Kept};

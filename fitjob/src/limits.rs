@@ -12,7 +12,7 @@ pub use surface::limits::{
 
 use crate::error::JobError;
 
-/// Segments per patch edge of a tessellation (`--tess`, `--sampling`): 1 is the patch's
+/// Segments per patch edge of a tessellation (`--segments`): 1 is the patch's
 /// corners only; 256 already gives 65 536 triangles per patch.
 pub const SAMPLING_RANGE: RangeInclusive<usize> = 1..=256;
 
@@ -108,12 +108,12 @@ mod tests {
         let phong = surface::scheme::entry_by_name("phong").expect("registered");
         let alpha = &surface::scheme::phong::ALPHA;
         assert!(check_scheme_parameters(phong, &with(alpha, 1e308)).is_err());
-        let e = check_usize("tess", 1000, &SAMPLING_RANGE).unwrap_err();
+        let e = check_usize("segments", 1000, &SAMPLING_RANGE).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "--tess 1000: outside its valid range [1, 256]"
+            "--segments 1000: outside its valid range [1, 256]"
         );
-        assert!(check_usize("tess", usize::MAX, &SAMPLING_RANGE).is_err());
+        assert!(check_usize("segments", usize::MAX, &SAMPLING_RANGE).is_err());
     }
 
     #[test]

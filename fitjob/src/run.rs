@@ -14,6 +14,12 @@ use crate::input::{load_owned, Source};
 use crate::limits::{self, check_memory, check_usize};
 use crate::options::FitOptions;
 use crate::output::{mesh_format_for, refuse_unwritable, write_result, write_result_with};
+
+/// Where a stream output goes: `-` is standard output (`None`), anything else a file
+/// (docs/conventions.md, "The command language").
+pub fn destination(path: &std::path::Path) -> Option<&std::path::Path> {
+    (path.as_os_str() != "-").then_some(path)
+}
 use crate::report::{
     CurveCounts, DegenerateEdge, FallbackFace, FitReport, G1Summary, InteriorSummary, PeakMemory,
     TessellationSummary, Timings,
@@ -57,7 +63,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
     }
     let entry = surface::scheme::entry_by_name(&options.scheme)?;
     limits::check_scheme_parameters(entry, &options.scheme_options)?;
-    check_usize("tess", options.tess, &limits::SAMPLING_RANGE)?;
+    check_usize("segments", options.tess, &limits::SAMPLING_RANGE)?;
     let label = options.input.source.label().to_string();
     if let Source::Data {
         data,
@@ -79,14 +85,14 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         .file()
         .map(|p| p.to_string_lossy().into_owned())
         .unwrap_or_default();
-    if let Some(out) = &options.patches_out {
-        refuse_unwritable("--out", out, &input_file)?;
+    if let Some(out) = options.patches_out.as_deref().and_then(destination) {
+        refuse_unwritable("--output", out, &input_file)?;
     }
     // The tessellation's format, checked with its path before any work.
     let mesh_format = match &options.mesh_out {
         Some(out) => {
-            refuse_unwritable("--mesh-out", out, &input_file)?;
-            Some(mesh_format_for("--mesh-out", out)?)
+            refuse_unwritable("--mesh-output", out, &input_file)?;
+            Some(mesh_format_for("--mesh-output", out)?)
         }
         None => None,
     };
@@ -148,7 +154,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         match &options.patches_out {
             Some(out) => {
                 let format = surface::patch_io::PatchFormat::for_path(out);
-                let written = write_result_with(Some(out), &mut |w| {
+                let written = write_result_with(destination(out), &mut |w| {
                     let r = run(Some(surface::stream::Output {
                         format,
                         to_world: &to_world,
@@ -238,7 +244,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             let t_out = Instant::now();
             let format = surface::patch_io::PatchFormat::for_path(out);
             let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
-            write_result_with(Some(out), &mut |w| {
+            write_result_with(destination(out), &mut |w| {
                 surface::patch_io::write_patches(&fitted, format, &to_world, w)
             })?;
             log(&format!(
@@ -269,7 +275,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
     let mut t_tess = 0.0;
     if let (Some(path), Some(format)) = (&options.mesh_out, mesh_format) {
         check_memory(
-            &format!("--tess {}", options.tess),
+            &format!("--segments {}", options.tess),
             // Patches counted from the mesh: a streamed fit holds no nets to count.
             limits::tessellation_bytes(
                 (mesh.num_faces() * fitted.layout.patches_per_face()) as u128,

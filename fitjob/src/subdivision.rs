@@ -73,8 +73,8 @@ pub fn run(options: &FitOptions) -> Result<FitReport, JobError> {
             .file()
             .map(|p| p.to_string_lossy().into_owned())
             .unwrap_or_default();
-        refuse_overwriting_input("--mesh-out", path, &input)?;
-        let format = mesh_format_for("--mesh-out", path)?;
+        refuse_overwriting_input("--mesh-output", path, &input)?;
+        let format = mesh_format_for("--mesh-output", path)?;
         let bytes = meshio::write_bytes(&refined.to_raw(), format, &meshio::WriteOptions::new())
             .map_err(|source| JobError::MeshWrite {
                 path: path.to_path_buf(),

@@ -46,7 +46,7 @@ pub fn available_memory() -> u64 {
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("{what} would need about {:.1} GB, more than this machine has available ({:.1} GB): choose a smaller setting", *needed_bytes as f64 / 1e9, *budget_bytes as f64 / 1e9)]
 pub struct TooMuchMemory {
-    /// The options responsible (`--resolution 4096 --sampling 4`).
+    /// The options responsible (`--resolution 4096 --segments 4`).
     pub what: String,
     /// Estimated need, bytes.
     pub needed_bytes: u128,

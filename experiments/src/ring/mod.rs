@@ -45,8 +45,8 @@ pub struct RingArgs {
     #[arg(long, default_value_t = 16)]
     resolution: usize,
     /// Tessellation density: segments per patch edge (the testbed's `Tess -s`).
-    #[arg(long, default_value_t = 4)]
-    sampling: usize,
+    #[arg(short = 's', long, default_value_t = 4)]
+    segments: usize,
     /// The curve constructions' options.
     #[command(flatten)]
     curve: CurveOptions,
@@ -58,8 +58,8 @@ pub struct RingArgs {
     #[command(flatten)]
     scheme: fitjob::cli::SchemeArgs<fitjob::cli::PatchesOnly>,
     /// Output directory.
-    #[arg(long, default_value = "results/ring")]
-    out: PathBuf,
+    #[arg(short = 'o', long, default_value = "results/ring")]
+    output: PathBuf,
 }
 
 /// Runs the experiment.
@@ -73,15 +73,15 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         );
     };
     let t = Instant::now();
-    crate::limits::check_usize("sampling", args.sampling, &crate::limits::SAMPLING_RANGE)?;
+    crate::limits::check_usize("segments", args.segments, &crate::limits::SAMPLING_RANGE)?;
     let faces = crate::limits::dataset_faces("ring", args.resolution);
     crate::limits::check_memory(
         &format!(
-            "--resolution {} --sampling {}",
-            args.resolution, args.sampling
+            "--resolution {} --segments {}",
+            args.resolution, args.segments
         ),
         faces * crate::limits::FIT_BYTES_PER_FACE as u128 * 5
-            + 5 * crate::limits::tessellation_bytes(3 * faces, args.sampling),
+            + 5 * crate::limits::tessellation_bytes(3 * faces, args.segments),
     )?;
     let data = surface::dataset_by_name("ring", Some(args.resolution)).map_err(|source| {
         ExperimentError::DataOption {
@@ -111,10 +111,10 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
 
     // Tessellations and errors.
     let t = Instant::now();
-    let surfaces = surfaces::measure_surfaces(mesh, truth, &fits, args.resolution, args.sampling)?;
+    let surfaces = surfaces::measure_surfaces(mesh, truth, &fits, args.resolution, args.segments)?;
     stage("tessellate_and_measure", t);
 
-    let staged = Staged::begin(&args.out)?;
+    let staged = Staged::begin(&args.output)?;
     let out = staged.path().to_path_buf();
     let t = Instant::now();
     let pictures = render::render_all(&out, &surfaces::surfaces_view(&surfaces))?;

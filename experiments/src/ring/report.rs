@@ -84,7 +84,7 @@ pub(super) fn report_json(
             "vertices": mesh.num_vertices(), "edges": mesh.num_edges(), "faces": mesh.num_faces(),
         },
         "settings": {
-            "sampling": args.sampling, "solver": args.curve.solver.name(), "dbhs_pick": args.curve.dbhs_pick.to_string(),
+            "segments": args.segments, "solver": args.curve.solver.name(), "dbhs_pick": args.curve.dbhs_pick.to_string(),
             "interior": args.interior.choice.to_string(),
             "optimized_weights": [defaults.weights.tangent, defaults.weights.curvature],
             "optimized_alpha_min": defaults.alpha_min,
@@ -161,9 +161,9 @@ pub(super) fn markdown(
     let _ = writeln!(md, "# The ring study\n");
     let _ = writeln!(
         md,
-        "Written by `cargo run --release -p experiments -- ring --resolution {} --sampling {} --solver {} --dbhs-pick {} --interior {} --scheme {}{} --out {}`.\n",
+        "Written by `cargo run --release -p experiments -- ring --resolution {} --segments {} --solver {} --dbhs-pick {} --interior {} --scheme {}{} --output {}`.\n",
         args.resolution,
-        args.sampling,
+        args.segments,
         args.curve.solver,
         args.curve.dbhs_pick,
         args.interior.choice,
@@ -174,7 +174,7 @@ pub(super) fn markdown(
             .filter(|(p, _)| args.scheme.options.value(p) != p.default)
             .map(|(p, _)| format!(" --{} {}", p.name, args.scheme.options.value(p)))
             .collect::<String>(),
-        args.out.display()
+        args.output.display()
     );
     let _ = writeln!(
         md,
@@ -187,7 +187,7 @@ pub(super) fn markdown(
         report["data"]["vertices"],
         report["data"]["edges"],
         report["data"]["faces"],
-        args.sampling,
+        args.segments,
         args.curve.solver
     );
     let _ = writeln!(md, "## Surfaces against the true ring\n");

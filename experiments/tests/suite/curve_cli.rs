@@ -47,7 +47,7 @@ fn answers_every_line_in_order_and_names_bad_ones() {
 }
 
 #[test]
-fn unknown_method_and_missing_file_are_usage_errors() {
+fn an_unknown_method_is_a_usage_error_and_a_missing_file_a_runtime_error() {
     let (code, out, err) = run(&["curve", "--methods", "chord,splines"], "");
     assert_eq!(code, 2);
     assert!(out.is_empty());
@@ -56,7 +56,7 @@ fn unknown_method_and_missing_file_are_usage_errors() {
         "{err}"
     );
     let (code, _, err) = run(&["curve", "--input", "/nonexistent/problems.jsonl"], "");
-    assert_eq!(code, 2);
+    assert_eq!(code, 1, "{err}");
     assert!(err.contains("/nonexistent/problems.jsonl"), "{err}");
     // The cause is kept and printed on its own line.
     assert!(
@@ -71,7 +71,15 @@ fn ring_study_runs_small_and_reports_g1() {
     let dir = std::env::temp_dir().join(format!("ring-test-{}", std::process::id()));
     let out = dir.to_str().expect("utf-8 path");
     let (code, stdout, err) = run(
-        &["ring", "--resolution", "6", "--sampling", "2", "--out", out],
+        &[
+            "ring",
+            "--resolution",
+            "6",
+            "--segments",
+            "2",
+            "--output",
+            out,
+        ],
         "",
     );
     assert_eq!(code, 0, "{err}");
@@ -107,7 +115,10 @@ fn merge_refuses_an_incomplete_set_of_shards() {
     assert_eq!(code, 0, "{err}");
     assert!(dir.join("shard-0-of-20.json").exists());
     let (code, _, err) = run(&["merge", "--out", out], "");
-    assert_eq!(code, 2);
+    assert_eq!(
+        code, 1,
+        "an incomplete set of shards is an input error: {err}"
+    );
     assert!(err.contains("19 of 20 tasks missing"), "{err}");
     let (code, _, err) = run(&["sweep", "--shard", "3/2", "--out", out], "");
     assert_eq!(code, 2, "{err}");

@@ -22,15 +22,15 @@ fn options_out_of_range_are_refused_with_the_range() {
             "--c 1e300: outside its valid range [0.01, 100]",
         ),
         (
-            vec!["fit", "--tess", "18446744073709551615"],
+            vec!["fit", "--segments", "18446744073709551615"],
             "outside its valid range [1, 256]",
         ),
         (
-            vec!["fit", "--tess", "1000"],
+            vec!["fit", "--segments", "1000"],
             "outside its valid range [1, 256]",
         ),
         (
-            vec!["ring", "--sampling", "0", "--out", "/tmp/x"],
+            vec!["ring", "--segments", "0", "--output", "/tmp/x"],
             "outside its valid range [1, 256]",
         ),
     ] {
@@ -42,7 +42,10 @@ fn options_out_of_range_are_refused_with_the_range() {
 
 #[test]
 fn allocations_beyond_the_machine_are_refused_before_they_are_tried() {
-    let (code, _, err) = run(&["ring", "--resolution", "4096", "--out", "/tmp/never"], "");
+    let (code, _, err) = run(
+        &["ring", "--resolution", "4096", "--output", "/tmp/never"],
+        "",
+    );
     assert_ne!(code, 0);
     assert!(
         err.contains("would need about") && err.contains("GB"),

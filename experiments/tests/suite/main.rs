@@ -3,6 +3,7 @@
 
 mod common;
 mod curve_cli;
+mod exit_status;
 mod hostile_cli;
 mod mesh_cli;
 mod schemes_cli;

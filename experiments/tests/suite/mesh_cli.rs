@@ -24,7 +24,13 @@ fn tmp(name: &str) -> (tempfile::TempDir, String) {
 #[test]
 fn estimates_written_as_testbed_fields_are_read_back_as_exact_data() {
     let (_dir, m) = tmp("teapot.m");
-    let (code, err) = run(&["convert", "--data", "data/meshes/teapot.ply", "--out", &m]);
+    let (code, err) = run(&[
+        "convert",
+        "--data",
+        "data/meshes/teapot.ply",
+        "--output",
+        &m,
+    ]);
     assert_eq!(code, 0, "{err}");
     let text = std::fs::read_to_string(&m).unwrap();
     assert!(text.contains("(norm . [") && text.contains("(shape . ["));
@@ -52,9 +58,9 @@ fn a_real_mesh_is_fitted_and_written_as_gltf() {
         "data/meshes/bunny.ply",
         "--curves",
         "optimized",
-        "--tess",
+        "--segments",
         "2",
-        "--mesh-out",
+        "--mesh-output",
         &glb,
     ]);
     assert_eq!(code, 0, "{err}");
@@ -73,13 +79,19 @@ fn every_format_converts_to_every_writable_one() {
     for ext in ["ply", "obj", "off", "stl", "m"] {
         let out = dir.path().join(format!("bunny.{ext}"));
         let out = out.to_string_lossy().into_owned();
-        let (code, err) = run(&["convert", "--data", "data/meshes/bunny.ply", "--out", &out]);
+        let (code, err) = run(&[
+            "convert",
+            "--data",
+            "data/meshes/bunny.ply",
+            "--output",
+            &out,
+        ]);
         assert_eq!(code, 0, "{ext}: {err}");
         sources.push(out);
     }
     for src in &sources {
         let out = dir.path().join("again.glb").to_string_lossy().into_owned();
-        let (code, err) = run(&["convert", "--data", src, "--out", &out]);
+        let (code, err) = run(&["convert", "--data", src, "--output", &out]);
         assert_eq!(code, 0, "{src}: {err}");
         // STL welds by exact position; every format keeps the bunny's 3674 faces.
         assert!(err.contains("3674 faces"), "{src}: {err}");
@@ -123,7 +135,7 @@ fn bad_files_are_named_and_fail() {
         "convert",
         "--data",
         lying.to_str().unwrap(),
-        "--out",
+        "--output",
         lying.to_str().unwrap(),
     ]);
     assert_ne!(code, 0);
@@ -135,7 +147,13 @@ fn outputs_that_are_not_regular_files_are_refused() {
     let (dir, _) = tmp("x");
     let sub = dir.path().join("a-directory");
     std::fs::create_dir(&sub).unwrap();
-    let (code, err) = run(&["convert", "--data", "octa", "--out", sub.to_str().unwrap()]);
+    let (code, err) = run(&[
+        "convert",
+        "--data",
+        "octa",
+        "--output",
+        sub.to_str().unwrap(),
+    ]);
     // A directory has no extension: refused as an unsupported output before anything is read.
     assert_ne!(code, 0, "{err}");
     let glb_dir = dir.path().join("dir.glb");
@@ -144,7 +162,7 @@ fn outputs_that_are_not_regular_files_are_refused() {
         "convert",
         "--data",
         "octa",
-        "--out",
+        "--output",
         glb_dir.to_str().unwrap(),
     ]);
     assert_ne!(code, 0);
@@ -152,12 +170,12 @@ fn outputs_that_are_not_regular_files_are_refused() {
     assert!(glb_dir.is_dir());
     #[cfg(unix)]
     {
-        let (code, err) = run(&["fit", "--data", "octa", "--out", "/dev/null"]);
+        let (code, err) = run(&["fit", "--data", "octa", "--output", "/dev/null"]);
         assert_ne!(code, 0);
         assert!(err.contains("a device"), "{err}");
         // `fit` refuses an unwritable output before it reads or fits anything (no stage times
         // printed), for the patches and for the tessellation alike.
-        for option in ["--out", "--mesh-out"] {
+        for option in ["--output", "--mesh-output"] {
             let out = dir.path().join(format!("{option}.ply"));
             std::fs::create_dir(&out).unwrap();
             let (code, err) = run(&["fit", "--data", "octa", option, out.to_str().unwrap()]);
@@ -176,7 +194,7 @@ fn outputs_that_are_not_regular_files_are_refused() {
         std::fs::write(&target, "old\n").unwrap();
         let link = dir.path().join("link.jsonl");
         std::os::unix::fs::symlink(&target, &link).unwrap();
-        let (code, err) = run(&["fit", "--data", "octa", "--out", link.to_str().unwrap()]);
+        let (code, err) = run(&["fit", "--data", "octa", "--output", link.to_str().unwrap()]);
         assert_eq!(code, 0, "{err}");
         assert!(std::fs::read_to_string(&target)
             .unwrap()
@@ -251,7 +269,7 @@ fn coordinates_from_1e_minus_100_to_1e154_fit_the_same() {
             path.to_str().unwrap(),
             "--curves",
             "optimized",
-            "--out",
+            "--output",
             out.to_str().unwrap(),
         ]);
         assert_eq!(code, 0, "{scale:e}: {err}");
@@ -310,15 +328,15 @@ fn fit_prints_and_writes_the_same_with_and_without_a_tessellation() {
             "--curves",
             "optimized",
         ];
-        let (code, err_s) = run(&[&base[..], &["--out", streamed.to_str().unwrap()]].concat());
+        let (code, err_s) = run(&[&base[..], &["--output", streamed.to_str().unwrap()]].concat());
         assert_eq!(code, 0, "{err_s}");
         assert!(err_s.contains("streamed:"), "{err_s}");
         let (code, err_m) = run(&[
             &base[..],
             &[
-                "--out",
+                "--output",
                 with_mesh.to_str().unwrap(),
-                "--mesh-out",
+                "--mesh-output",
                 mesh.to_str().unwrap(),
             ],
         ]
