@@ -55,7 +55,12 @@ pub struct FitOutcome {
 /// The options are taken, so that a raw mesh in memory ([`Source::Raw`]) is repaired without a
 /// copy.
 pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutcome, JobError> {
+    // A spinner naming the stage on a terminal once the job has run a moment (silent in pipes
+    // and files); the job's lines are printed above it.
+    let progress = progress::Progress::spinner("fit");
+    let log = &mut |line: &str| progress.suspend(|| log(line));
     if options.is_subdivision() {
+        progress.stage("subdividing");
         return crate::subdivision::run(&options).map(|report| FitOutcome {
             report,
             kept: Kept::default(),
@@ -99,6 +104,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
     let t0 = Instant::now();
     // The input is taken (a raw mesh moves into the repair); what follows reads only its label.
     let input = std::mem::take(&mut options.input);
+    progress.stage("reading, repairing and estimating the input");
     let loaded = load_owned(input)?;
     for note in &loaded.notes {
         log(&format!("  {note}"));
@@ -129,6 +135,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         "data set"
     });
     let method = curves::method_by_name(&options.curves, &options.method_options)?;
+    progress.stage("fitting the patches and measuring G1");
     let t1 = Instant::now();
     let fit_error = |source| JobError::Fit {
         subject: label.clone(),
@@ -282,6 +289,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
                 options.tess,
             ),
         )?;
+        progress.stage("tessellating");
         let t3 = Instant::now();
         let tessellated = if stream {
             surface::tessellate_fit_rebuilt(&mesh, &fitted, scheme.as_ref(), options.tess)

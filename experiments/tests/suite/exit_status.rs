@@ -16,6 +16,15 @@ fn usage_errors_exit_with_status_2() {
         vec!["fit", "--no-such-option"],
         vec!["fit", "--data", "octa", "--segments", "1000"],
         vec!["fit", "--data", "octa", "--beta", "1e-308"],
+        vec![
+            "fit",
+            "--data",
+            "octa",
+            "--scheme",
+            "phong",
+            "--phong-alpha",
+            "1e308",
+        ],
         vec!["fit", "--data", "torus"],
         vec!["fit", "--data", "octa", "--scheme", "no-such-scheme"],
         vec!["fit", "--data", "octa", "--mesh-output", "/tmp/x.xyz"],
@@ -62,6 +71,8 @@ fn a_dash_sends_the_patches_or_the_report_to_standard_output() {
     let report: serde_json::Value = serde_json::from_str(&out).expect("the report is JSON");
     assert_eq!(report["faces"], 8);
     assert_eq!(report["input"], "octa");
-    // The human summary stays on standard error.
+    // The human summary stays on standard error, with no progress drawn on it (it is not a
+    // terminal here): no escape sequences.
     assert!(err.contains("G1"), "{err}");
+    assert!(!err.contains('\u{1b}'), "{err:?}");
 }
