@@ -86,6 +86,51 @@ enum Experiment {
     /// The committed real-world meshes read, repaired, completed by estimation and fitted with
     /// every curve construction; pictures of the optimized-curve surfaces.
     Realmesh(realmesh::RealMeshArgs),
+    /// Print the shell completion script (bash, zsh, fish, elvish, powershell) to standard
+    /// output.
+    Completions {
+        /// The shell.
+        shell: clidocs::Shell,
+    },
+    /// Write the man pages (section 1: `experiments.1` and one page an experiment) to a
+    /// directory.
+    Man {
+        /// Directory for the pages (created if absent).
+        #[arg(short = 'o', long)]
+        output: std::path::PathBuf,
+    },
+}
+
+/// The completion script or the man pages, from the parser's own command (so they list what
+/// `--help` lists, the registries' names included).
+fn docs(experiment: &Experiment) -> Option<Result<(), clidocs::DocsError>> {
+    use clap::CommandFactory as _;
+    match experiment {
+        Experiment::Completions { shell } => {
+            let mut out = Vec::new();
+            clidocs::write_completions(&mut Cli::command(), *shell, &mut out);
+            use std::io::Write as _;
+            Some(
+                std::io::stdout()
+                    .lock()
+                    .write_all(&out)
+                    .map_err(|source| clidocs::DocsError {
+                        path: "<stdout>".into(),
+                        source,
+                    }),
+            )
+        }
+        Experiment::Man { output } => Some(clidocs::write_man_pages(&Cli::command(), output).map(
+            |written| {
+                say!(
+                    "{} man pages written to {}",
+                    written.len(),
+                    output.display()
+                );
+            },
+        )),
+        _ => None,
+    }
 }
 
 fn main() -> ExitCode {
@@ -97,7 +142,17 @@ fn main() -> ExitCode {
         std::process::exit(130);
     });
     let cli = Cli::parse();
+    if let Some(done) = docs(&cli.experiment) {
+        return match done {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                say!("error: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     let result = match cli.experiment {
+        Experiment::Completions { .. } | Experiment::Man { .. } => Ok(ExitCode::SUCCESS),
         Experiment::Ring(args) => ring::run(&args),
         Experiment::Curve(args) => curve::run(&args),
         Experiment::Sweep(args) => sweep::run(&args),

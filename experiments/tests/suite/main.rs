@@ -7,4 +7,5 @@ mod exit_status;
 mod hostile_cli;
 mod mesh_cli;
 mod schemes_cli;
+mod shell_docs;
 mod sweep_cli;
