@@ -7,22 +7,31 @@ use crate::error::ExperimentError;
 /// Options naming the input mesh and how to complete it.
 #[derive(clap::Args, Debug, Clone)]
 pub struct InputArgs {
-    /// A data set (ring, sphere, capsule, octa) or a mesh file (.m, .obj, .ply, .stl, .off; the
-    /// format by extension, checked against the content).
-    #[arg(long, default_value = "ring")]
+    /// A data set or a mesh file (the format by extension, checked against the content); the
+    /// help lists both from their registries.
+    #[arg(long, default_value = "ring", help = data_help())]
     pub data: String,
     /// Resolution of a named data set (its default when absent).
     #[arg(long)]
     pub resolution: Option<usize>,
-    /// How to estimate what a mesh file lacks (normals, shape tensors): an estimator's name
-    /// (hybrid, jet, jet2, jet3, jet4, quadric, rusinkiewicz) or `none` (use the file's data only;
-    /// curvature-based curves then need a file with shape tensors).
-    #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR)]
+    /// How to estimate what a mesh file lacks (normals, shape tensors): an estimator's name or
+    /// `none` (use the file's data only; curvature-based curves then need a file with shape
+    /// tensors). The names come from the estimator registry.
+    #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR, value_parser = fitjob::cli::estimator_names())]
     pub estimate: String,
     /// Estimate normals even where the file gives them (by default the file's normals are kept
     /// and only the curvature is estimated, in their tangent planes).
     #[arg(long)]
     pub replace_normals: bool,
+}
+
+/// `--data`'s help: the data sets and the readable mesh formats, from their registries.
+fn data_help() -> String {
+    format!(
+        "A data set ({}) or a mesh file ({}; the format by extension, checked against the content)",
+        mesh::datasets::DATASET_NAMES.join(", "),
+        meshio::readable_extensions()
+    )
 }
 
 /// A loaded input mesh (the fit job's).
