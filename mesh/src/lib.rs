@@ -22,6 +22,7 @@
 pub mod analytic;
 pub mod datasets;
 mod edge_groups;
+pub mod features;
 pub mod frame;
 pub mod mesh;
 pub mod repair;
