@@ -403,16 +403,12 @@ impl PatchTessellator {
             self.counts.degenerate += 1;
             return Ok(Outcome::Degenerate);
         };
-        let unit_points: Vec<Point3<f64>> =
-            patch.points().iter().map(|p| frame.to_unit(p)).collect();
-        let unit = BezierTriangle::from_fn(patch.degree(), |i, j, k| {
-            let at = surface::beztri::index(patch.degree(), i, j, k);
-            unit_points.get(at).copied().unwrap_or_else(Point3::origin)
-        });
+        let unit = unit_patch(patch, &frame)?;
         let s = self.s;
         let degree = patch.degree();
+        let points = unit.points().len();
         let evaluator = self.evaluators.entry(degree).or_insert_with(|| {
-            if keeps_table(unit_points.len(), s) {
+            if keeps_table(points, s) {
                 Evaluator::Table(SampleWeights::grid(degree, s))
             } else {
                 Evaluator::Direct(Casteljau::new(degree))
@@ -511,6 +507,17 @@ impl PatchTessellator {
     }
 }
 
+/// `patch` in its unit frame (its points are finite and so are theirs: should the net be
+/// refused all the same, the error says so).
+fn unit_patch(
+    patch: &BezierTriangle,
+    frame: &UnitFrame,
+) -> Result<BezierTriangle, surface::TessError> {
+    let points = patch.points().iter().map(|p| frame.to_unit(p)).collect();
+    BezierTriangle::new(patch.degree(), points)
+        .map_err(|e| surface::TessError::Rebuild(format!("the patch in its unit frame: {e}")))
+}
+
 /// `surface::tessellate` on the unit patch `unit` alone, mapped back by `frame`; the samples'
 /// singular and collapsed counts returned.
 fn general(
@@ -549,12 +556,7 @@ pub fn tessellate_patch(
 ) -> Result<Vec<[Sample; 3]>, surface::TessError> {
     let mut indexed = IndexedPatch::default();
     if let Some(frame) = UnitFrame::of(patch.points()) {
-        let unit = BezierTriangle::from_fn(patch.degree(), |i, j, k| {
-            patch
-                .point(i, j, k)
-                .map_or_else(Point3::origin, |p| frame.to_unit(&p))
-        });
-        general(&unit, &frame, s, &mut indexed)?;
+        general(&unit_patch(patch, &frame)?, &frame, s, &mut indexed)?;
     } else if s == 0 {
         return Err(surface::TessError::ZeroDensity);
     }

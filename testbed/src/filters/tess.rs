@@ -26,7 +26,7 @@ pub struct Tess;
 #[derive(clap::Args, Debug)]
 pub struct TessArgs {
     /// Segments per patch edge, from 1 to 4096 (and within memory: a patch at s takes about
-    /// 80 bytes × s² while it is written, 0.8 kB × s² with --mesh).
+    /// 44 bytes × s² while it is written, 0.5 kB × s² with --mesh).
     #[arg(short = 's', long = "segments", value_name = "N", default_value_t = 8)]
     pub s: usize,
     /// Write Gaussian curvature `kg` at the vertices.
@@ -75,8 +75,9 @@ impl Filter for Tess {
 }
 
 /// Largest `tess -s` (and `fit -s`): a patch at s = 4096 is 8.4 M samples and 16.8 M
-/// triangles, about 0.7 GB held while its `Triangle` records are written (80 bytes × s²:
-/// [`tess_bytes`]; 13 GB as one `--mesh` record), far beyond any picture's need; it keeps
+/// triangles, about 0.7 GB held while its `Triangle` records are written (88 bytes a sample,
+/// [`tess_bytes`]; measured 0.73 GB), about 5 GB as one `--mesh` record (estimated 8.4 GB),
+/// far beyond any picture's need; it keeps
 /// every vertex index of a `TriangleMesh` within `u32`. Every `-s` is also checked against
 /// the memory available before its first patch ([`check_tess_memory`]).
 pub const MAX_SEGMENTS: usize = 4096;
@@ -220,14 +221,16 @@ fn report(name: &str, c: &TessCounts, first_degenerate: Option<crate::Position>)
 
 /// Bytes one sample of a patch takes while its `Triangle` records are written: the sample
 /// (position, normal, K, H: 64 bytes) and its two triangles' indices (24 bytes), nothing else
-/// (each triangle's record is built and written on its own). Measured: docs/hostile-input.md.
+/// (each triangle's record is built and written on its own). Measured: 86 bytes a sample at
+/// `-s 4096` (docs/hostile-input.md).
 const TRIANGLES_BYTES_PER_SAMPLE: u128 = 88;
 
 /// Bytes one sample of a patch takes in its `TriangleMesh` record, built whole before it is
-/// written: the sample (88 bytes as above), its 18 tokens (pos, norm, kg, km, two triangles;
-/// 24 bytes each, the token list growing by doubling: 864) and its text in the output buffer
-/// (about 200 bytes of JSON, doubling: 400). Measured: docs/hostile-input.md.
-const MESH_BYTES_PER_SAMPLE: u128 = 1500;
+/// written: the sample (88 bytes as above), its 16 to 18 tokens (pos, norm, kg, km, two
+/// triangles; 24 bytes each: 432) and its text in the output buffer (about 200 bytes of JSON),
+/// with room for the buffers' growth by doubling. Measured: 630 bytes a sample at `-s 1024`
+/// (docs/hostile-input.md).
+const MESH_BYTES_PER_SAMPLE: u128 = 1000;
 
 /// Estimated bytes `tess -s s` holds for one patch of `degree`: its samples and what its
 /// records need ([`TRIANGLES_BYTES_PER_SAMPLE`], [`MESH_BYTES_PER_SAMPLE`]), and the weight
