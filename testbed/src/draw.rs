@@ -25,9 +25,21 @@ pub const DEFAULT_VIEW: (f64, f64) = (35.0, 25.0);
 /// Default picture size (the examples' size).
 pub const DEFAULT_SIZE: (u32, u32) = (400, 300);
 
-/// Largest picture side accepted: a 16k image is 768 MB of RGB, the most a shared machine
-/// should be asked for.
-pub const MAX_SIDE: u32 = 16_384;
+/// Largest picture side accepted: an 8192 × 8192 picture takes about 1.3 GB while it is drawn
+/// and encoded (measured 1.25 GB; [`RENDER_BYTES_PER_PIXEL`]; a 16384 × 16384 one took 5.0
+/// GB), the most a
+/// shared machine should be asked for; every size is also checked against the memory
+/// available before anything is drawn ([`check_picture_memory`]).
+pub const MAX_SIDE: u32 = 8192;
+
+/// Bytes a pixel of a shaded picture takes while drawn and encoded: its depth (8), its nearest
+/// triangle (8), its RGB bytes (3) and, at most, the PNG's compressed copy of them (3).
+/// Measured: 18.6 bytes a pixel at 8192 × 8192 (docs/hostile-input.md).
+pub const RENDER_BYTES_PER_PIXEL: u128 = 22;
+
+/// Bytes a pixel of a wire-frame picture takes: its RGB bytes and at most the PNG's
+/// compressed copy (measured: 3.1 bytes a pixel at 8192 × 8192).
+pub const WIRE_BYTES_PER_PIXEL: u128 = 6;
 
 /// Reads every Triangle, and every triangle of every TriangleMesh, as three vertices; other
 /// records are ignored.
@@ -56,6 +68,11 @@ pub fn collect_triangles(pipe: &mut Pipe) -> Result<Vec<[Vertex; 3]>, FilterErro
 /// record) straight into a render mesh, the uniform material where a vertex has no colour;
 /// other records are ignored. The pictures' reader: no triangle list is held beside the mesh.
 pub fn collect_mesh(pipe: &mut Pipe) -> Result<RenderMesh, FilterError> {
+    collect_mesh_seen(pipe, &mut Seen::default())
+}
+
+/// [`collect_mesh`], counting the records read in `seen`.
+pub fn collect_mesh_seen(pipe: &mut Pipe, seen: &mut Seen) -> Result<RenderMesh, FilterError> {
     let mut m = RenderMesh {
         positions: Vec::new(),
         normals: Vec::new(),
@@ -65,7 +82,9 @@ pub fn collect_mesh(pipe: &mut Pipe) -> Result<RenderMesh, FilterError> {
     let mut mesh = TriangleMesh::default();
     let mut rec = Record::default();
     while pipe.next_good(&mut rec)? {
+        seen.records += 1;
         match rec.kind() {
+            "BezierTriangle" => seen.patches += 1,
             "Triangle" => match record::triangle(&rec.tape) {
                 Ok(t) => push_triangle(&mut m, &t, render::colors::MATERIAL),
                 Err(e) => pipe.bad_field(&rec, e)?,
@@ -148,7 +167,8 @@ pub struct PictureArgs {
     /// View direction `AZ,EL` in degrees.
     #[arg(long, allow_hyphen_values = true)]
     pub view: Option<String>,
-    /// Size `WxH` in pixels.
+    /// Size `WxH` in pixels, each side from 1 to 8192 (and within memory: 22 bytes a pixel
+    /// shaded, 6 wire-frame).
     #[arg(long)]
     pub size: Option<String>,
 }
@@ -173,14 +193,77 @@ impl PictureArgs {
     }
 }
 
+/// The records a picture's stream held, by kind, for the message of a blank picture.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Seen {
+    /// Records read.
+    pub records: usize,
+    /// `BezierTriangle` records among them (patches not yet tessellated).
+    pub patches: usize,
+}
+
+/// Refuses a picture of `view`'s size whose drawing would exceed the memory available
+/// ([`RENDER_BYTES_PER_PIXEL`], [`WIRE_BYTES_PER_PIXEL`]; [`surface::limits::check_memory`]),
+/// before anything is drawn.
+pub fn check_picture_memory(view: &View) -> Result<(), FilterError> {
+    let (w, h) = view.size;
+    let per_pixel = if view.wire {
+        WIRE_BYTES_PER_PIXEL
+    } else {
+        RENDER_BYTES_PER_PIXEL
+    };
+    Ok(surface::limits::check_memory(
+        &format!("--size {w}x{h}"),
+        (u128::from(w) * u128::from(h)).saturating_mul(per_pixel),
+    )?)
+}
+
+/// Why a picture of `triangles` triangles from a stream holding `seen` is blank (an error,
+/// never a blank PNG), or `None` when the image shows something (`blank`: every pixel is the
+/// background).
+pub fn blank_reason(name: &str, triangles: usize, seen: &Seen, blank: bool) -> Option<String> {
+    if triangles == 0 {
+        let hint = if seen.patches > 0 {
+            format!(
+                " ({} BezierTriangle records: put `tess` before `{name}`)",
+                seen.patches
+            )
+        } else if seen.records == 0 {
+            " (the stream is empty)".to_string()
+        } else {
+            " (no Triangle or TriangleMesh records: put `tess` before it, or `fit -s N`)"
+                .to_string()
+        };
+        return Some(format!(
+            "no triangles in the stream, {} records read{hint}: the picture would be blank",
+            seen.records
+        ));
+    }
+    blank.then(|| {
+        format!(
+            "the picture is blank: {triangles} triangles read, none of them visible (every pixel the background: degenerate or not finite triangles, or seen from behind the camera)"
+        )
+    })
+}
+
 /// Runs a picture filter named `name`: the triangles read straight into a render mesh, drawn
-/// with `view`, PNG out.
+/// with `view`, PNG out. A picture with nothing drawn on it is an error naming the cause
+/// ([`blank_reason`]), and a size whose drawing would not fit in memory is refused before the
+/// stream is read ([`check_picture_memory`]).
 pub fn picture(name: &'static str, stream: &StreamOptions, view: &View) -> Result<(), FilterError> {
-    let mesh = stream.read(name, &mut collect_mesh)?;
-    if mesh.faces.is_empty() {
-        eprintln!("{name}: no triangles in the input");
+    check_side(view)?;
+    check_picture_memory(view)?;
+    let mut seen = Seen::default();
+    let mesh = stream.read(name, &mut |p| collect_mesh_seen(p, &mut seen))?;
+    if let Some(why) = blank_reason(name, mesh.faces.len(), &seen, false) {
+        return Err(FilterError::Blank(why));
     }
     let image = draw_mesh(&mesh, view)?;
+    // Both pictures are drawn on white (`render`'s default background, `wire_frame`'s).
+    let blank = image.rgb.iter().all(|&b| b == u8::MAX);
+    if let Some(why) = blank_reason(name, mesh.faces.len(), &seen, blank) {
+        return Err(FilterError::Blank(why));
+    }
     drop(mesh);
     stream.with_output(&mut |out| write_png(&image, out))
 }
@@ -201,14 +284,22 @@ pub fn draw(tris: &[[Vertex; 3]], view: &View) -> Result<Image, FilterError> {
     draw_mesh(&render_mesh(tris, render::colors::MATERIAL), view)
 }
 
-/// Draws a render mesh (unwelded triangles).
-pub fn draw_mesh(mesh: &RenderMesh, view: &View) -> Result<Image, FilterError> {
+/// Refuses a picture side outside `1..=MAX_SIDE` (a usage error naming the range).
+fn check_side(view: &View) -> Result<(), FilterError> {
     let (w, h) = view.size;
     if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE {
         return Err(FilterError::Usage(format!(
-            "picture size {w}x{h}: each side from 1 to {MAX_SIDE}"
+            "--size {w}x{h}: each side from 1 to {MAX_SIDE}"
         )));
     }
+    Ok(())
+}
+
+/// Draws a render mesh (unwelded triangles).
+pub fn draw_mesh(mesh: &RenderMesh, view: &View) -> Result<Image, FilterError> {
+    check_side(view)?;
+    check_picture_memory(view)?;
+    let (w, h) = view.size;
     let options = RenderOptions {
         width: w,
         height: h,

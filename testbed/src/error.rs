@@ -167,6 +167,13 @@ pub enum FilterError {
     /// the tolerance exceeded too: every reason is named).
     #[error("--strict: {0}")]
     G1Unmeasured(String),
+    /// A value that would be written is not finite (a curvature beyond the range of `f64`):
+    /// the message names the record or patch and the value.
+    #[error("{0}")]
+    NotFinite(String),
+    /// A picture would be blank: nothing to draw (the message says why and what to do).
+    #[error("{0}")]
+    Blank(String),
     /// `g1 --strict`: a boundary exceeds the tolerance.
     #[error("G1 defect {angle:.3e} rad exceeds the tolerance {tolerance:.1e} rad")]
     G1Exceeded {
@@ -175,6 +182,19 @@ pub enum FilterError {
         /// The tolerance.
         tolerance: f64,
     },
+}
+
+impl FilterError {
+    /// The process's exit status for this error (docs/conventions.md, "The command
+    /// language"): 2 for a usage error (an option's value out of its range, a bad name, options
+    /// that cannot go together), 1 for every runtime error (bad input, a refusal, a failed
+    /// `--strict`).
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            FilterError::Usage(_) => 2,
+            _ => 1,
+        }
+    }
 }
 
 impl From<fitjob::JobError> for FilterError {

@@ -43,7 +43,8 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("testbed {}: error: {e}", filter.name());
-            ExitCode::FAILURE
+            // 2 for a usage error, 1 for a runtime error (docs/conventions.md).
+            ExitCode::from(e.exit_code())
         }
     }
 }

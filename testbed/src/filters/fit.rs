@@ -7,13 +7,19 @@
 //! and written back in the file's coordinates.
 //!
 //! Records: `{"type":"BezierTriangle","degree":n,"points":[…],"face":f,"subpatch":s,
-//! "scheme":"name"}`; with `sample = Some(N)` the fit is tessellated here
+//! "scheme":"name"}`; with `segments = Some(N)` (`-s N`) the fit is tessellated here
 //! (`surface::tessellate_fit`) and `Triangle`s are written instead, with `face`, `subpatch`
 //! and `scheme` after the vertices — the shape of the seed's Example 5, where a fitter
 //! samples its own surface. A scheme whose patches are not Bézier nets (`nielson`,
 //! `discrete-side-vertex`: `surface::patch`) is always sampled here, at
-//! [`SAMPLED_DENSITY`] unless `sample` says otherwise, as the seed's non-Bézier fitters were.
+//! [`SAMPLED_DENSITY`] unless `-s` says otherwise, as the seed's non-Bézier fitters were.
+//!
+//! The input is standard input or `--input FILE` (the format sniffed from the content), or
+//! `--data NAME|FILE` with `--resolution N` as `experiments fit` takes them. A sampled value
+//! that is not finite (a curvature beyond `f64` on a mesh 1e-200 across) is an error naming
+//! the patch, never written.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use serde_json::{Map, Value};
@@ -25,7 +31,7 @@ use crate::record;
 use crate::sample::{triangle_value, CurvatureFields, Sample};
 use crate::stream::{Format, RecordWriter};
 
-/// The density a non-Bézier scheme is sampled at when `--sample` is not given (the seed's
+/// The density a non-Bézier scheme is sampled at when `-s` is not given (the seed's
 /// Example 5: `Nielson -s 8`).
 pub const SAMPLED_DENSITY: usize = 8;
 
@@ -47,19 +53,24 @@ pub struct FitArgs {
     /// Estimate normals even where the mesh has them.
     #[arg(long)]
     pub replace_normals: bool,
-    /// A named data set (ring, sphere, capsule, octa; `NAME:RESOLUTION`) instead of a mesh.
-    #[arg(long)]
-    pub dataset: Option<String>,
-    /// Tessellate here at N segments per patch edge and write triangles (Example 5).
-    #[arg(long)]
-    pub sample: Option<usize>,
-    /// With --sample: write Gaussian curvature.
+    /// A data set (ring, sphere, capsule, octa) or a mesh file (the format by extension,
+    /// checked against the content), instead of the input stream.
+    #[arg(long, value_name = "NAME|FILE")]
+    pub data: Option<String>,
+    /// Resolution of a named data set (its default when absent).
+    #[arg(long, value_name = "N")]
+    pub resolution: Option<usize>,
+    /// Tessellate here at N segments per patch edge (1 to 4096, as `tess -s`) and write
+    /// triangles (Example 5).
+    #[arg(short = 's', long = "segments", value_name = "N")]
+    pub segments: Option<usize>,
+    /// With -s: write Gaussian curvature.
     #[arg(long)]
     pub kg: bool,
-    /// With --sample: write mean curvature.
+    /// With -s: write mean curvature.
     #[arg(long)]
     pub km: bool,
-    /// With --sample (or an evaluated scheme): one shared-vertex TriangleMesh record per
+    /// With -s (or an evaluated scheme): one shared-vertex TriangleMesh record per
     /// patch instead of Triangle records (as `tess --mesh`).
     #[arg(long)]
     pub mesh: bool,
@@ -68,24 +79,36 @@ pub struct FitArgs {
 impl Filter for Fit {
     const NAME: &'static str = "fit";
     const SUMMARY: &'static str = "\
-        A mesh (any format, sniffed; `.m` included) to BezierTriangle records, or with `--sample \
-        N` straight to Triangle records";
+        A mesh (any format, sniffed; `.m` included) to BezierTriangle records, or with `-s N` \
+        straight to Triangle records";
     const DESCRIPTION: &'static str = "\
-        The mesh (--input, standard input, or --dataset) is read whole, its format sniffed from \
-        the content, repaired and completed by --estimate (the file's normals kept unless \
+        The mesh (--input, standard input, or --data NAME|FILE with --resolution N) is read \
+        whole, its format sniffed from the content, repaired and completed by --estimate (the file's normals kept unless \
         --replace-normals), fitted by --scheme and written back in its own coordinates: one \
         BezierTriangle per patch with `face`, `subpatch` and `scheme` after the points. A scheme \
-        whose patches are not Bézier nets is always sampled here, as with --sample 8 unless \
-        --sample says otherwise. The output is JSON Lines unless --format says otherwise; \
+        whose patches are not Bézier nets is always sampled here, as with -s 8 unless -s says \
+        otherwise; a sampled value that is not finite is an error naming the patch. The output is JSON Lines unless --format says otherwise; \
         --keep-going has nothing to skip.";
     const SEED: &'static str =
         "Fitter0, Shirman–Séquin, … (Piper not recovered); Nielson, a sampling fitter (Herron not recovered)";
     type Args = FitArgs;
 
     fn run(args: FitArgs, stream: StreamOptions) -> Result<(), FilterError> {
-        let input = match &args.dataset {
-            Some(d) => dataset(d)?,
+        let input = match &args.data {
+            Some(d) => {
+                if stream.input.is_some() {
+                    return Err(FilterError::Usage(format!(
+                        "--data {d} and --input: one input (--data NAME|FILE, or --input FILE, or standard input)"
+                    )));
+                }
+                data_input(d, args.resolution, &args.estimate, args.replace_normals)?
+            }
             None => {
+                if let Some(r) = args.resolution {
+                    return Err(FilterError::Usage(format!(
+                        "--resolution {r} is a data set's: give --data NAME"
+                    )));
+                }
                 let (name, bytes) = match &stream.input {
                     Some(p) => (
                         p.clone(),
@@ -102,13 +125,16 @@ impl Filter for Fit {
                 input_from_bytes(&name, &bytes, &args.estimate, args.replace_normals)?
             }
         };
+        if let Some(s) = args.segments {
+            crate::filters::tess::check_segments(Self::NAME, s)?;
+        }
         let options = FitOptions {
             scheme: args.scheme.scheme,
             scheme_options: args.scheme.options,
             curves: args.curves,
             estimate: args.estimate,
             replace_normals: args.replace_normals,
-            sample: args.sample,
+            segments: args.segments,
             fields: CurvatureFields {
                 kg: args.kg,
                 km: args.km,
@@ -145,8 +171,8 @@ pub struct FitOptions {
     pub estimate: String,
     /// Estimate normals even where the file has them.
     pub replace_normals: bool,
-    /// Tessellate here at this density and write triangles.
-    pub sample: Option<usize>,
+    /// Tessellate here at this many segments per patch edge and write triangles.
+    pub segments: Option<usize>,
     /// Curvatures written with sampled triangles.
     pub fields: CurvatureFields,
     /// Sampled output as one shared-vertex `TriangleMesh` record per patch instead of
@@ -174,33 +200,30 @@ pub fn input_from_bytes(
     })
 }
 
-/// A named data set (`ring`, `sphere`, `capsule`, `octa`), optionally `NAME:RESOLUTION`, as the
-/// fit job's input.
-pub fn dataset(spec: &str) -> Result<fitjob::InputOptions, FilterError> {
-    let (name, res) = match spec.split_once(':') {
-        Some((n, r)) => (
-            n,
-            Some(r.parse::<usize>().map_err(|_| {
-                FilterError::Usage(format!("--dataset {spec}: resolution must be an integer"))
-            })?),
-        ),
-        None => (spec, None),
-    };
-    if let Some(r) = res {
-        // The same estimate as `experiments fit --resolution`, before anything is built (the
-        // job checks it too, naming the options as `experiments` does).
-        surface::limits::check_memory(
-            &format!("--dataset {spec}"),
-            surface::limits::dataset_faces(name, r)
-                .saturating_mul(surface::limits::FIT_BYTES_PER_FACE as u128),
-        )?;
+/// `--data NAME|FILE [--resolution N]` as the fit job's input, as `experiments fit` takes
+/// them (`fitjob::Source::Data`: an existing file, or a name with a mesh extension, is read;
+/// otherwise the name is a data set). A resolution is a data set's: with a file it is a usage
+/// error.
+pub fn data_input(
+    data: &str,
+    resolution: Option<usize>,
+    estimate: &str,
+    replace_normals: bool,
+) -> Result<fitjob::InputOptions, FilterError> {
+    if let Some(r) = resolution {
+        if fitjob::input::is_file_input(data) {
+            return Err(FilterError::Usage(format!(
+                "--resolution {r} is a data set's; --data {data} is a file"
+            )));
+        }
     }
     Ok(fitjob::InputOptions {
-        source: fitjob::Source::DataSet {
-            name: name.to_string(),
-            resolution: res,
+        source: fitjob::Source::Data {
+            data: data.to_string(),
+            resolution,
         },
-        ..fitjob::InputOptions::default()
+        estimate: estimate.to_string(),
+        replace_normals,
     })
 }
 
@@ -216,10 +239,10 @@ pub fn fit<W: std::io::Write>(
     curves::method_by_name(&options.curves, &curves::MethodOptions::default())
         .map_err(|e| FilterError::Usage(e.to_string()))?;
     let layout = scheme.layout();
-    let sample = match options.sample {
+    let sample = match options.segments {
         None if !layout.is_bezier() => {
             eprintln!(
-                "fit: `{}` is evaluated, not a Bézier patch: sampled here at s = {SAMPLED_DENSITY} (--sample N to change)",
+                "fit: `{}` is evaluated, not a Bézier patch: sampled here at s = {SAMPLED_DENSITY} (-s N to change)",
                 scheme.name()
             );
             Some(SAMPLED_DENSITY)
@@ -228,12 +251,12 @@ pub fn fit<W: std::io::Write>(
     };
     if options.mesh && sample.is_none() {
         return Err(FilterError::Usage(
-            "fit --mesh writes sampled triangles: give --sample N (tess --mesh does it for patches)"
+            "fit --mesh writes sampled triangles: give -s N (tess --mesh does it for patches)"
                 .into(),
         ));
     }
-    if sample == Some(0) {
-        return Err(FilterError::Usage("fit --sample must be at least 1".into()));
+    if let Some(s) = sample {
+        crate::filters::tess::check_segments("fit", s)?;
     }
     let job = fitjob::FitOptions {
         input,
@@ -270,6 +293,7 @@ pub fn fit<W: std::io::Write>(
     if let Some(s) = sample {
         let mut t = surface::tessellate_fit(&mesh, &fitted, s)?;
         t.to_world(&frame);
+        check_finite(&t, per_face, options.fields, frame.scale)?;
         if options.mesh {
             for v in patch_meshes(&t, per_face, &scheme_name, options.fields) {
                 at.record += 1;
@@ -341,13 +365,58 @@ pub fn check_memory(
     };
     let patches = (faces as u128).saturating_mul(layout.patches_per_face() as u128);
     Ok(surface::limits::check_memory(
-        &format!("fit --sample {s} ({faces} faces, {patches} patches)"),
+        &format!("fit -s {s} ({faces} faces, {patches} patches)"),
         fit.saturating_add(surface::limits::tessellation_bytes(patches, s))
             .saturating_add(surface::limits::sample_weights_bytes(
                 layout.points_per_patch(),
                 s,
             )),
     )?)
+}
+
+/// Refuses a tessellation with a value it would write that is not finite (positions,
+/// normals, and the curvatures `fields` asks for): a curvature mapped back from the working
+/// frame (`K / scale²`, `H / scale`) leaves the range of `f64` on a mesh about 1e-154 across
+/// or smaller. The error names the patch (face and subpatch) and the vertex.
+fn check_finite(
+    t: &surface::Tessellation,
+    per_face: usize,
+    fields: CurvatureFields,
+    scale: f64,
+) -> Result<(), FilterError> {
+    let bad = (0..t.positions.len()).find_map(|i| {
+        let p = t.positions[i];
+        let n = t.normals[i];
+        let checks = [
+            ("position", p.x, true),
+            ("position", p.y, true),
+            ("position", p.z, true),
+            ("normal", n.x, true),
+            ("normal", n.y, true),
+            ("normal", n.z, true),
+            ("Gaussian curvature", t.gaussian[i], fields.kg),
+            ("mean curvature", t.mean[i], fields.km),
+        ];
+        checks
+            .into_iter()
+            .find(|(_, x, asked)| *asked && !x.is_finite())
+            .map(|(what, x, _)| (i, what, x))
+    });
+    let Some((vertex, what, value)) = bad else {
+        return Ok(());
+    };
+    let patch = t
+        .faces
+        .iter()
+        .position(|f| f.contains(&vertex))
+        .and_then(|k| t.patch_of_face.get(k).copied())
+        .unwrap_or(0);
+    Err(FilterError::NotFinite(format!(
+        "face {} subpatch {}, vertex {vertex}: the {what} is {value} on a mesh {scale:.1e} across, beyond the range of a double (±{:.1e}); leave --kg/--km out or rescale the mesh",
+        patch / per_face,
+        patch % per_face,
+        f64::MAX
+    )))
 }
 
 /// The welded tessellation `t` cut back into one `TriangleMesh` record per patch, in patch
@@ -371,13 +440,16 @@ fn patch_meshes<'a>(
                 .take_while(|p| **p == patch)
                 .count()
                 .max(1);
+        // Each vertex's index in the patch, in the order its triangles first use it (a map,
+        // not a search of the list: a patch at s = 1000 has half a million vertices).
         let mut local: Vec<usize> = Vec::new();
+        let mut index_of: HashMap<usize, usize> = HashMap::new();
         let mut triangles = Vec::with_capacity(end - start);
         for f in &t.faces[start..end] {
             let tri: Vec<Value> = f
                 .iter()
                 .map(|g| {
-                    let i = local.iter().position(|x| x == g).unwrap_or_else(|| {
+                    let i = *index_of.entry(*g).or_insert_with(|| {
                         local.push(*g);
                         local.len() - 1
                     });
@@ -429,6 +501,6 @@ mod tests {
     /// The help's description names the density an evaluated scheme is sampled at.
     #[test]
     fn the_description_names_the_sampled_density() {
-        assert!(Fit::DESCRIPTION.contains(&format!("--sample {SAMPLED_DENSITY} ")));
+        assert!(Fit::DESCRIPTION.contains(&format!("-s {SAMPLED_DENSITY} ")));
     }
 }

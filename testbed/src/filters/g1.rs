@@ -15,7 +15,10 @@
 //! What could not be measured is counted and reported: edges between two corners that other
 //! patch edges also join, along another curve (a C0 defect: *mismatched*), and shared
 //! boundaries with no defined normal at any sample. With `--strict` the run fails on a normal
-//! angle above [`G1_TOLERANCE`], on anything left unmeasured, and when nothing was measured.
+//! angle above [`G1_TOLERANCE`], on anything left unmeasured (a boundary, or a single sample
+//! where a normal is undefined), and when nothing was measured. `--samples` runs from
+//! [`surface::patch_g1::MIN_SAMPLES`] to [`MAX_SAMPLES`]; the patches held until the end are
+//! checked against the memory available as they come ([`PATCH_BYTES`]).
 
 use surface::patch_g1::{self, PatchG1Report};
 use surface::BezierTriangle;
@@ -34,6 +37,18 @@ pub const G1_TOLERANCE: f64 = 1e-6;
 /// Default samples per boundary (ends included).
 pub const DEFAULT_SAMPLES: usize = 9;
 
+/// Most samples per boundary: 4097 put a sample within 1/8192 of every point of a boundary,
+/// where a normal angle that is a polynomial of low degree along it (every scheme's) has long
+/// shown its maximum; the work is linear in the samples (measured: 10⁶ samples on the 36
+/// boundaries of a 24-patch octahedron took over a minute, 4097 take a fifth of a second:
+/// docs/hostile-input.md), so a larger count only costs time.
+pub const MAX_SAMPLES: usize = 4097;
+
+/// Bytes one patch held by `g1` takes, for the memory check as they accumulate: a quartic's
+/// 15 control points (360 bytes), its vector's header and the allocator's slack (about 64),
+/// its record number and the matching's corner and edge entries (about 200).
+pub const PATCH_BYTES: u128 = 640;
+
 /// `testbed g1`: the seed's G1.
 pub struct G1;
 
@@ -41,10 +56,10 @@ pub struct G1;
 #[derive(clap::Args, Debug)]
 pub struct G1Args {
     /// Exit with an error when the largest angle exceeds the tolerance (1e-6 rad), when a
-    /// boundary could not be measured, or when nothing was measured.
+    /// boundary or a sample could not be measured, or when nothing was measured.
     #[arg(long)]
     pub strict: bool,
-    /// Samples per boundary, ends included (at least 3: the ends alone say nothing).
+    /// Samples per boundary, ends included (3 to 4097: the ends alone say nothing).
     #[arg(long, default_value_t = DEFAULT_SAMPLES, value_parser = samples_option)]
     pub samples: usize,
 }
@@ -68,14 +83,14 @@ impl Filter for G1 {
     }
 }
 
-/// `g1 --samples N`: a whole number of at least [`surface::patch_g1::MIN_SAMPLES`] (clap
-/// refuses anything else as a usage error, exit status 2).
+/// `g1 --samples N`: a whole number from [`surface::patch_g1::MIN_SAMPLES`] to
+/// [`MAX_SAMPLES`] (clap refuses anything else as a usage error, exit status 2).
 fn samples_option(s: &str) -> Result<usize, String> {
     let min = patch_g1::MIN_SAMPLES;
     match s.parse::<usize>() {
-        Ok(n) if n >= min => Ok(n),
+        Ok(n) if (min..=MAX_SAMPLES).contains(&n) => Ok(n),
         _ => Err(format!(
-            "at least {min} samples per boundary (with 2 only the ends are sampled, where every interpolating scheme has the vertex normal on both sides)"
+            "from {min} to {MAX_SAMPLES} samples per boundary (with 2 only the ends are sampled, where every interpolating scheme has the vertex normal on both sides; beyond {MAX_SAMPLES} the work grows and the largest angle does not)"
         )),
     }
 }
@@ -145,12 +160,13 @@ pub fn measure(records: &[usize], patches: &[BezierTriangle], samples: usize) ->
 
 /// `g1 [--strict] [--samples N]`: passes every record through, measures the patches at the
 /// end, reports on standard error. With `strict`, an angle above [`G1_TOLERANCE`], a boundary
-/// left unmeasured, or nothing measured is an error. Fewer than
-/// [`surface::patch_g1::MIN_SAMPLES`] samples is a usage error (the ends alone say nothing).
+/// or a sample left unmeasured, or nothing measured is an error. A sample count outside
+/// [`surface::patch_g1::MIN_SAMPLES`]`..=`[`MAX_SAMPLES`] is a usage error (the ends alone
+/// say nothing; more only costs time).
 pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, FilterError> {
-    if samples < patch_g1::MIN_SAMPLES {
+    if !(patch_g1::MIN_SAMPLES..=MAX_SAMPLES).contains(&samples) {
         return Err(FilterError::Usage(format!(
-            "g1 --samples {samples}: at least {} (the ends alone are the vertex normals, equal on both sides for every interpolating scheme)",
+            "g1 --samples {samples}: from {} to {MAX_SAMPLES} (the ends alone are the vertex normals, equal on both sides for every interpolating scheme; more only costs time)",
             patch_g1::MIN_SAMPLES
         )));
     }
@@ -161,6 +177,14 @@ pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, Fi
         if rec.kind() == "BezierTriangle" {
             match record::bezier_triangle(&rec.tape) {
                 Ok(p) => {
+                    if patches.len() == patches.capacity() {
+                        // The vector is about to grow: check the patches it will hold.
+                        let next = (patches.len() as u128 * 2).max(64);
+                        surface::limits::check_memory(
+                            &format!("g1 holding {next} patches until the end of the stream"),
+                            next.saturating_mul(PATCH_BYTES),
+                        )?;
+                    }
                     patches.push(p);
                     records.push(rec.at.record);
                 }
@@ -176,7 +200,7 @@ pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, Fi
     let summary = measure(&records, &patches, samples);
     let r = &summary.report;
     eprintln!(
-        "g1: {} patches, {} shared boundaries ({} measured), {} unshared ({} border, {} mismatched), {} unmeasurable, {} collapsed edges, {} orientation mismatches, {} undefined normals (boundaries matched within {:.1e}: {:.0e} of the patches' size)",
+        "g1: {} patches, {} shared boundaries ({} measured), {} unshared ({} border, {} mismatched), {} unmeasurable, {} collapsed edges, {} orientation mismatches, {} samples unmeasured (an undefined normal) (boundaries matched within {:.1e}: {:.0e} of the patches' size)",
         r.patches,
         r.shared,
         r.measured,
@@ -207,6 +231,12 @@ pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, Fi
             r.unmeasured(),
             r.mismatched,
             r.unmeasurable
+        );
+    }
+    if r.undefined > 0 {
+        eprintln!(
+            "g1: warning: {} samples not measured: a normal undefined on one side (a collapsed corner or a degenerate patch)",
+            r.undefined
         );
     }
     let worst = summary.worst();
@@ -242,6 +272,12 @@ pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, Fi
                 r.unmeasured(),
                 r.mismatched,
                 r.unmeasurable
+            ));
+        }
+        if r.undefined > 0 {
+            problems.push(format!(
+                "{} samples left unmeasured (a normal undefined on one side: a collapsed corner or a degenerate patch)",
+                r.undefined
             ));
         }
         if r.measured == 0 {

@@ -16,7 +16,9 @@ impl Filter for Render {
         The triangles are drawn as they come, unwelded (a Triangle's own three vertices, a \
         TriangleMesh's shared as in the record), with their normals (the geometric normal where \
         a vertex has none) and colours (the uniform material where a vertex has none); the \
-        camera frames their bounding box from --view. Other records are ignored.";
+        camera frames their bounding box from --view. Other records are ignored. A picture with \
+        nothing drawn on it (no triangles in the stream: `tess` forgotten) is an error, and a \
+        --size whose drawing would not fit in memory is refused before the stream is read.";
     const SEED: &'static str = "Sgp | Render";
     type Args = PictureArgs;
 

@@ -15,7 +15,8 @@ impl Filter for Wire {
         "A wire-frame picture of the triangles (every edge), PNG: the seed's XRender";
     const DESCRIPTION: &'static str = "\
         Every edge of every Triangle and of every triangle of a TriangleMesh is drawn, the \
-        camera framing their bounding box from --view. Other records are ignored.";
+        camera framing their bounding box from --view. Other records are ignored. A picture with \
+        nothing drawn on it (no triangles in the stream: `tess` forgotten) is an error.";
     const SEED: &'static str = "Sgp | XRender";
     type Args = PictureArgs;
 

@@ -1,5 +1,5 @@
 //! The testbed on the library: `g1` matches boundaries within the library's tolerance and
-//! measures them with its G1 sampling, `to-mesh` welds with its weld, `fit --sample` checks its
+//! measures them with its G1 sampling, `to-mesh` welds with its weld, `fit -s` checks its
 //! memory estimate. Each test reproduces a failure of the bit-exact testbed first (the figures
 //! in the comments are what it gave), then checks the figures now.
 #![allow(clippy::expect_used, clippy::unwrap_used)] // tests: a failed step should stop loudly
@@ -79,7 +79,7 @@ fn unshared_by_bits(stream: &[u8]) -> usize {
 
 #[test]
 fn ring_g1_shares_and_measures_every_boundary() {
-    let patches = ok(&["fit", "--dataset", "ring"], b"");
+    let patches = ok(&["fit", "--data", "ring"], b"");
     // The reproduction: 152 boundaries' control points differ in the last bits between the
     // two patches (by at most 1.1e-16), so bit equality left 304 edges unshared and 152
     // boundaries unmeasured, and still said "G1 within tolerance".
@@ -110,10 +110,7 @@ fn ring_g1_shares_and_measures_every_boundary() {
 
 #[test]
 fn c0_scheme_reports_its_jump_and_strict_fails() {
-    let patches = ok(
-        &["fit", "--dataset", "ring", "--scheme", "clough-tocher"],
-        b"",
-    );
+    let patches = ok(&["fit", "--data", "ring", "--scheme", "clough-tocher"], b"");
     // Bit equality left 256 of its edges unshared too.
     assert_eq!(unshared_by_bits(&patches), 256);
     let s = g1_summary(&patches, testbed::g1::DEFAULT_SAMPLES);
@@ -151,7 +148,7 @@ fn c0_scheme_reports_its_jump_and_strict_fails() {
 
 #[test]
 fn strict_fails_on_unmeasured_boundaries_and_on_nothing_measured() {
-    let patches = ok(&["fit", "--dataset", "ring"], b"");
+    let patches = ok(&["fit", "--data", "ring"], b"");
     // Move one inner control point of the first patch's edge 0 (`w = 0`: b_{3,1,0} of the
     // quartic): its neighbour meets it at both ends along another curve, a C0 defect.
     let mut recs = json_records(&patches);
@@ -209,7 +206,7 @@ fn capsule_to_mesh_is_watertight_with_the_topological_vertex_count() {
     let t = surface::tessellate_fit(&data.mesh, &fitted, 8).unwrap();
     assert_eq!(t.positions.len(), CAPSULE_VERTICES_AT_8);
 
-    let patches = ok(&["fit", "--dataset", "capsule"], b"");
+    let patches = ok(&["fit", "--data", "capsule"], b"");
     let dir = tempfile::tempdir().expect("dir");
     for mesh in [false, true] {
         let mut tess = vec!["tess", "-s", "8", "--kg"];
@@ -255,10 +252,10 @@ fn capsule_to_mesh_is_watertight_with_the_topological_vertex_count() {
 fn fit_sample_beyond_memory_is_refused_before_allocating() {
     let octa = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../data/octa.m")).unwrap();
     // Under a 4 GB address space: the old fit asked for 120 GB at once and aborted (SIGABRT);
-    // the estimate (26 880 GB for 24 patches at s = 100 000) is refused first.
+    // the estimate (32 GB for 24 patches at s = 4096, the largest -s) is refused first.
     let mut child = Command::new("sh")
         .arg("-c")
-        .arg("ulimit -v 4000000 && exec \"$0\" fit --sample 100000")
+        .arg("ulimit -v 4000000 && exec \"$0\" fit -s 4096")
         .arg(env!("CARGO_BIN_EXE_testbed"))
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
@@ -269,7 +266,7 @@ fn fit_sample_beyond_memory_is_refused_before_allocating() {
     let out = child.wait_with_output().expect("runs");
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     let text = stderr(&out);
-    assert!(text.contains("--sample 100000"), "{text}");
+    assert!(text.contains("fit -s 4096"), "{text}");
     assert!(text.contains("would need about"), "{text}");
     assert!(out.stdout.is_empty());
 }
@@ -279,10 +276,7 @@ fn to_mesh_refuses_an_output_it_would_leave_empty() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = dir.path().join("m.ply");
     let stray = dir.path().join("stray.out");
-    let tris = ok(
-        &["tess", "-s", "1"],
-        &ok(&["fit", "--dataset", "octa"], b""),
-    );
+    let tris = ok(&["tess", "-s", "1"], &ok(&["fit", "--data", "octa"], b""));
     let args = [
         "to-mesh",
         "--out",
@@ -291,7 +285,8 @@ fn to_mesh_refuses_an_output_it_would_leave_empty() {
         stray.to_str().unwrap(),
     ];
     let out = testbed(&args, &tris);
-    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    // Options that cannot go together: a usage error, exit status 2.
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(stderr(&out).contains("--output"), "{}", stderr(&out));
     assert!(!stray.exists() && !mesh.exists(), "nothing written");
     // Without it, the mesh is written.

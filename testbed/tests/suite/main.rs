@@ -4,6 +4,7 @@
 mod bzp;
 mod examples;
 mod library;
+mod numerics;
 mod pipeline;
 mod registry;
 mod support;

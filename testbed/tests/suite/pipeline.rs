@@ -295,13 +295,16 @@ fn malformed_records_are_named_and_skipped_with_keep_going() {
         !out.status.success() && err.contains("kg") && err.contains("record 1"),
         "{err}"
     );
-    // A density no memory holds is a usage error, not a crash.
+    // A density no memory holds is a usage error (exit status 2), not a crash.
     let patch = ok(&["fit", "--scheme", "flat"], &octa());
     for s in ["0", "4097", "10000000000"] {
         let out = testbed(&["tess", "-s", s], &patch);
         let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(1), "-s {s}: {err}");
-        assert!(err.contains("from 1 to 4096 segments per edge"), "{err}");
+        assert_eq!(out.status.code(), Some(2), "-s {s}: {err}");
+        assert!(
+            err.contains("from 1 to 4096 segments per patch edge"),
+            "{err}"
+        );
     }
 }
 
@@ -427,13 +430,13 @@ fn mesh_records_give_the_pictures_and_meshes_of_triangle_records() {
     }
 }
 
-/// `fit --sample N --mesh` (Example 5's path) writes one `TriangleMesh` per patch: its
+/// `fit -s N --mesh` (Example 5's path) writes one `TriangleMesh` per patch: its
 /// records hold the patch's samples once each, and they colour and draw as the `Triangle`
-/// records of `fit --sample N` do, byte for byte; without `--sample` the flag is refused.
+/// records of `fit -s N` do, byte for byte; without `-s` the flag is refused.
 #[test]
 fn sampled_fits_write_mesh_records_that_draw_as_their_triangles() {
     for scheme in ["nielson", "shirman-sequin"] {
-        let args = ["fit", "--scheme", scheme, "--sample", "3", "--kg"];
+        let args = ["fit", "--scheme", scheme, "-s", "3", "--kg"];
         let tris = ok(&args, &octa());
         let meshes = ok(&[&args[..], &["--mesh"]].concat(), &octa());
         let recs = json_records(&meshes);
@@ -469,7 +472,7 @@ fn sampled_fits_write_mesh_records_that_draw_as_their_triangles() {
     }
     let out = testbed(&["fit", "--mesh"], &octa());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success() && err.contains("--sample"), "{err}");
+    assert!(!out.status.success() && err.contains("-s N"), "{err}");
 }
 
 /// The next of the workspace's seeded pseudo-random numbers (`rng::SplitMix64`), so failures
@@ -584,8 +587,8 @@ fn damaged_streams_with_mesh_records_never_panic_in_any_filter() {
                 let mut pipe = Pipe::new("test", &mut input, &mut sink, None, true);
                 let _ = testbed::draw::collect_triangles(&mut pipe);
             };
-            run(&mut |p| filters::tess(p, 2, fields, TessRecords::Mesh));
-            run(&mut |p| filters::tess(p, 1, fields, TessRecords::Triangles));
+            run(&mut |p| filters::tess(p, 2, fields, TessRecords::Mesh).map(|_| ()));
+            run(&mut |p| filters::tess(p, 1, fields, TessRecords::Triangles).map(|_| ()));
             run(&mut |p| filters::colour(p, &filters::KColor, "kg", None, 5));
             run(&mut |p| filters::colour(p, &filters::Mat0, "", None, 0));
             run(&mut |p| testbed::g1::g1(p, false, 3).map(|_| ()));
@@ -596,7 +599,7 @@ fn damaged_streams_with_mesh_records_never_panic_in_any_filter() {
 
 #[test]
 fn fit_reads_any_mesh_format_from_standard_input() {
-    let tris = ok(&["fit", "--scheme", "flat", "--sample", "1"], &octa());
+    let tris = ok(&["fit", "--scheme", "flat", "-s", "1"], &octa());
     let dir = tempfile::tempdir().expect("dir");
     let ply = dir.path().join("octa.ply");
     ok(&["to-mesh", "--out", ply.to_str().expect("utf-8")], &tris);
