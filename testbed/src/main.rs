@@ -12,7 +12,8 @@ use std::process::ExitCode;
 use clap::Command;
 use testbed::filters::{self, FILTERS};
 
-/// The command line: one subcommand a registered filter, in the registry's order.
+/// The command line: one subcommand a registered filter, in the registry's order, then the
+/// shell completions and the man pages (`clidocs`).
 fn command() -> Command {
     Command::new("testbed")
         .version(env!("CARGO_PKG_VERSION"))
@@ -22,11 +23,24 @@ fn command() -> Command {
         .subcommand_required(true)
         .arg_required_else_help(true)
         .subcommands(FILTERS.iter().map(|f| f.command()))
+        .subcommand(clidocs::completions_command())
+        .subcommand(clidocs::man_command())
 }
 
 fn main() -> ExitCode {
     let mut command = command();
     let matches = command.get_matches_mut();
+    if let Some((name, sub)) = matches.subcommand() {
+        if let Some(done) = clidocs::run(&mut command, name, sub) {
+            return match done {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("testbed {name}: error: {e}");
+                    ExitCode::FAILURE
+                }
+            };
+        }
+    }
     // clap has required a subcommand, one of the registry's.
     let Some((filter, sub)) = matches
         .subcommand()

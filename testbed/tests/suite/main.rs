@@ -7,4 +7,5 @@ mod library;
 mod numerics;
 mod pipeline;
 mod registry;
+mod shell_docs;
 mod support;
