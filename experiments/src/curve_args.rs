@@ -12,7 +12,7 @@
 //! `ring` fits every construction of its study, so it takes no `--curves`; `sweep` runs every
 //! construction with every solver and the default dBHS pick, so it takes only `--interior`;
 //! `curve` builds curves without surfaces, so it takes no `--interior` and names several
-//! constructions with `--methods`. The names a flag accepts come from the libraries' registries:
+//! constructions with `--curves` (a list). The names a flag accepts come from the libraries' registries:
 //! constructions from [`curves::REGISTRY`], solvers from [`solver::SolverKind`], dBHS picks from
 //! [`curves::DbhsPick`], interior choices from [`InteriorChoice`].
 
@@ -82,7 +82,7 @@ fn method_names() -> PossibleValuesParser {
 }
 
 /// Every registered construction, comma-separated in registry order: the default of `curve
-/// --methods`.
+/// --curves`.
 pub fn all_methods() -> &'static str {
     static ALL: LazyLock<String> = LazyLock::new(|| {
         curves::REGISTRY

@@ -6,4 +6,5 @@ mod curve_cli;
 mod hostile_cli;
 mod mesh_cli;
 mod schemes_cli;
+mod studies_cli;
 mod sweep_cli;
