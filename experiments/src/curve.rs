@@ -169,7 +169,7 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode, ExperimentError> {
         let line = i + 1;
         let refused = match &line_read {
             Line::TooLong(n) => Some((
-                format!("line of {n} bytes or more: longer than the {MAX_LINE_BYTES} a problem may take"),
+                format!("a line of {n} bytes: longer than the {MAX_LINE_BYTES} a problem may take"),
                 Value::Null,
             )),
             Line::Text(bytes) => std::str::from_utf8(bytes)
