@@ -70,6 +70,15 @@ pub fn load_subject(
             truth: None,
         });
     }
+    // A data set's size is known from its resolution: refused before it is built when its fit
+    // could not be held.
+    if let Some(r) = resolution {
+        crate::limits::check_memory(
+            &format!("--data {data} --resolution {r}"),
+            crate::limits::dataset_faces(data, r)
+                .saturating_mul(crate::limits::FIT_BYTES_PER_FACE as u128),
+        )?;
+    }
     let set = surface::dataset_by_name(data, resolution).map_err(|source| {
         ExperimentError::DataOption {
             given: match resolution {
