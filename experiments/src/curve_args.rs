@@ -6,13 +6,14 @@
 //! |---|---|---|
 //! | [`CurveOptions`] | `--solver`, `--dbhs-pick` | `curve`, `ring`, `fit` (in [`FitOptions`]) |
 //! | [`InteriorOption`] | `--interior` | `sweep`, `ring`, `fit` (in [`FitOptions`]) |
-//! | `fitjob::cli::SchemeArgs` | `--scheme` and one option a scheme parameter (`--beta`, `--c`, `--phong-alpha`, …), generated from the scheme registry | `ring`, `sweep`, `fit` (in [`FitOptions`]), the pipeline's `fit` |
+//! | `fitjob::cli::SchemeArgs` | `--scheme` and one option a scheme parameter (`--beta`, `--c`, `--phong-alpha`, …), generated from the scheme registry | `ring`, `fit` (in [`FitOptions`]), the pipeline's `fit` (`sweep` takes each as a list, a grid axis: `sweep::ParameterLists`) |
 //! | [`FitOptions`] | `--curves` (one construction), [`CurveOptions`], [`InteriorOption`], `SchemeArgs` | `fit` |
 //!
-//! `ring` fits every construction of its study, so it takes no `--curves`; `sweep` runs every
-//! construction with every solver and the default dBHS pick, so it takes only `--interior`;
-//! `curve` builds curves without surfaces, so it takes no `--interior` and names several
-//! constructions with `--methods`. The names a flag accepts come from the libraries' registries:
+//! `ring` fits every construction of its study, so it takes no `--curves`; `sweep` takes
+//! `--curves`, `--solver`, `--scheme` and every scheme parameter as lists (the axes of its grid)
+//! with `--interior`; `curve` builds curves without surfaces, so it takes no `--interior` and
+//! names several constructions with `--curves` (a list). The names a flag accepts come from the
+//! libraries' registries:
 //! constructions from [`curves::REGISTRY`], solvers from [`solver::SolverKind`], dBHS picks from
 //! [`curves::DbhsPick`], interior choices from [`InteriorChoice`].
 
@@ -82,7 +83,7 @@ fn method_names() -> PossibleValuesParser {
 }
 
 /// Every registered construction, comma-separated in registry order: the default of `curve
-/// --methods`.
+/// --curves`.
 pub fn all_methods() -> &'static str {
     static ALL: LazyLock<String> = LazyLock::new(|| {
         curves::REGISTRY

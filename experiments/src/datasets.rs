@@ -1,5 +1,5 @@
-//! The data sets of the `surface` crate's registry in the order the studies list them, and
-//! their edge problems, by name.
+//! The data sets of the `surface` crate's registry in the order the studies list them, their
+//! edge problems by name, and a study's mesh by `--data` item (a data set or a mesh file).
 
 use std::sync::LazyLock;
 
@@ -31,6 +31,69 @@ pub fn all_joined() -> &'static str {
 /// known ones.
 pub fn load(name: &str) -> Result<DataSet, ExperimentError> {
     dataset_by_name(name, None).map_err(ExperimentError::from)
+}
+
+/// One mesh of the study: its name in the report, the mesh in its working frame, and the true
+/// surface when it is a data set.
+pub struct Subject {
+    /// The `--data` item as given.
+    pub name: String,
+    /// The mesh (a file's in its working frame).
+    pub mesh: surface::Mesh,
+    /// The working frame of a file (identity for a data set).
+    pub frame: surface::Frame,
+    /// The true surface of a data set.
+    pub truth: Option<std::sync::Arc<dyn surface::AnalyticSurface>>,
+}
+
+/// Loads `--data` item `data`: an existing file is read, repaired and completed by `estimate`
+/// (the fit job's input, `fitjob::input::load`); any other name is a data set (at
+/// `resolution`), with its true surface.
+pub fn load_subject(
+    data: &str,
+    resolution: Option<usize>,
+    estimate: &str,
+) -> Result<Subject, ExperimentError> {
+    if std::path::Path::new(data).is_file() {
+        let loaded = fitjob::input::load(&fitjob::InputOptions {
+            source: fitjob::Source::Data {
+                data: data.to_string(),
+                resolution,
+            },
+            estimate: estimate.to_string(),
+            replace_normals: false,
+        })?;
+        return Ok(Subject {
+            name: data.to_string(),
+            mesh: loaded.mesh,
+            frame: loaded.frame,
+            truth: None,
+        });
+    }
+    // A data set's size is known from its resolution: refused before it is built when its fit
+    // could not be held.
+    if let Some(r) = resolution {
+        crate::limits::check_memory(
+            &format!("--data {data} --resolution {r}"),
+            crate::limits::dataset_faces(data, r)
+                .saturating_mul(crate::limits::FIT_BYTES_PER_FACE as u128),
+        )?;
+    }
+    let set = surface::dataset_by_name(data, resolution).map_err(|source| {
+        ExperimentError::DataOption {
+            given: match resolution {
+                Some(r) => format!("--data {data} --resolution {r}"),
+                None => format!("--data {data}"),
+            },
+            source,
+        }
+    })?;
+    Ok(Subject {
+        name: data.to_string(),
+        mesh: set.mesh,
+        frame: surface::Frame::identity(),
+        truth: Some(set.surface),
+    })
 }
 
 /// The edge problems of a data set, each with its `(a, b)` vertex pair.

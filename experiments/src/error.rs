@@ -131,18 +131,6 @@ pub enum ExperimentError {
         /// Why.
         source: experiments::shard::ShardError,
     },
-    /// Two shard files come from runs with different options.
-    #[error("{path}: options {these} differ from {first}'s {theirs}: these shards come from different runs", path = .path.display(), first = .first.display())]
-    ShardOptionsDiffer {
-        /// The shard file read last.
-        path: PathBuf,
-        /// Its options (JSON).
-        these: String,
-        /// The first shard file read.
-        first: PathBuf,
-        /// Its options (JSON).
-        theirs: String,
-    },
     /// A task appears in two shard files.
     #[error("{path}: task {index} ({task}) appears in more than one shard", path = .path.display())]
     ShardTaskRepeated {
@@ -167,6 +155,10 @@ pub enum ExperimentError {
     /// status 2, like the parser's own usage errors).
     #[error("{0}")]
     Usage(String),
+    /// A study refused its options or its input (`crate::study::StudyError`; its `is_usage`
+    /// tells a usage error from a runtime one).
+    #[error(transparent)]
+    Study(#[from] crate::study::StudyError),
     /// `--corpus` holds no readable mesh file.
     #[error("--corpus {path}: no mesh files (readable: {})", meshio::readable_extensions(), path = .path.display())]
     EmptyCorpus {
@@ -187,6 +179,7 @@ impl ExperimentError {
             | ExperimentError::Method(_)
             | ExperimentError::Scheme(_) => 2,
             ExperimentError::Job(e) if e.is_usage() => 2,
+            ExperimentError::Study(e) if e.is_usage() => 2,
             _ => 1,
         }
     }

@@ -76,19 +76,36 @@ fn at_least_as_good(ours: f64, best: f64) -> bool {
     ours <= best || (ours < ROUNDING && best < ROUNDING)
 }
 
+/// The last words of the run on the goal: how many meshes had libigl numbers to compare with,
+/// and where the default missed it. Never an empty "missed on []": no mesh checked is said as
+/// such.
+fn goal_line(checked: usize, failures: &[String]) -> String {
+    match (checked, failures.is_empty()) {
+        (0, _) => "no mesh had libigl numbers to check the goal against".into(),
+        (n, true) => format!("goal met on all {n} meshes checked against libigl"),
+        (n, false) => format!(
+            "goal missed on {} of {n} meshes checked against libigl: {}",
+            failures.len(),
+            failures.join(", ")
+        ),
+    }
+}
+
 /// Options of the `estimation` experiment.
 #[derive(clap::Args, Debug)]
 pub struct EstimationArgs {
     /// Output directory.
-    #[arg(long, default_value = "results/estimation")]
-    out: PathBuf,
+    #[arg(short = 'o', long, default_value = "results/estimation")]
+    output: PathBuf,
     /// Write every study mesh as `NAME.obj` with `NAME.exact.json` (exact normals, K, H) to this
     /// directory for `scripts/golden_estimators.py`, and stop.
     #[arg(long)]
     export: Option<PathBuf>,
-    /// The golden numbers of libigl's estimators.
-    #[arg(long, default_value = "data/golden/libigl-estimators.json")]
-    golden: PathBuf,
+    /// The golden numbers of libigl's estimators (default: the committed
+    /// `data/golden/libigl-estimators.json`, built into the binary, so the study is the same
+    /// wherever it runs).
+    #[arg(long, value_name = "FILE")]
+    golden: Option<PathBuf>,
 }
 
 /// One mesh of the study.
@@ -430,25 +447,31 @@ fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), 
 /// Runs the experiment.
 pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
     let t0 = Instant::now();
+    // The golden numbers: the built-in committed ones, or a file given (which must be there).
+    let golden: Value = match args.golden.as_ref().filter(|_| args.export.is_none()) {
+        None => serde_json::from_str(crate::study::LIBIGL_GOLDEN).map_err(|source| {
+            ExperimentError::JsonFile {
+                path: "data/golden/libigl-estimators.json (built in)".into(),
+                source,
+            }
+        })?,
+        Some(path) => {
+            let text = std::fs::read_to_string(path).map_err(|source| ExperimentError::Read {
+                path: path.clone(),
+                source,
+            })?;
+            serde_json::from_str(&text).map_err(|source| ExperimentError::JsonFile {
+                path: path.clone(),
+                source,
+            })?
+        }
+    };
     let meshes = study_meshes()?;
     if let Some(dir) = &args.export {
         export(&meshes, dir)?;
         return Ok(ExitCode::SUCCESS);
     }
-    let golden: Value = match std::fs::read_to_string(&args.golden) {
-        Ok(text) => serde_json::from_str(&text).map_err(|source| ExperimentError::JsonFile {
-            path: args.golden.clone(),
-            source,
-        })?,
-        Err(e) => {
-            say!(
-                "estimation: no golden numbers ({}: {e}); libigl columns left empty",
-                args.golden.display()
-            );
-            Value::Null
-        }
-    };
-    let staged = Staged::begin(&args.out)?;
+    let staged = Staged::begin(&args.output)?;
     let out = staged.path().to_path_buf();
     let mut results: Vec<(usize, Rows, Rows)> = Vec::new();
     for (i, m) in meshes.iter().enumerate() {
@@ -671,12 +694,44 @@ pub fn run(args: &EstimationArgs) -> Result<ExitCode, ExperimentError> {
     )?;
     write_result(Some(&out.join("report.md")), md.as_bytes())?;
     say!(
-        "estimation: {} meshes in {:.1} s → {}; goal missed on {:?}",
+        "estimation: {} meshes in {:.1} s → {}; {}",
         meshes.len(),
         t0.elapsed().as_secs_f64(),
-        args.out.display(),
-        goal_failures
+        args.output.display(),
+        goal_line(met_counts[3], &goal_failures)
     );
     staged.commit()?;
     Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_last_words_never_hide_a_missing_comparison() {
+        assert_eq!(
+            goal_line(0, &[]),
+            "no mesh had libigl numbers to check the goal against"
+        );
+        assert_eq!(
+            goal_line(4, &[]),
+            "goal met on all 4 meshes checked against libigl"
+        );
+        assert_eq!(
+            goal_line(4, &["ring-16".into()]),
+            "goal missed on 1 of 4 meshes checked against libigl: ring-16"
+        );
+    }
+
+    /// The golden numbers are built in: the study has them from any working directory (the
+    /// unit tests run in `experiments/`, where `data/golden/…` is not).
+    #[test]
+    fn the_golden_numbers_do_not_depend_on_the_working_directory() {
+        assert!(!Path::new("data/golden/libigl-estimators.json").exists());
+        let golden: Value = serde_json::from_str(crate::study::LIBIGL_GOLDEN).unwrap();
+        let names: Vec<&String> = golden["meshes"].as_object().unwrap().keys().collect();
+        assert!(names.len() > 10, "{names:?}");
+        assert!(names.iter().all(|n| !golden_rows(&golden, n).is_empty()));
+    }
 }

@@ -26,8 +26,8 @@ use crate::output::{write_result, Staged};
 #[derive(clap::Args, Debug)]
 pub struct InteriorArgs {
     /// Output directory.
-    #[arg(long, default_value = "results/interior")]
-    out: PathBuf,
+    #[arg(short = 'o', long, default_value = "results/interior")]
+    output: PathBuf,
 }
 
 /// Sweep points.
@@ -222,7 +222,7 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
                             "kept_default": stats.kept_default, "energy_default": stats.energy_default, "energy_chosen": stats.energy_chosen}));
         }
     }
-    let staged = Staged::begin(&args.out)?;
+    let staged = Staged::begin(&args.output)?;
     let out = staged.path().to_path_buf();
     render::write_line_charts(
         &charts,
@@ -268,7 +268,7 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
     md.push('\n');
     let _ = writeln!(md, "## What holds\n\nBoth measures are independent of β and c to rounding: the changes above are at the level of floating-point noise, and the curves are flat. The derivation: `I¹ − V = β(E⁴_a + E⁴_b − 2V)` lies in the tangent plane and scales with β; the normal components of `I² − I¹` and of the twist come only from the Chiyokura–Kimura terms `k_0 Ĉ_1` and `2h_0(E² − E¹)`, whose coefficients are proportional to β and do not involve c (c multiplies `Ĉ_0`, which is perpendicular to the normal at the vertex). So the boundary's normal curvature is (β²)/(β²) and the normalized twist (β)/(β). The seed's final mixed-partial expression keeps `|I_i1 − V_i|` in a denominator: that length is proportional to β, and the seed's numerator has the compensating factor β it dropped one line earlier; with it the claim holds.\n\nThe corner objectives' gradients are therefore zero; the energies above carry exact Jacobians (checked by finite differences in `surface/tests/suite/interior.rs`).");
     write_result(Some(&out.join("report.md")), md.as_bytes())?;
-    say!("interior: written to {}", args.out.display());
+    say!("interior: written to {}", args.output.display());
     staged.commit()?;
     Ok(ExitCode::SUCCESS)
 }

@@ -36,6 +36,7 @@ mod realmesh;
 mod ring;
 mod schemes;
 mod solvers;
+mod study;
 mod sweep;
 
 use std::process::ExitCode;

@@ -56,6 +56,26 @@ pub fn pretty_json(
     Ok(text)
 }
 
+/// The directory a study writes its results into for `-o, --output DIR`: `out` itself when it
+/// is a directory or does not exist yet, the target of a symbolic link to a directory (so that
+/// the staged swap replaces the target and keeps the link); anything else (a regular file, a
+/// device, a link to one, a dangling link) is refused: results never go over a file that is
+/// not a results directory.
+pub fn results_dir(out: &Path) -> Result<std::path::PathBuf, ExperimentError> {
+    let refused = || ExperimentError::NotADirectory {
+        path: out.to_path_buf(),
+    };
+    match std::fs::symlink_metadata(out) {
+        Err(_) => Ok(out.to_path_buf()),
+        Ok(meta) if meta.is_dir() => Ok(out.to_path_buf()),
+        Ok(meta) if meta.file_type().is_symlink() => match std::fs::metadata(out) {
+            Ok(target) if target.is_dir() => std::fs::canonicalize(out).map_err(|_| refused()),
+            _ => Err(refused()),
+        },
+        Ok(_) => Err(refused()),
+    }
+}
+
 /// A result directory written whole: every file goes into a fresh staging directory beside the
 /// final one, and [`Staged::commit`] swaps it in (the old directory renamed aside, the new one
 /// renamed into place, the old one removed), so a reader never sees files of two runs mixed.
@@ -77,14 +97,12 @@ impl Staged {
     /// [`Staged::begin`], carrying over (copying into the staging directory) the files of the
     /// existing directory whose names `keep` accepts — the shard files of a sweep, which other
     /// runs wrote and the swap must not lose.
+    ///
+    /// A symbolic link to a directory is that directory: the swap happens at the link's target
+    /// (the link is kept and still points to the results). A link to anything else, or a
+    /// dangling one, is refused like a file.
     pub fn begin_keeping(out: &Path, keep: impl Fn(&str) -> bool) -> Result<Self, ExperimentError> {
-        if let Ok(meta) = std::fs::symlink_metadata(out) {
-            if !meta.is_dir() {
-                return Err(ExperimentError::NotADirectory {
-                    path: out.to_path_buf(),
-                });
-            }
-        }
+        let out = &results_dir(out)?;
         let name = out
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
@@ -160,5 +178,65 @@ impl Drop for Staged {
             let _ = std::fs::remove_dir_all(&self.staging);
             meshio::outfile::landed(&self.staging);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A symbolic link to a directory is a directory to write into: the results land in the
+    /// target, the link stays a link; a link to a file and a file are refused, untouched.
+    #[cfg(unix)]
+    #[test]
+    fn a_link_to_a_directory_is_written_through_and_a_file_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("target");
+        std::fs::create_dir(&target).unwrap();
+        std::fs::write(target.join("old.txt"), "old run\n").unwrap();
+        let link = dir.path().join("link");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        let staged = Staged::begin(&link).unwrap();
+        std::fs::write(staged.path().join("report.md"), "new run\n").unwrap();
+        staged.commit().unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(
+            std::fs::read_to_string(link.join("report.md")).unwrap(),
+            "new run\n"
+        );
+        assert_eq!(
+            std::fs::read_to_string(target.join("report.md")).unwrap(),
+            "new run\n"
+        );
+        assert!(!target.join("old.txt").exists(), "swapped in whole");
+        // A regular file, and a link to one, are refused and left as they were.
+        let file = dir.path().join("file.txt");
+        std::fs::write(&file, "mine\n").unwrap();
+        let file_link = dir.path().join("file-link");
+        std::os::unix::fs::symlink(&file, &file_link).unwrap();
+        for p in [&file, &file_link, &dir.path().join("dangling")] {
+            if p.ends_with("dangling") {
+                std::os::unix::fs::symlink(dir.path().join("nowhere"), p).unwrap();
+            }
+            let e = Staged::begin(p).err().expect("refused");
+            assert!(
+                e.to_string().contains("exists and is not a directory"),
+                "{e}"
+            );
+        }
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine\n");
+        // Nothing left beside them.
+        let mut names: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(
+            names,
+            ["dangling", "file-link", "file.txt", "link", "target"]
+        );
     }
 }

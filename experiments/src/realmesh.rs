@@ -37,29 +37,57 @@ const PICTURED_METHOD: &str = "optimized";
 /// The two views (azimuth°, elevation°, name).
 const VIEWS: [(f64, f64, &str); 2] = [(-60.0, 15.0, "front"), (120.0, 30.0, "back")];
 
+/// The committed corpus, relative to the repository root.
+const CORPUS: &str = "data/meshes";
+
 /// Options of the `realmesh` experiment.
 #[derive(clap::Args, Debug)]
 pub struct RealMeshArgs {
-    /// Directory of the corpus.
-    #[arg(long, default_value = "data/meshes")]
-    corpus: PathBuf,
+    /// Directory of the corpus (default: the committed `data/meshes` of the source tree the
+    /// binary was built from, wherever it runs).
+    #[arg(long, value_name = "DIR")]
+    corpus: Option<PathBuf>,
     /// Output directory.
-    #[arg(long, default_value = "results/realmesh")]
-    out: PathBuf,
+    #[arg(short = 'o', long, default_value = "results/realmesh")]
+    output: PathBuf,
     /// Estimator for the normals and shape tensors the files lack.
     #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR)]
     estimate: String,
 }
 
+/// The mesh files of `dir` (by extension, sorted). Each one's type is checked before anything
+/// opens it: a FIFO would block the read forever and a device would be read without end, so a
+/// corpus entry with a mesh extension that is not a regular file (or a link to one) is refused
+/// by name.
 fn corpus_files(dir: &Path) -> Result<Vec<PathBuf>, ExperimentError> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|source| ExperimentError::Read {
-            path: dir.to_path_buf(),
-            source,
-        })?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| meshio::format_for_path(p).is_some_and(|f| f.can_read()))
-        .collect();
+    let read_err = |source| ExperimentError::Read {
+        path: dir.to_path_buf(),
+        source,
+    };
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir).map_err(read_err)? {
+        let entry = entry.map_err(read_err)?;
+        let path = entry.path();
+        if !meshio::format_for_path(&path).is_some_and(|f| f.can_read()) {
+            continue;
+        }
+        // The type of what the entry names (a link followed), without opening it.
+        let kind = std::fs::metadata(&path)
+            .map(|m| m.file_type())
+            .map_err(|source| ExperimentError::Read {
+                path: path.clone(),
+                source,
+            })?;
+        let refused = if kind.is_dir() {
+            Some("a directory")
+        } else {
+            crate::study::special_kind(kind)
+        };
+        if let Some(kind) = refused {
+            return Err(crate::study::StudyError::SpecialFile { path, kind }.into());
+        }
+        files.push(path);
+    }
     files.sort();
     Ok(files)
 }
@@ -67,14 +95,16 @@ fn corpus_files(dir: &Path) -> Result<Vec<PathBuf>, ExperimentError> {
 /// Runs the experiment.
 pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     let t_all = Instant::now();
-    let staged = Staged::begin(&args.out)?;
-    let out = staged.path().to_path_buf();
-    let files = corpus_files(&args.corpus)?;
+    let corpus = match &args.corpus {
+        Some(dir) => dir.clone(),
+        None => crate::study::committed_path("the committed corpus", CORPUS, "--corpus DIR")?,
+    };
+    let files = corpus_files(&corpus)?;
     if files.is_empty() {
-        return Err(ExperimentError::EmptyCorpus {
-            path: args.corpus.clone(),
-        });
+        return Err(ExperimentError::EmptyCorpus { path: corpus });
     }
+    let staged = Staged::begin(&args.output)?;
+    let out = staged.path().to_path_buf();
     let mut md = String::from(
         "# Real meshes\n\nThe committed corpus (`data/meshes/`, licences there), each file read as it is, repaired by the stated rules, its normals and shape tensors estimated, and fitted with the modified Shirman–Séquin scheme and every curve construction. G1 defects are split into edges between regular faces (the scheme's guarantee) and edges touching a fallback face (C0 only).\n\n| mesh | vertices | faces | repairs | curves | fallback faces | degenerate edges | G1 regular (rad) | G1 at fallbacks (rad) | unconverged | fit time (s) |\n|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n",
     );
@@ -251,8 +281,36 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
         "realmesh: {} meshes in {:.1} s → {}",
         files.len(),
         t_all.elapsed().as_secs_f64(),
-        args.out.display()
+        args.output.display()
     );
     staged.commit()?;
     Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The default corpus is the committed one wherever the study runs (the unit tests run in
+    /// `experiments/`, where a relative `data/meshes` is not).
+    #[test]
+    fn the_default_corpus_is_found_from_any_directory() {
+        assert!(!Path::new(CORPUS).exists());
+        let dir =
+            crate::study::committed_path("the committed corpus", CORPUS, "--corpus DIR").unwrap();
+        let names: Vec<String> = corpus_files(&dir)
+            .unwrap()
+            .iter()
+            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "bunny.ply",
+                "dragon_res3.ply",
+                "dragon_res4.ply",
+                "teapot.ply"
+            ]
+        );
+    }
 }

@@ -1,11 +1,12 @@
 //! `experiments -- schemes`: every registered surface scheme on every data set, side by side
 //! with the same measures and the same pictures (the testbed seed's purpose).
 //!
-//! For each data set (`surface::DATASET_NAMES`, at its default resolution, exact vertex data)
-//! and each scheme (`surface::scheme::REGISTRY`; schemes on cubic edge curves get the
+//! For each mesh of `--data` (by default every data set, `surface::DATASET_NAMES`, at its
+//! default resolution, exact vertex data; or the user's mesh files, repaired and completed by
+//! an estimator, with no true surface to compare with) and each scheme (`surface::scheme::REGISTRY`; schemes on cubic edge curves get the
 //! `--curves` construction): fit, measure G1 (9 samples per boundary) against the scheme's
 //! claimed continuity, tessellate with about the same number of triangles per data face for
-//! every layout (`s = round(S / √patches)`, `S = --density`), and compare with the true surface
+//! every layout (`s = round(S / √patches)`, `S = --face-segments`), and compare with the true surface
 //! (position, normal, Gaussian and mean curvature; docs/conventions.md). The subdivision schemes
 //! (`subdiv`: Loop, Catmull–Clark) join the table at the limit of three levels, with curvature
 //! estimated on that mesh (they approximate, and are C2 away from extraordinary points, so the
@@ -29,8 +30,7 @@ use render::{
 use serde_json::{json, Value};
 use surface::scheme::REGISTRY;
 use surface::{
-    compare_with_truth, dataset_by_name, scheme_by_name, Continuity, SchemeOptions, Tessellation,
-    DATASET_NAMES,
+    compare_with_truth, scheme_by_name, Continuity, SchemeOptions, Tessellation, DATASET_NAMES,
 };
 
 use crate::curve_args::CurveOptions;
@@ -49,21 +49,70 @@ const VIEW: (f64, f64) = (35.0, 35.0);
 /// A G1 claim holds when the measured angle is below this (rounding; the scheme tests' bound).
 const G1_CLAIM: f64 = 1e-9;
 
+/// The default `--data`: every data set in the registry's order (the committed results' order).
+fn all_data_sets() -> &'static str {
+    static ALL: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| DATASET_NAMES.join(","));
+    &ALL
+}
+
 /// Arguments of `schemes`.
 #[derive(clap::Args, Debug)]
 pub struct SchemesArgs {
+    /// The meshes: data sets (ring, sphere, capsule, octa) or mesh files (any format `meshio`
+    /// reads), comma-separated or the option repeated, each once. A file is repaired, moved
+    /// into its working frame (centred, largest side 1) and completed by `--estimate`; it has
+    /// no true surface, so its error columns are empty and its pictures' curvature scale is
+    /// the 95th percentile of the schemes' |K|.
+    #[arg(long, value_delimiter = ',', default_value = all_data_sets(), value_name = "NAME|FILE")]
+    data: Vec<String>,
+    /// Resolution of the named data sets (each its default when absent).
+    #[arg(long)]
+    resolution: Option<usize>,
+    /// How to estimate what a mesh file lacks (normals, shape tensors).
+    #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR, value_parser = fitjob::cli::estimator_names())]
+    estimate: String,
     /// Curve construction of the schemes on cubic edge curves.
     #[arg(long, default_value = "optimized")]
     curves: String,
     #[command(flatten)]
     curve: CurveOptions,
     /// Tessellation density: segments per data-face edge (each patch gets
-    /// round(density / √patches-per-face)).
-    #[arg(long, default_value_t = 8)]
-    density: usize,
+    /// round(N / √patches-per-face)).
+    #[arg(long, default_value_t = 8, value_name = "N")]
+    face_segments: usize,
     /// Output directory.
-    #[arg(long, default_value = "results/schemes")]
-    out: PathBuf,
+    #[arg(short = 'o', long, default_value = "results/schemes")]
+    output: PathBuf,
+}
+
+/// The K colour limit of a mesh without a true surface: this quantile of the schemes' |K| at
+/// their samples (the largest would be one spike of a scanned mesh).
+const K_QUANTILE_WITHOUT_TRUTH: f64 = 0.95;
+
+/// The name of a subject's composite picture: its name for a data set, the file's stem
+/// (letters, digits and `-` kept) for a file, with `-2`, `-3` … where two would be the same.
+fn picture_name(subject: &str, taken: &[String]) -> String {
+    let stem = std::path::Path::new(subject)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| subject.to_string());
+    let stem: String = stem
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let mut name = format!("{stem}.png");
+    let mut k = 1;
+    while taken.contains(&name) {
+        k += 1;
+        name = format!("{stem}-{k}.png");
+    }
+    name
 }
 
 /// Subdivision steps of the approximating schemes in the study: 3 gives Loop 64 triangles per
@@ -150,28 +199,71 @@ fn fmt_e(x: f64) -> String {
     format!("{x:.2e}")
 }
 
+/// The table's error cells (position max, normal RMS, K RMS, H RMS), dashes without a true
+/// surface.
+fn error_cells(errors: Option<&surface::SurfaceErrors>) -> String {
+    match errors {
+        Some(e) => format!(
+            "{} | {:.3} | {:.4} | {:.4}",
+            fmt_e(e.position_max),
+            e.normal_rms_degrees,
+            e.gaussian_rms,
+            e.mean_rms
+        ),
+        None => "— | — | — | —".into(),
+    }
+}
+
 /// Runs the study.
 pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
     let start = Instant::now();
-    crate::limits::check_usize("density", args.density, &crate::limits::SAMPLING_RANGE)?;
+    crate::limits::check_usize(
+        "face-segments",
+        args.face_segments,
+        &crate::limits::SAMPLING_RANGE,
+    )?;
+    crate::study::refuse_duplicate_names("--data", &args.data)?;
     // An unknown construction is refused before any work.
     method_by_name(&args.curves, &args.curve.method_options())?;
-    let staged = Staged::begin(&args.out)?;
+    let staged = Staged::begin(&args.output)?;
     let out = staged.path().to_path_buf();
     let mut records = Vec::new();
+    let mut pictures: Vec<String> = Vec::new();
     let mut md = String::new();
+    let resolution = args
+        .resolution
+        .map(|r| format!(" --resolution {r}"))
+        .unwrap_or_default();
     let _ = writeln!(
         md,
-        "# Surface schemes side by side\n\nWritten by `cargo run --release -p experiments -- schemes --curves {} --solver {} --density {} --out {}`.\n\n\
-         Every registered scheme on every data set (exact vertex data); schemes on cubic edge curves use `{}` curves. \
+        "# Surface schemes side by side\n\nWritten by `cargo run --release -p experiments -- schemes --data {}{resolution} --curves {} --solver {} --face-segments {} --output {}`.\n\n\
+         Every registered scheme on every mesh (exact vertex data for the data sets; a mesh file repaired, in its working frame, completed by `{}`); schemes on cubic edge curves use `{}` curves. \
          Tessellation: round({} / √patches) segments per patch edge, so every layout gets about the same number of triangles per data face. \
-         Errors against the true surface at the tessellation's vertices (docs/conventions.md). \
+         Errors against the true surface at the tessellation's vertices (docs/conventions.md; a mesh file has no true surface: —). \
          G1: largest normal angle across patch boundaries (9 samples per boundary); a scheme that claims G1 must measure below {G1_CLAIM:e} rad.\n",
-        args.curves, args.curve.solver, args.density, args.out.display(), args.curves, args.density
+        args.data.join(","), args.curves, args.curve.solver, args.face_segments, args.output.display(), args.estimate, args.curves, args.face_segments
     );
-    for name in DATASET_NAMES {
-        let data = dataset_by_name(name, None)?;
-        let mesh = &data.mesh;
+    for data_item in &args.data {
+        let subject_data =
+            crate::datasets::load_subject(data_item.trim(), args.resolution, &args.estimate)?;
+        let name = subject_data.name.as_str();
+        let mesh = &subject_data.mesh;
+        let truth = subject_data.truth.as_deref();
+        // Every scheme's tessellation is kept for the pictures: about the same triangle count
+        // a scheme (a face at `face_segments` segments), estimated before any is made.
+        let schemes = REGISTRY.len() + subdiv::SCHEMES.len();
+        crate::limits::check_memory(
+            &format!(
+                "schemes --data {name} --face-segments {}",
+                args.face_segments
+            ),
+            (mesh.num_faces() as u128)
+                .saturating_mul(crate::limits::FIT_BYTES_PER_FACE as u128)
+                .saturating_add(
+                    crate::limits::tessellation_bytes(mesh.num_faces() as u128, args.face_segments)
+                        .saturating_mul(schemes as u128),
+                ),
+        )?;
         let _ = writeln!(
             md,
             "\n## {name} ({} faces)\n\n| scheme | claims | G1 across edges (rad) | inside faces (rad) | claim holds | position max | normal RMS (°) | K RMS | H RMS | triangles |\n|---|---|---:|---:|---|---:|---:|---:|---:|---:|",
@@ -192,26 +284,23 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
                 args.curve.method_options(),
             )?;
             let fit_ms = fit_seconds * 1e3;
-            let s = segments(args.density, f.layout.patches_per_face());
+            let s = segments(args.face_segments, f.layout.patches_per_face());
             let tess = surface::tessellate_fit(mesh, &f, s)
                 .map_err(|source| ExperimentError::Tessellate { subject, source })?;
-            let errors = compare_with_truth(&tess, data.surface.as_ref());
+            let errors = truth.map(|t| compare_with_truth(&tess, t));
             let holds = match f.continuity {
                 Continuity::G1 => g1.max_angle() < G1_CLAIM,
                 _ => true,
             };
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {} | {} | {} | {:.3} | {:.4} | {:.4} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} |",
                 entry.name,
                 f.continuity,
                 fmt_e(g1.exterior_max),
                 fmt_e(g1.interior_max),
                 if holds { "yes" } else { "**no**" },
-                fmt_e(errors.position_max),
-                errors.normal_rms_degrees,
-                errors.gaussian_rms,
-                errors.mean_rms,
+                error_cells(errors.as_ref()),
                 tess.faces.len(),
             );
             records.push(json!({
@@ -243,15 +332,12 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
                     subject: subject.clone(),
                     source,
                 })?;
-            let errors = compare_with_truth(&tess, data.surface.as_ref());
+            let errors = truth.map(|t| compare_with_truth(&tess, t));
             let _ = writeln!(
                 md,
-                "| {} ({SUBDIVISION_LEVELS} levels, at the limit) | C1 at extraordinary points, approximates | — | — | — | {} | {:.3} | {:.4} | {:.4} | {} |",
+                "| {} ({SUBDIVISION_LEVELS} levels, at the limit) | C1 at extraordinary points, approximates | — | — | — | {} | {} |",
                 entry.name,
-                fmt_e(errors.position_max),
-                errors.normal_rms_degrees,
-                errors.gaussian_rms,
-                errors.mean_rms,
+                error_cells(errors.as_ref()),
                 tess.faces.len(),
             );
             records.push(json!({
@@ -267,17 +353,30 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
             }));
             tessellations.push((entry.name, tess));
         }
-        // One colour scale per data set: the true surface's largest |K| at the samples.
-        let k_limit = tessellations
-            .first()
-            .map(|(_, t)| {
-                t.positions
+        // One colour scale per mesh: the true surface's largest |K| at the samples, or without
+        // a true surface a high quantile of the schemes' |K|.
+        let k_limit = match truth {
+            Some(t) => tessellations
+                .first()
+                .map(|(_, tess)| {
+                    tess.positions
+                        .iter()
+                        .map(|p| t.closest(p).gaussian().abs())
+                        .fold(0.0f64, f64::max)
+                })
+                .unwrap_or(1.0),
+            None => {
+                let mut k: Vec<f64> = tessellations
                     .iter()
-                    .map(|p| data.surface.closest(p).gaussian().abs())
-                    .fold(0.0f64, f64::max)
-            })
-            .unwrap_or(1.0)
-            .max(1e-12);
+                    .flat_map(|(_, tess)| tess.gaussian.iter().map(|k| k.abs()))
+                    .filter(|k| k.is_finite())
+                    .collect();
+                k.sort_by(f64::total_cmp);
+                let at = ((k.len() as f64 - 1.0) * K_QUANTILE_WITHOUT_TRUTH).round() as usize;
+                k.get(at).copied().unwrap_or(1.0)
+            }
+        }
+        .max(1e-12);
         // Framing: the union of every scheme's bounds, so no picture is clipped.
         let b = BoundingBox::of(tessellations.iter().flat_map(|(_, t)| &t.positions));
         let cam = Camera::framing(b.min, b.max, VIEW.0, VIEW.1);
@@ -320,7 +419,8 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
             tiles.extend(k_tiles.by_ref().take(block.len()));
             tiles.extend(std::iter::repeat_with(|| blank(&block[0])).take(pad));
         }
-        let file = format!("{name}.png");
+        let file = picture_name(name, &pictures);
+        pictures.push(file.clone());
         write_composite(
             &tiles,
             columns,
@@ -335,7 +435,8 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
     }
     let report = json!({
         "experiment": "schemes",
-        "options": {"curves": args.curves, "solver": args.curve.solver.to_string(), "density": args.density},
+        "options": {"data": args.data, "resolution": args.resolution, "estimate": args.estimate,
+                    "curves": args.curves, "solver": args.curve.solver.to_string(), "face_segments": args.face_segments},
         "schemes": REGISTRY.iter().map(|e| json!({"name": e.name, "summary": e.summary})).collect::<Vec<_>>(),
         "results": records,
         "time_seconds": start.elapsed().as_secs_f64(),
@@ -344,6 +445,6 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     write_result(Some(&out.join("report.md")), md.as_bytes())?;
     staged.commit()?;
-    say!("schemes: written to {}", args.out.display());
+    say!("schemes: written to {}", args.output.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -1,136 +1,52 @@
-//! `experiments -- sweep` and `experiments -- merge`: the ring study's measures over every data
-//! set × curve construction × solver, as one comparison table.
+//! `experiments -- sweep` and `experiments -- merge`: the ring study's measures over a grid of
+//! meshes and parameters (data × resolution × scheme × scheme parameters × curves × solver ×
+//! segments, [`grid`]), one task a point of the grid, as one comparison table.
 //!
-//! The task list is fixed and ordered (data sets in the studies' order — the ring first, then
-//! the `surface` registry's order —, then constructions in `curves::REGISTRY` order, then — for
-//! `optimized` — solvers). `--shard i/n` runs the tasks whose index is `i mod n`
-//! (round-robin, so shards get similar mixes) and writes `shard-i-of-n.json`; `merge` joins the
-//! shard files of a directory, checks that every task is present exactly once, and writes the
-//! same `report.json`/`report.md` an unsharded run writes. Nothing depends on the shard: a task's
-//! result is the same whichever shard runs it, so any scheduler (a Slurm array with
-//! `--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`, GNU parallel) can run the shards.
+//! By default (no axis given) the grid is every data set × every curve construction × every
+//! solver of `optimized`, twenty tasks, with the modified Shirman–Séquin scheme at β = 1/3,
+//! c = 1 and 4 segments per patch edge: the committed `results/sweep/`.
+//!
+//! A scheduler drives it by task or by shard, and nothing depends on which runs a task (its
+//! result is the same wherever it runs):
+//!
+//! - `sweep --list-tasks` writes the manifest (JSON: the grid's options and every task with its
+//!   index, stable id, data and parameters) to standard output;
+//! - `sweep --task ID` runs one task and writes `task-K.jsonl` (`K` its index), for GNU
+//!   parallel, a Slurm array or Snakemake;
+//! - `sweep --shard i/n` runs the tasks whose index is `i mod n` (round-robin, so shards get
+//!   similar mixes) and writes `shard-i-of-n.jsonl`;
+//! - a whole run writes everything at once.
+//!
+//! Every run also writes the manifest as `tasks.json` into its directory, and refuses a
+//! directory whose manifest is another grid's. Results are JSON Lines, one line a task
+//! (`experiments::shard`); `merge` joins the `shard-*.jsonl` and `task-*.jsonl` files of a
+//! directory, checks every line against the manifest's task of its index (identity key by key,
+//! every measure's type and range), that every task is present exactly once, and writes the
+//! report a whole run writes: `results.jsonl` (pandas: `read_json(path, lines=True)`),
+//! `report.json` and `report.md`.
+
+mod grid;
 
 use std::fmt::Write as _;
-use std::io::IsTerminal;
+use std::io::{BufRead, IsTerminal, Read as _};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+use clap::builder::PossibleValuesParser;
+use clap::{Arg, ArgAction, ArgMatches, Command};
 use curves::MethodOptions;
 use serde_json::{json, Value};
 use solver::SolverKind;
 use surface::compare_with_truth;
+use surface::scheme::{parameters_of, ParameterSpec, REGISTRY};
 
 use crate::curve_args::InteriorOption;
 use crate::error::ExperimentError;
 use crate::output::{ensure_dir, pretty_json, write_result, Staged};
-
-/// The construction that takes a solver: the sweep runs it once per solver (`SolverKind::ALL`),
-/// every other construction once.
-const SOLVED_METHOD: &str = "optimized";
-/// Tessellation density of the sweep's measurements.
-const SAMPLING: usize = 4;
-
-/// One task of the sweep.
-#[derive(Clone, Debug, PartialEq)]
-struct Task {
-    dataset: &'static str,
-    curves: &'static str,
-    solver: Option<SolverKind>,
-}
-
-impl Task {
-    fn id(&self) -> String {
-        match self.solver {
-            Some(s) => format!("{}/{}/{}", self.dataset, self.curves, s),
-            None => format!("{}/{}", self.dataset, self.curves),
-        }
-    }
-}
-
-/// The curve name of a subdivision task (subdivision makes no boundary curves).
-const NO_CURVES: &str = "none";
-
-/// True when `scheme` is a subdivision scheme (`subdiv::SCHEMES`), not a Bézier or sampled
-/// surface scheme.
-fn is_subdivision(scheme: &str) -> bool {
-    !surface::scheme_names().contains(&scheme) && subdiv::scheme_by_name(scheme).is_ok()
-}
-
-/// The task list of a run with `scheme`: [`tasks`], or for a subdivision scheme one task per
-/// data set (no curves, no solver).
-fn tasks_for(scheme: &str) -> Vec<Task> {
-    if is_subdivision(scheme) {
-        crate::datasets::all()
-            .into_iter()
-            .map(|dataset| Task {
-                dataset,
-                curves: NO_CURVES,
-                solver: None,
-            })
-            .collect()
-    } else {
-        tasks()
-    }
-}
-
-/// A subdivision task: the limit surface of [`crate::schemes::SUBDIVISION_LEVELS`] steps
-/// measured against the truth exactly as the schemes study measures it (curvature estimated
-/// on the limit mesh; no G1 column: the schemes are C2 away from extraordinary points and
-/// measured at the limit vertices), with the largest distance from a data point to the limit
-/// surface (subdivision approximates).
-fn run_subdivision_task(t: &Task, scheme: &str) -> Result<Value, ExperimentError> {
-    let start = Instant::now();
-    let data = surface::dataset_by_name(t.dataset, None).map_err(ExperimentError::from)?;
-    let (tess, to_limit) =
-        crate::schemes::subdivision_surface(&data.mesh, scheme, crate::schemes::SUBDIVISION_LEVELS)
-            .map_err(|source| ExperimentError::Subdivision {
-                subject: t.id(),
-                source,
-            })?;
-    let fit_time = start.elapsed().as_secs_f64();
-    let errors = compare_with_truth(&tess, data.surface.as_ref());
-    Ok(json!({
-        "task": t.id(),
-        "dataset": t.dataset,
-        "curves": t.curves,
-        "solver": Value::Null,
-        "faces": data.mesh.num_faces(),
-        "g1_defect_radians": Value::Null,
-        "levels": crate::schemes::SUBDIVISION_LEVELS,
-        "data_to_limit_max": to_limit,
-        "errors": serde_json::to_value(errors).unwrap_or(Value::Null),
-        "curve_measures": Value::Null,
-        "fit_time_seconds": fit_time,
-        "task_time_seconds": start.elapsed().as_secs_f64(),
-    }))
-}
-
-/// Every data set (in the studies' order, [`crate::datasets::all`]) × every registered
-/// construction (registry order) × every solver for [`SOLVED_METHOD`].
-fn tasks() -> Vec<Task> {
-    let mut out = Vec::new();
-    for dataset in crate::datasets::all() {
-        for curves in curves::REGISTRY.iter().map(|e| e.name) {
-            if curves == SOLVED_METHOD {
-                for s in SolverKind::ALL {
-                    out.push(Task {
-                        dataset,
-                        curves,
-                        solver: Some(s),
-                    });
-                }
-            } else {
-                out.push(Task {
-                    dataset,
-                    curves,
-                    solver: None,
-                });
-            }
-        }
-    }
-    out
-}
+use crate::study::StudyError;
+use experiments::shard::{check_line, ShardError, MAX_LINE_BYTES};
+use grid::{Axes, Grid, Task, MANIFEST};
 
 /// A shard `i/n`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -160,239 +76,509 @@ impl std::str::FromStr for Shard {
     }
 }
 
-/// Options of the `sweep` experiment.
+/// One list option a scheme parameter (`--beta 0.2,0.33`, `--c`, `--phong-alpha`, …),
+/// generated from the scheme registry like the single-valued options of `fit`.
+#[derive(Clone, Debug, Default)]
+pub struct ParameterLists(Vec<(&'static ParameterSpec, Vec<f64>)>);
+
+impl clap::FromArgMatches for ParameterLists {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        let mut lists = Vec::new();
+        for (p, _) in parameters_of(REGISTRY) {
+            if let Some(values) = matches.get_many::<f64>(p.name) {
+                lists.push((p, values.copied().collect()));
+            }
+        }
+        Ok(ParameterLists(lists))
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(matches)?;
+        Ok(())
+    }
+}
+
+impl clap::Args for ParameterLists {
+    fn augment_args(cmd: Command) -> Command {
+        let mut cmd = cmd;
+        for (p, owners) in parameters_of(REGISTRY) {
+            cmd = cmd.arg(
+                Arg::new(p.name)
+                    .long(p.name)
+                    .value_name(p.symbol)
+                    .value_delimiter(',')
+                    .action(ArgAction::Append)
+                    .value_parser(clap::value_parser!(f64))
+                    .help(format!(
+                        "Values of {} [{}; range {}..={}; default: {}], a grid axis",
+                        p.summary,
+                        owners.join(", "),
+                        p.range.0,
+                        p.range.1,
+                        p.default
+                    )),
+            );
+        }
+        cmd
+    }
+
+    fn augment_args_for_update(cmd: Command) -> Command {
+        Self::augment_args(cmd)
+    }
+}
+
+/// The schemes `--scheme` takes: the registry's and the subdivision schemes.
+fn scheme_names() -> PossibleValuesParser {
+    PossibleValuesParser::new(
+        surface::scheme_names()
+            .into_iter()
+            .chain(subdiv::SCHEMES.iter().map(|e| e.name)),
+    )
+}
+
+/// The solvers `--solver` takes.
+fn solver_names() -> PossibleValuesParser {
+    PossibleValuesParser::new(SolverKind::ALL.map(SolverKind::name))
+}
+
+/// Options of the `sweep` experiment. Every list is comma-separated or the option repeated,
+/// each item once; an axis not given takes its default.
 #[derive(clap::Args, Debug)]
 pub struct SweepArgs {
-    /// Run only the tasks `k` with `k mod n = i` and write `shard-i-of-n.json` (join with
-    /// `merge`).
-    #[arg(long)]
-    shard: Option<Shard>,
+    /// Data sets (ring, sphere, capsule, octa) or mesh files [default: every data set].
+    #[arg(long, value_delimiter = ',', value_name = "NAME|FILE")]
+    data: Vec<String>,
+    /// Resolutions of the named data sets [default: each its own].
+    #[arg(long, value_delimiter = ',', value_name = "N")]
+    resolution: Vec<usize>,
+    /// Surface schemes (subdivision schemes measured at the limit of three levels)
+    /// [default: shirman-sequin].
+    #[arg(long, value_delimiter = ',', value_parser = scheme_names())]
+    scheme: Vec<String>,
+    /// Curve constructions of the schemes on edge curves [default: every registered one].
+    #[arg(long, value_delimiter = ',', value_parser = fitjob::cli::curve_method_names())]
+    curves: Vec<String>,
+    /// Solvers of the `optimized` construction [default: every one].
+    #[arg(long, value_delimiter = ',', value_parser = solver_names())]
+    solver: Vec<String>,
+    /// The schemes' parameters, each a list (generated from the registry).
+    #[command(flatten)]
+    parameters: ParameterLists,
+    /// Tessellation densities: segments per patch edge [default: 4].
+    #[arg(short = 's', long, value_delimiter = ',', value_name = "N")]
+    segments: Vec<usize>,
+    /// A TOML file of axes (`data = ["ring", "bunny.ply"]`, `beta = [0.2, 0.33]`, `segments =
+    /// [4, 8]`, …); an axis given on the command line replaces the file's.
+    #[arg(long, value_name = "FILE.toml")]
+    grid: Option<PathBuf>,
     /// The interior parameters of every task's surface.
     #[command(flatten)]
     interior: InteriorOption,
-    /// The surface scheme of every task.
-    #[command(flatten)]
-    scheme: fitjob::cli::SchemeArgs,
+    /// How to estimate what a mesh file lacks (normals, shape tensors).
+    #[arg(long, value_parser = fitjob::cli::estimator_names())]
+    estimate: Option<String>,
+    /// Write the task manifest (JSON) to standard output and stop.
+    #[arg(long, conflicts_with_all = ["shard", "task"])]
+    list_tasks: bool,
+    /// Run the one task of this id (from `--list-tasks`) and write `task-K.jsonl`.
+    #[arg(long, value_name = "ID", conflicts_with = "shard")]
+    task: Option<String>,
+    /// Run only the tasks `k` with `k mod n = i` and write `shard-i-of-n.jsonl` (join with
+    /// `merge`).
+    #[arg(long)]
+    shard: Option<Shard>,
     /// Output directory.
-    #[arg(long, default_value = "results/sweep")]
-    out: PathBuf,
+    #[arg(short = 'o', long, default_value = "results/sweep")]
+    output: PathBuf,
 }
 
 /// Options of the `merge` step.
 #[derive(clap::Args, Debug)]
 pub struct MergeArgs {
-    /// Directory holding the `shard-*-of-*.json` files; the merged report is written there.
-    #[arg(long, default_value = "results/sweep")]
-    out: PathBuf,
+    /// Directory holding `tasks.json` and the `shard-*.jsonl` and `task-*.jsonl` files; the
+    /// merged report is written there.
+    #[arg(short = 'o', long, default_value = "results/sweep")]
+    output: PathBuf,
 }
 
-fn run_task(
-    t: &Task,
-    interior: surface::fairing::InteriorChoice,
-    scheme: &fitjob::cli::SchemeArgs,
-) -> Result<Value, ExperimentError> {
-    let start = Instant::now();
-    let data = surface::dataset_by_name(t.dataset, None).map_err(ExperimentError::from)?;
-    let mesh = &data.mesh;
-    let options = MethodOptions {
-        solver: t.solver.unwrap_or(SolverKind::ExactPenalty),
-        ..MethodOptions::default()
+/// The grid of `args`: the grid file's axes under the command line's.
+fn grid_of(args: &SweepArgs) -> Result<Grid, ExperimentError> {
+    let given = |v: &Vec<String>| (!v.is_empty()).then(|| v.clone());
+    let cli = Axes {
+        data: given(&args.data),
+        resolution: (!args.resolution.is_empty()).then(|| args.resolution.clone()),
+        scheme: given(&args.scheme),
+        curves: given(&args.curves),
+        solver: given(&args.solver),
+        segments: (!args.segments.is_empty()).then(|| args.segments.clone()),
+        parameters: args.parameters.0.clone(),
+        // `--interior` has a default: it replaces the file's only when not the default.
+        interior: (args.interior.choice != surface::fairing::InteriorChoice::Default)
+            .then_some(args.interior.choice),
+        estimate: args.estimate.clone(),
     };
-    let problems = surface::curve_stats::edge_problems(mesh).map_err(|source| {
-        ExperimentError::EdgeProblems {
-            subject: t.id(),
-            source,
-        }
-    })?;
-    // The fit and its G1 by the fit job, as every front end gets them.
-    let (f, g1, fit_time) = crate::input::fit_kept(fitjob::FitOptions {
-        input: fitjob::InputOptions {
-            source: fitjob::Source::DataSet {
-                name: t.dataset.into(),
-                resolution: None,
-            },
-            ..fitjob::InputOptions::default()
-        },
-        scheme: scheme.scheme.clone(),
-        scheme_options: scheme.options.clone(),
-        curves: t.curves.into(),
-        method_options: options,
-        interior,
-        ..fitjob::FitOptions::default()
-    })?;
-    let cs = surface::curve_stats::curve_stats(&problems, &f);
-    let tess = surface::tessellate_fit(mesh, &f, SAMPLING).map_err(|source| {
-        ExperimentError::Tessellate {
-            subject: t.id(),
-            source,
-        }
-    })?;
-    let errors = compare_with_truth(&tess, data.surface.as_ref());
-    Ok(json!({
-        "task": t.id(),
-        "dataset": t.dataset,
-        "curves": t.curves,
-        "solver": t.solver.map(|s| s.name()),
-        "faces": mesh.num_faces(),
-        "g1_defect_radians": g1.max_angle(),
-        "errors": serde_json::to_value(errors).unwrap_or(Value::Null),
-        "curve_measures": {
-            "end_curvature_error_max": cs.end_curvature_error_max,
-            "shortest_alpha": cs.shortest_alpha,
-            "curvature_variation_max": cs.curvature_variation_max,
-            "fallbacks_to_chord": cs.fallbacks,
-            "unconverged_optimizations": cs.unconverged,
-        },
-        "fit_time_seconds": fit_time,
-        "task_time_seconds": start.elapsed().as_secs_f64(),
-    }))
+    let axes = match &args.grid {
+        Some(path) => cli.over(grid::read_grid_file(path)?),
+        None => cli,
+    };
+    Ok(Grid::new(axes)?)
 }
 
-/// Runs the sweep (or one shard of it).
-pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
-    let subdivision = args.scheme.is_subdivision();
-    // A bad scheme or parameter is refused before any task runs.
-    if !subdivision {
-        surface::scheme_by_name(&args.scheme.scheme, &args.scheme.options)?;
+/// The scheme options of a task: its parameters' values, the others at their defaults.
+fn scheme_options(t: &Task) -> surface::SchemeOptions {
+    let mut o = surface::SchemeOptions::default();
+    for (p, v) in &t.parameters {
+        o.set(p, *v);
     }
-    let all = tasks_for(&args.scheme.scheme);
-    let mine: Vec<(usize, &Task)> = all
-        .iter()
-        .enumerate()
-        .filter(|(k, _)| in_shard(args.shard, *k))
-        .collect();
+    o
+}
+
+/// Runs one task: its identity ([`Task::identity`]) followed by its measures, checked as
+/// `merge` checks them (a measure that is not finite is an error naming the task, never a
+/// `null` passed off as a number).
+fn run_task(t: &Task, grid: &Grid) -> Result<Value, ExperimentError> {
+    let start = Instant::now();
+    let subject = crate::datasets::load_subject(&t.data, t.resolution, &grid.estimate)?;
+    let mesh = &subject.mesh;
+    let faces = mesh.num_faces() as u128;
+    // The fit and its tessellation (at most six patches a face), estimated before either is
+    // made.
+    if let Some(s) = t.segments {
+        crate::limits::check_memory(
+            &format!("sweep task {}", t.id),
+            faces
+                .saturating_mul(crate::limits::FIT_BYTES_PER_FACE as u128)
+                .saturating_add(crate::limits::tessellation_bytes(
+                    faces.saturating_mul(6),
+                    s,
+                )),
+        )?;
+    }
+    let mut v = t.identity();
+    v["faces"] = json!(mesh.num_faces());
+    if t.subdivision {
+        let (tess, to_limit) = crate::schemes::subdivision_surface(
+            mesh,
+            &t.scheme,
+            crate::schemes::SUBDIVISION_LEVELS,
+        )
+        .map_err(|source| ExperimentError::Subdivision {
+            subject: t.id.clone(),
+            source,
+        })?;
+        let fit_time = start.elapsed().as_secs_f64();
+        let errors = subject
+            .truth
+            .as_deref()
+            .map(|truth| compare_with_truth(&tess, truth));
+        v["g1_defect_radians"] = Value::Null;
+        v["levels"] = json!(crate::schemes::SUBDIVISION_LEVELS);
+        v["data_to_limit_max"] = json!(to_limit);
+        v["errors"] = serde_json::to_value(errors).unwrap_or(Value::Null);
+        v["curve_measures"] = Value::Null;
+        v["fit_time_seconds"] = json!(fit_time);
+    } else {
+        let options = MethodOptions {
+            solver: t.solver.unwrap_or(SolverKind::ExactPenalty),
+            ..MethodOptions::default()
+        };
+        let curves = t.curves.clone();
+        // The fit and its G1 by the fit job, as every front end gets them.
+        let (f, g1, fit_time) = crate::input::fit_kept(fitjob::FitOptions {
+            input: fitjob::InputOptions {
+                source: fitjob::Source::Prepared {
+                    label: t.id.clone(),
+                    mesh: Box::new(mesh.clone()),
+                    frame: subject.frame,
+                },
+                ..fitjob::InputOptions::default()
+            },
+            scheme: t.scheme.clone(),
+            scheme_options: scheme_options(t),
+            curves: curves
+                .clone()
+                .unwrap_or_else(|| fitjob::FitOptions::default().curves),
+            method_options: options,
+            interior: t.interior,
+            ..fitjob::FitOptions::default()
+        })?;
+        let segments = t.segments.unwrap_or(grid::DEFAULT_SEGMENTS);
+        let tess = surface::tessellate_fit(mesh, &f, segments).map_err(|source| {
+            ExperimentError::Tessellate {
+                subject: t.id.clone(),
+                source,
+            }
+        })?;
+        let errors = subject
+            .truth
+            .as_deref()
+            .map(|truth| compare_with_truth(&tess, truth));
+        v["g1_defect_radians"] = json!(g1.max_angle());
+        v["interpolation_position_error"] = json!(g1.position_error);
+        v["interpolation_normal_error_radians"] = json!(g1.normal_error);
+        v["errors"] = serde_json::to_value(errors).unwrap_or(Value::Null);
+        v["curve_measures"] = match curves {
+            None => Value::Null,
+            Some(_) => match surface::curve_stats::edge_problems(mesh) {
+                Ok(problems) => {
+                    let cs = surface::curve_stats::curve_stats(&problems, &f);
+                    json!({
+                        "end_curvature_error_max": cs.end_curvature_error_max,
+                        "shortest_alpha": cs.shortest_alpha,
+                        "curvature_variation_max": cs.curvature_variation_max,
+                        "fallbacks_to_chord": cs.fallbacks,
+                        "unconverged_optimizations": cs.unconverged,
+                    })
+                }
+                // A data set's edges are never degenerate: that is a defect, reported.
+                Err(source) if !t.file => {
+                    return Err(ExperimentError::EdgeProblems {
+                        subject: t.id.clone(),
+                        source,
+                    })
+                }
+                // A user's mesh may have a degenerate edge (the fit gave it a straight cubic);
+                // the measures of the other edges would not be comparable: a stated null.
+                Err(e) => {
+                    v["curve_measures_note"] =
+                        json!(format!("not measured: a degenerate edge ({e})"));
+                    Value::Null
+                }
+            },
+        };
+        v["fit_time_seconds"] = json!(fit_time);
+    }
+    v["task_time_seconds"] = json!(start.elapsed().as_secs_f64());
+    check_line(t.index + 1, &v, &t.identity()).map_err(|source| StudyError::BadResult {
+        task: t.id.clone(),
+        source,
+    })?;
+    Ok(v)
+}
+
+/// Runs the sweep: the manifest, one task, one shard, or the whole grid.
+pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
+    let grid = grid_of(args)?;
+    let all = grid.tasks()?;
+    let manifest = grid::manifest(&grid, &all);
+    if args.list_tasks {
+        let text = pretty_json(&manifest, "the task manifest")?;
+        write_result(None, text.as_bytes())?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    // A bad scheme parameter is refused before any task runs (the grid checked the ranges;
+    // the schemes build).
+    for s in &grid.schemes {
+        if !grid::is_subdivision(s) {
+            surface::scheme_by_name(s, &surface::SchemeOptions::default())?;
+        }
+    }
+    let mine: Vec<&Task> = match (&args.task, args.shard) {
+        (Some(id), _) => {
+            vec![all
+                .iter()
+                .find(|t| t.id == *id)
+                .ok_or_else(|| StudyError::UnknownTask {
+                    id: id.clone(),
+                    total: all.len(),
+                })?]
+        }
+        (None, shard) => all.iter().filter(|t| in_shard(shard, t.index)).collect(),
+    };
+    let partial = args.task.is_some() || args.shard.is_some();
+    let out_dir = crate::output::results_dir(&args.output)?;
+    if partial {
+        // Refused before any work when the directory holds another grid's tasks.
+        ensure_dir(&out_dir)?;
+        check_manifest(&out_dir, &manifest)?;
+    }
     let tty = std::io::stderr().is_terminal();
     let mut results = Vec::with_capacity(mine.len());
-    for (done, (k, t)) in mine.iter().enumerate() {
+    let started = Instant::now();
+    for (done, t) in mine.iter().enumerate() {
         if tty {
-            say_inline!("\rsweep: [{:>2}/{}] {:<32}", done + 1, mine.len(), t.id());
+            say_inline!("\rsweep: [{:>2}/{}] {:<40}", done + 1, mine.len(), t.id);
         }
-        let mut v = if subdivision {
-            run_subdivision_task(t, &args.scheme.scheme)?
-        } else {
-            run_task(t, args.interior.choice, &args.scheme)?
-        };
-        v["interior"] = json!(args.interior.choice.to_string());
-        v["index"] = json!(k);
-        results.push(v);
+        results.push(run_task(t, &grid)?);
     }
     if tty {
         say!();
     }
-    ensure_dir(&args.out)?;
-    match args.shard {
-        Some(s) => {
-            let shard = json!({"shard": [s.index, s.count], "tasks_total": all.len(),
-                               "options": options_json(args.interior.choice, &args.scheme), "results": results});
-            let text = pretty_json(&shard, "the shard report")?;
-            let path = args
-                .out
-                .join(format!("shard-{}-of-{}.json", s.index, s.count));
-            write_result(Some(&path), text.as_bytes())?;
-            say!(
-                "sweep: shard {}/{}: {} tasks → {}",
-                s.index,
-                s.count,
-                results.len(),
-                path.display()
-            );
-        }
-        None => {
-            let staged = Staged::begin_keeping(&args.out, is_shard)?;
-            write_report(
-                staged.path(),
-                &options_json(args.interior.choice, &args.scheme),
-                results,
-            )?;
-            staged.commit()?;
-        }
+    let lines = json_lines(&results)?;
+    let manifest_text = pretty_json(&manifest, "the task manifest")?;
+    if partial {
+        check_manifest(&out_dir, &manifest)?;
+        write_result(
+            Some(&grid::manifest_path(&out_dir)),
+            manifest_text.as_bytes(),
+        )?;
+        let name = match (args.shard, mine.first()) {
+            (Some(s), _) => format!("shard-{}-of-{}.jsonl", s.index, s.count),
+            (None, Some(t)) => format!("task-{}.jsonl", t.index),
+            (None, None) => "task-none.jsonl".into(),
+        };
+        let path = out_dir.join(name);
+        write_result(Some(&path), lines.as_bytes())?;
+        say!(
+            "sweep: {} of {} tasks in {:.2} s → {}",
+            results.len(),
+            all.len(),
+            started.elapsed().as_secs_f64(),
+            path.display()
+        );
+    } else {
+        // A whole run replaces the directory; the partial results of the same grid are kept
+        // (another scheduler's), those of another grid are not.
+        let same_grid = read_manifest(&out_dir).is_ok_and(|m| m == manifest);
+        let staged = Staged::begin_keeping(&out_dir, |n| same_grid && is_partial(n))?;
+        write_result(
+            Some(&grid::manifest_path(staged.path())),
+            manifest_text.as_bytes(),
+        )?;
+        write_report(staged.path(), &grid.json(), results, &lines)?;
+        staged.commit()?;
+        say!(
+            "sweep: {} tasks in {:.2} s → {}",
+            all.len(),
+            started.elapsed().as_secs_f64(),
+            args.output.join("report.md").display()
+        );
     }
     Ok(ExitCode::SUCCESS)
 }
 
+/// The results as JSON Lines, one line a task.
+fn json_lines(results: &[Value]) -> Result<String, ExperimentError> {
+    let mut text = String::new();
+    for r in results {
+        let line = serde_json::to_string(r).map_err(|source| ExperimentError::Json {
+            what: "a sweep result",
+            source,
+        })?;
+        text.push_str(&line);
+        text.push('\n');
+    }
+    Ok(text)
+}
+
+/// The manifest in `dir`, as JSON.
+fn read_manifest(dir: &Path) -> Result<Value, ExperimentError> {
+    let path = grid::manifest_path(dir);
+    let text = std::fs::read_to_string(&path).map_err(|source| ExperimentError::Read {
+        path: path.clone(),
+        source,
+    })?;
+    serde_json::from_str(&text).map_err(|source| ExperimentError::JsonFile { path, source })
+}
+
+/// Refuses a directory whose manifest is another grid's (its shards would not join this run's).
+fn check_manifest(dir: &Path, manifest: &Value) -> Result<(), ExperimentError> {
+    let path = grid::manifest_path(dir);
+    if !path.exists() {
+        return Ok(());
+    }
+    let theirs = read_manifest(dir)?;
+    if theirs != *manifest {
+        return Err(StudyError::OtherGrid {
+            path,
+            these: manifest["options"].to_string(),
+            theirs: theirs["options"].to_string(),
+        }
+        .into());
+    }
+    Ok(())
+}
+
 /// True when task `k` belongs to `shard` (every task when there is no shard): round-robin over
-/// the fixed task order, so shard membership depends only on the task's index.
+/// the grid's order, so shard membership depends only on the task's index.
 fn in_shard(shard: Option<Shard>, k: usize) -> bool {
     shard.is_none_or(|s| k % s.count == s.index)
 }
 
-/// A shard file's name (`shard-i-of-n.json`): carried over when a report is swapped in.
-fn is_shard(name: &str) -> bool {
-    name.starts_with("shard-") && name.ends_with(".json")
+/// A partial result file's name (`shard-i-of-n.jsonl`, `task-K.jsonl`): what `merge` reads and
+/// a whole run of the same grid carries over.
+fn is_partial(name: &str) -> bool {
+    (name.starts_with("shard-") || name.starts_with("task-")) && name.ends_with(".jsonl")
 }
 
-/// The options every task of a run shares: what a shard records and `merge` compares.
-/// Every scheme parameter is recorded (generated from the registry: `beta`, `c`, `phong_alpha`,
-/// …), so shards of runs with different parameters are told apart.
-fn options_json(
-    interior: surface::fairing::InteriorChoice,
-    scheme: &fitjob::cli::SchemeArgs,
-) -> Value {
-    let mut v =
-        json!({"interior": interior.to_string(), "sampling": SAMPLING, "scheme": scheme.scheme});
-    for (p, _) in surface::scheme::parameters_of(surface::scheme::REGISTRY) {
-        v[p.key()] = json!(scheme.options.value(p));
+/// Reads the result lines of `path` one at a time, none longer than [`MAX_LINE_BYTES`] held,
+/// each checked against the manifest's task of its index.
+fn read_checked(path: &Path, tasks: &[Value]) -> Result<Vec<(usize, Value)>, ExperimentError> {
+    let shard_err = |source| ExperimentError::Shard {
+        path: path.to_path_buf(),
+        source,
+    };
+    let read_err = |source| ExperimentError::Read {
+        path: path.to_path_buf(),
+        source,
+    };
+    let meta = std::fs::metadata(path).map_err(read_err)?;
+    if let Some(kind) = crate::study::special_kind(meta.file_type()) {
+        return Err(StudyError::SpecialFile {
+            path: path.to_path_buf(),
+            kind,
+        }
+        .into());
     }
-    v
+    let mut reader = std::io::BufReader::new(std::fs::File::open(path).map_err(read_err)?);
+    let mut out = Vec::new();
+    let mut line = 0;
+    loop {
+        line += 1;
+        let mut buf = Vec::new();
+        let n = (&mut reader)
+            .take(MAX_LINE_BYTES as u64 + 1)
+            .read_until(b'\n', &mut buf)
+            .map_err(read_err)?;
+        if n == 0 {
+            break;
+        }
+        if buf.len() > MAX_LINE_BYTES {
+            return Err(shard_err(ShardError::LineTooLong { line }));
+        }
+        let text = String::from_utf8_lossy(&buf);
+        let one = experiments::shard::read_shard(&text, tasks.len()).map_err(|e| {
+            shard_err(match e {
+                ShardError::NotJson { message, .. } => ShardError::NotJson { line, message },
+                ShardError::BadIndex { total, .. } => ShardError::BadIndex { line, total },
+                other => other,
+            })
+        })?;
+        for (k, v) in one.results {
+            check_line(line, &v, &tasks[k]).map_err(shard_err)?;
+            out.push((k, v));
+        }
+        if out.len() > tasks.len() {
+            // More lines than tasks: some task repeats; found below with its name.
+            break;
+        }
+    }
+    Ok(out)
 }
 
-/// Joins shard files into the report.
+/// Joins the partial results of a directory into the report.
 pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
-    let read_dir = std::fs::read_dir(&args.out).map_err(|source| ExperimentError::Read {
-        path: args.out.clone(),
+    let dir = crate::output::results_dir(&args.output)?;
+    let manifest = read_manifest(&dir)?;
+    let tasks: Vec<Value> = manifest["tasks"].as_array().cloned().unwrap_or_default();
+    let total = tasks.len();
+    let read_dir = std::fs::read_dir(&dir).map_err(|source| ExperimentError::Read {
+        path: dir.clone(),
         source,
     })?;
     let mut paths: Vec<PathBuf> = read_dir
         .filter_map(Result::ok)
         .map(|e| e.path())
-        .filter(|p| p.file_name().and_then(|n| n.to_str()).is_some_and(is_shard))
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(is_partial)
+        })
         .collect();
     paths.sort();
-    let texts = paths
-        .iter()
-        .map(|p| {
-            std::fs::read_to_string(p)
-                .map(|t| (p, t))
-                .map_err(|source| ExperimentError::Read {
-                    path: p.clone(),
-                    source,
-                })
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    // The task list follows the run's scheme (subdivision runs have one task per data set),
-    // read from the first shard's options; the shards' options are compared below.
-    let scheme_of_run = texts
-        .first()
-        .and_then(|(_, t)| serde_json::from_str::<Value>(t).ok())
-        .and_then(|v| v["options"]["scheme"].as_str().map(str::to_string))
-        .unwrap_or_else(|| surface::DEFAULT_SCHEME.to_string());
-    let all = tasks_for(&scheme_of_run);
-    let total = all.len();
     let mut results: Vec<Option<Value>> = vec![None; total];
-    let mut options: Option<(PathBuf, Value)> = None;
-    for (p, text) in &texts {
-        let p = *p;
-        let shard = experiments::shard::read_shard(text, total).map_err(|source| {
-            ExperimentError::Shard {
-                path: p.clone(),
-                source,
-            }
-        })?;
-        // Shards of different runs must not be joined: their options must agree.
-        let these = shard.options.clone();
-        match &options {
-            None => options = Some((p.clone(), these)),
-            Some((first, o)) if *o != these => {
-                return Err(ExperimentError::ShardOptionsDiffer {
-                    path: p.clone(),
-                    these: these.to_string(),
-                    first: first.clone(),
-                    theirs: o.to_string(),
-                })
-            }
-            Some(_) => {}
-        }
-        for (k, r) in shard.results {
+    for p in &paths {
+        for (k, r) in read_checked(p, &tasks)? {
             if results[k].is_some() {
                 return Err(ExperimentError::ShardTaskRepeated {
                     path: p.clone(),
@@ -407,7 +593,7 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         .iter()
         .enumerate()
         .filter(|(_, r)| r.is_none())
-        .map(|(k, _)| all[k].id())
+        .map(|(k, _)| tasks[k]["task"].as_str().unwrap_or("?").to_string())
         .collect();
     if !missing.is_empty() {
         return Err(ExperimentError::ShardTasksMissing {
@@ -416,18 +602,15 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
             files: paths.len(),
         });
     }
-    let options = options.map(|(_, o)| o).unwrap_or(Value::Null);
-    let staged = Staged::begin_keeping(&args.out, is_shard)?;
-    write_report(
-        staged.path(),
-        &options,
-        results.into_iter().flatten().collect(),
-    )?;
+    let results: Vec<Value> = results.into_iter().flatten().collect();
+    let lines = json_lines(&results)?;
+    let staged = Staged::begin_keeping(&dir, |n| is_partial(n) || n == MANIFEST)?;
+    write_report(staged.path(), &manifest["options"], results, &lines)?;
     staged.commit()?;
     say!(
-        "merge: {} shard file(s), {total} tasks → {}",
+        "merge: {} file(s), {total} tasks → {}",
         paths.len(),
-        args.out.join("report.md").display()
+        args.output.join("report.md").display()
     );
     Ok(ExitCode::SUCCESS)
 }
@@ -438,14 +621,24 @@ fn or_dash(v: &Value, fmt: impl Fn(f64) -> String) -> String {
     v.as_f64().map_or_else(|| "—".to_string(), fmt)
 }
 
-fn write_report(out: &Path, options: &Value, results: Vec<Value>) -> Result<(), ExperimentError> {
-    let report = json!({"experiment": "sweep", "sampling": SAMPLING, "beta": surface::shirman_sequin::DEFAULT_BETA,
-                        "c": surface::shirman_sequin::DEFAULT_C, "options": options, "results": results});
+/// Writes `results.jsonl` (`lines`), `report.json` (the grid's `options` and every result) and
+/// `report.md` (one table row a task) into `out`.
+fn write_report(
+    out: &Path,
+    options: &Value,
+    results: Vec<Value>,
+    lines: &str,
+) -> Result<(), ExperimentError> {
+    write_result(Some(&out.join("results.jsonl")), lines.as_bytes())?;
+    let report = json!({"experiment": "sweep", "options": options, "results": results});
     let text = pretty_json(&report, "the sweep report")?;
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let mut md = String::new();
-    let _ = writeln!(md, "# Sweep: data sets × boundary curves × solvers\n");
-    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` (or shards joined by `merge`). Every data set at its default resolution, the surface scheme of the options (default: the modified Shirman–Séquin scheme with β = 1/3, c = 1), tessellated at s = {SAMPLING} per patch edge, measured against the true surface; a subdivision scheme (`--scheme loop|loop-warren|catmull-clark`) is measured at the limit of three levels with curvature estimated on that mesh, its data-to-limit distance in `report.json`. Options: `{options}`.\n");
+    let _ = writeln!(
+        md,
+        "# Sweep: data × schemes × boundary curves × solvers × parameters\n"
+    );
+    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` (or its tasks and shards joined by `merge`). Every task of the grid below (by default every data set at its default resolution × every curve construction × every solver of `optimized`, with the modified Shirman–Séquin scheme at β = 1/3, c = 1), tessellated at the task's segments per patch edge (default 4), measured against the true surface (— for a mesh file, which has none); a subdivision scheme (`--scheme loop|loop-warren|catmull-clark`) is measured at the limit of three levels with curvature estimated on that mesh, its data-to-limit distance in `report.json`. One line a task in `results.jsonl`. Grid: `{options}`.\n");
     let _ = writeln!(md, "| task | faces | position max | normal RMS (°) | K RMS | H RMS | G1 (rad) | κ error max | shortest α | fallbacks | fit (ms) |");
     let _ = writeln!(
         md,
@@ -485,7 +678,7 @@ mod tests {
 
     #[test]
     fn shards_partition_the_task_list() {
-        let n = tasks().len();
+        let n = Grid::new(Axes::default()).unwrap().tasks().unwrap().len();
         assert_eq!(n, 20);
         for count in 1..=7 {
             let mut seen = vec![0; n];
@@ -507,13 +700,17 @@ mod tests {
 
     #[test]
     fn subdivision_runs_have_one_task_per_data_set() {
-        assert!(is_subdivision("loop") && is_subdivision("catmull-clark"));
-        assert!(!is_subdivision("nielson") && !is_subdivision("shirman-sequin"));
-        let t = tasks_for("loop");
+        assert!(grid::is_subdivision("loop") && grid::is_subdivision("catmull-clark"));
+        assert!(!grid::is_subdivision("nielson") && !grid::is_subdivision("shirman-sequin"));
+        let g = Grid::new(Axes {
+            scheme: Some(vec!["loop".into()]),
+            ..Axes::default()
+        })
+        .unwrap();
+        let t = g.tasks().unwrap();
         assert_eq!(t.len(), crate::datasets::all().len());
         assert!(t
             .iter()
-            .all(|t| t.curves == NO_CURVES && t.solver.is_none()));
-        assert_eq!(tasks_for("nielson"), tasks());
+            .all(|t| t.curves.is_none() && t.solver.is_none() && t.segments.is_none()));
     }
 }

@@ -37,9 +37,9 @@ const TIMING_REPEATS: usize = 5;
 #[derive(clap::Args, Debug)]
 pub struct SolversArgs {
     /// Output directory.
-    #[arg(long, default_value = "results/solvers")]
-    out: PathBuf,
-    /// Data sets whose edges are solved (comma-separated).
+    #[arg(short = 'o', long, default_value = "results/solvers")]
+    output: PathBuf,
+    /// Data sets whose edges are solved (comma-separated or the option repeated; each once).
     #[arg(
         long,
         value_delimiter = ',',
@@ -56,6 +56,7 @@ pub fn run(args: &SolversArgs) -> Result<std::process::ExitCode, ExperimentError
         record_history: true,
         ..defaults.solve_options
     };
+    crate::study::refuse_duplicate_names("--data", &args.data)?;
     let wall = Instant::now();
     let solved = solve::solve_all(&args.data, &opts)?;
     let problems = &solved.problems;
@@ -64,7 +65,7 @@ pub fn run(args: &SolversArgs) -> Result<std::process::ExitCode, ExperimentError
     let summaries = report::summaries(problems);
     let pairwise = report::pairwise(problems);
     let characteristic = figures::characteristic_problems(problems);
-    let staged = Staged::begin(&args.out)?;
+    let staged = Staged::begin(&args.output)?;
     let out = staged.path().to_path_buf();
     figures::write_figures(&out, problems, &characteristic)?;
 
@@ -93,7 +94,7 @@ pub fn run(args: &SolversArgs) -> Result<std::process::ExitCode, ExperimentError
         problems.len(),
         kinds.len(),
         total_time,
-        args.out.display()
+        args.output.display()
     );
     staged.commit()?;
     Ok(std::process::ExitCode::SUCCESS)

@@ -181,13 +181,13 @@ pub(super) fn markdown(
     let mut md = String::new();
     md.push_str("# Solvers on Mann's boundary-curve problems\n\n");
     md.push_str(&format!(
-        "Written by `cargo run --release -p experiments -- solvers --data {} --out {}`. \
+        "Written by `cargo run --release -p experiments -- solvers --data {} --output {}`. \
          {} edge problems from the data sets, each minimized from α = (1, 1) with weights (1, 1) \
          and α ≥ {} by every adapter. Costs are ½‖r‖² (Ceres/SciPy); Mann's objective F = ‖r‖² \
          is twice that. Agreement: optima within {:e} in α (max norm). Times are the fastest of \
          {} repeated solves without history, on the machine that wrote this report (total {:.2} s).\n\n",
         args.data.join(","),
-        args.out.display(),
+        args.output.display(),
         problems.len(),
         MethodOptions::default().alpha_min,
         AGREEMENT,

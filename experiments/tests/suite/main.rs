@@ -8,4 +8,5 @@ mod hostile_cli;
 mod mesh_cli;
 mod schemes_cli;
 mod shell_docs;
+mod studies_cli;
 mod sweep_cli;

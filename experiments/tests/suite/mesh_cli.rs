@@ -214,7 +214,7 @@ fn an_interrupted_study_leaves_the_old_results_and_nothing_else() {
     std::fs::create_dir(&out).unwrap();
     std::fs::write(out.join("report.md"), "previous run\n").unwrap();
     let mut child = Command::new(env!("CARGO_BIN_EXE_experiments"))
-        .args(["estimation", "--out", out.to_str().unwrap()])
+        .args(["estimation", "-o", out.to_str().unwrap()])
         .current_dir(root())
         .stderr(std::process::Stdio::null())
         .spawn()
