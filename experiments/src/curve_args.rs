@@ -27,14 +27,21 @@ use surface::fairing::InteriorChoice;
 /// `--solver` and `--dbhs-pick`.
 #[derive(clap::Args, Debug, Clone, Copy)]
 pub struct CurveOptions {
-    /// Solver of the optimized construction (and of `--interior` fairing): exact-penalty, lbfgs
-    /// or lm.
-    #[arg(long, default_value_t = SolverKind::ExactPenalty)]
+    /// Solver of the optimized construction (and of `--interior` fairing); the names come from
+    /// the solver registry.
+    #[arg(long, default_value_t = SolverKind::ExactPenalty, value_parser = solver_names())]
     pub solver: SolverKind,
     /// Which dBHS solution to take: closest (to α = (1, 1)), longest-short (largest shorter
     /// tangent), or a solution index in order of increasing α0.
     #[arg(long, default_value_t = DbhsPick::Closest)]
     pub dbhs_pick: DbhsPick,
+}
+
+/// The registered solvers as the values `--solver` accepts (`--help` lists them).
+fn solver_names() -> impl clap::builder::TypedValueParser<Value = SolverKind> {
+    use clap::builder::TypedValueParser as _;
+    PossibleValuesParser::new(SolverKind::ALL.iter().map(|k| k.name()))
+        .try_map(|name| name.parse::<SolverKind>())
 }
 
 impl CurveOptions {

@@ -60,12 +60,15 @@ enum Experiment {
     /// Boundary curves for planar unit-chord problems given as JSON Lines: every construction's
     /// (α0, α1), control points and end curvatures, and Figure-2-style plots.
     Curve(curve::CurveArgs),
-    /// The ring study's measures over every data set × curve construction × solver, as one
-    /// table; `--shard i/n` runs a deterministic slice for cluster schedulers.
+    /// The ring study's measures over a grid: data sets or mesh files × resolution × scheme ×
+    /// its parameters × curve construction × solver × segments (lists on the command line or
+    /// `--grid FILE.toml`; by default every data set × construction × solver), one JSON Lines
+    /// result a task; `--list-tasks`, `--task ID` and `--shard i/n` let any scheduler run it.
     Sweep(sweep::SweepArgs),
     /// Section 4's claim measured: interior-boundary curvature and corner twists against β and c.
     Interior(interior::InteriorArgs),
-    /// Join the shard reports of `sweep --shard` into one report.
+    /// Join the task and shard results of `sweep --task`/`--shard` into one report, each line
+    /// checked against the sweep's task manifest.
     Merge(sweep::MergeArgs),
     /// Every boundary-curve problem of the data sets solved by every solver adapter (exact
     /// penalty, L-BFGS, Levenberg–Marquardt): convergence, agreement, iterations, time.
@@ -81,8 +84,9 @@ enum Experiment {
     /// several resolutions, regular and irregular: errors, convergence orders, libigl's golden
     /// numbers, and the ring study rebuilt from estimated data.
     Estimation(estimation::EstimationArgs),
-    /// Every registered surface scheme on every data set, side by side: G1 against the claimed
-    /// continuity, errors against the true surface, shaded and KColor pictures.
+    /// Every registered surface scheme on the data sets or the user's mesh files, side by side:
+    /// G1 against the claimed continuity, errors against the true surface (data sets), shaded
+    /// and KColor pictures.
     Schemes(schemes::SchemesArgs),
     /// The committed real-world meshes read, repaired, completed by estimation and fitted with
     /// every curve construction; pictures of the optimized-curve surfaces.

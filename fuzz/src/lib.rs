@@ -58,6 +58,27 @@ fn pipeline(bytes: &[u8]) -> bool {
     }
 }
 
+/// A result file as `merge` reads it: the lines parsed, then each checked (identity, measure
+/// types and ranges) against task 0 of the default sweep, the committed seed's first task.
+fn shard(bytes: &[u8]) -> bool {
+    thread_local! {
+        static TASK0: serde_json::Value =
+            serde_json::from_str(include_str!("../corpus/shard/task-0.jsonl")).unwrap_or_default();
+    }
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return false;
+    };
+    let Ok(file) = experiments::shard::read_shard(text, 20) else {
+        return false;
+    };
+    TASK0.with(|task0| {
+        file.results
+            .iter()
+            .enumerate()
+            .all(|(i, (_, v))| experiments::shard::check_line(i + 1, v, task0).is_ok())
+    })
+}
+
 fn curve_line(bytes: &[u8]) -> bool {
     thread_local! {
         static METHODS: Vec<Box<dyn curves::CurveMethod>> = curves::REGISTRY
@@ -115,10 +136,8 @@ pub static TARGETS: &[Target] = &[
     },
     Target {
         name: "shard",
-        description: "a sweep shard file as merge reads it",
-        run: |b| {
-            std::str::from_utf8(b).is_ok_and(|t| experiments::shard::read_shard(t, 20).is_ok())
-        },
+        description: "a sweep result file as merge reads it, each line checked against the default sweep's first task",
+        run: shard,
     },
     Target {
         name: "pipeline",
