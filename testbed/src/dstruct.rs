@@ -25,10 +25,12 @@
 //! is `null`. A field name that is not an identifier is written as a string. Duplicate names in
 //! one list are an error (an object cannot hold them).
 //!
-//! Nesting is limited to [`MAX_DEPTH`] levels, so hostile input cannot overflow the stack.
+//! Nesting is limited to [`MAX_DEPTH`] levels, so hostile input cannot overflow the stack; a
+//! record's tokens to [`MAX_RECORD_TOKENS`] (its length, [`crate::tape::MAX_RECORD_BYTES`], is
+//! the stream reader's to check: [`crate::stream`]).
 
 use crate::json;
-use crate::tape::{NumberError, Span, Tape, Tok};
+use crate::tape::{NumberError, Span, Tape, Tok, MAX_RECORD_TOKENS};
 
 /// Deepest nesting of lists and arrays accepted: far above any record of the pipeline (a
 /// Triangle nests 3 levels), low enough that recursion cannot exhaust the stack (JSON's reader
@@ -102,6 +104,15 @@ impl Parser<'_, '_> {
             Some(d) => self.err(format!("expected `{}`, found `{}`", c as char, d as char)),
             None => self.err(format!("expected `{}`, found the end", c as char)),
         }
+    }
+
+    /// Refuses a record past [`MAX_RECORD_TOKENS`] (checked after each pair and item: only
+    /// lists and arrays grow a record by more than a token, and their own items are checked).
+    fn count(&self) -> Result<(), SyntaxError> {
+        if self.tape.toks.len() > MAX_RECORD_TOKENS {
+            return self.err(crate::tape::too_many_tokens());
+        }
+        Ok(())
     }
 
     fn enter(&mut self) -> Result<(), SyntaxError> {
@@ -220,6 +231,7 @@ impl Parser<'_, '_> {
             self.tape.toks.push(Tok::Key(k));
             self.expect(b'.')?;
             self.value()?;
+            self.count()?;
             self.expect(b')')?;
             n += 1;
         }
@@ -287,6 +299,7 @@ impl Parser<'_, '_> {
         } else {
             loop {
                 self.value()?;
+                self.count()?;
                 n += 1;
                 match self.peek() {
                     Some(b',') => self.i += 1,

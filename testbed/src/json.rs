@@ -4,12 +4,14 @@
 //! The reader accepts RFC 8259 JSON (one object per line); numbers without a fraction or an
 //! exponent are integers (`i64`, else `u64`), the rest `f64` (correctly rounded by the
 //! standard library; out-of-range numbers are errors, as in `serde_json`). Duplicate field
-//! names in one object are an error. Nesting is limited to [`MAX_DEPTH`].
+//! names in one object are an error. Nesting is limited to [`MAX_DEPTH`], a record's tokens to
+//! [`MAX_RECORD_TOKENS`] (its length, [`crate::tape::MAX_RECORD_BYTES`], is the stream
+//! reader's to check: [`crate::stream`]).
 //! The writer prints floats by Ryū (shortest text that reads back to the same `f64`).
 
 use std::io::Write;
 
-use crate::tape::{Tape, Tok};
+use crate::tape::{Tape, Tok, MAX_RECORD_TOKENS};
 
 /// Deepest nesting accepted (`serde_json`'s limit): hostile input cannot exhaust the stack.
 pub const MAX_DEPTH: usize = 128;
@@ -97,6 +99,15 @@ impl Parser<'_, '_> {
         Ok(())
     }
 
+    /// Refuses a record past [`MAX_RECORD_TOKENS`] (checked after each field and item: only
+    /// containers grow a record by more than a token, and their own items are checked).
+    fn count(&self) -> Result<(), JsonError> {
+        if self.tape.toks.len() > MAX_RECORD_TOKENS {
+            return self.err(crate::tape::too_many_tokens());
+        }
+        Ok(())
+    }
+
     fn object(&mut self) -> Result<(), JsonError> {
         self.enter()?;
         self.i += 1;
@@ -126,6 +137,7 @@ impl Parser<'_, '_> {
                 }
                 self.i += 1;
                 self.value()?;
+                self.count()?;
                 n += 1;
                 match self.peek() {
                     Some(b',') => self.i += 1,
@@ -152,6 +164,7 @@ impl Parser<'_, '_> {
         } else {
             loop {
                 self.value()?;
+                self.count()?;
                 n += 1;
                 match self.peek() {
                     Some(b',') => self.i += 1,
