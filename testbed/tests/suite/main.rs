@@ -6,4 +6,5 @@ mod examples;
 mod library;
 mod pipeline;
 mod registry;
+mod stream_bounds;
 mod support;
