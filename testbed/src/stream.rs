@@ -117,6 +117,10 @@ enum ScanEnd {
     TooLong,
 }
 
+/// What to do about a record too large to write: the pipeline's largest records are one
+/// patch's `TriangleMesh` (`tess --mesh` records pass every filter up to about `-s 750`).
+const MESH_HINT: &str = "a TriangleMesh: a smaller tess -s, or Triangle records without --mesh";
+
 /// The message of a record refused for its length.
 fn too_long(what: &str) -> String {
     format!(
@@ -561,7 +565,10 @@ impl<W: Write> RecordWriter<W> {
         let is_object = matches!(record.toks.first(), Some(crate::tape::Tok::Obj { .. }));
         // What no reader would take back is not written: a stream a filter writes reads back.
         if record.toks.len() > MAX_RECORD_TOKENS {
-            return Err(unwritable(crate::tape::too_many_tokens()));
+            return Err(unwritable(format!(
+                "{}; no reader would take it back ({MESH_HINT})",
+                crate::tape::too_many_tokens()
+            )));
         }
         let mark = self.buf.len();
         match format {
@@ -592,8 +599,7 @@ impl<W: Write> RecordWriter<W> {
             self.buf.truncate(mark);
             return Err(unwritable(format!(
                 "the record would be {text} bytes, longer than the {MAX_RECORD_BYTES} bytes ({} \
-                 MiB) a record may hold, so no reader would take it back (a TriangleMesh: a \
-                 smaller tess -s, or Triangle records without --mesh)",
+                 MiB) a record may hold, so no reader would take it back ({MESH_HINT})",
                 MAX_RECORD_BYTES >> 20
             )));
         }

@@ -103,11 +103,13 @@ const MAX_TEXT: usize = u32::MAX as usize;
 /// refuse a record beyond it too, so every stream a filter writes reads back.
 pub const MAX_RECORD_BYTES: usize = 64 << 20;
 
-/// Most tokens one record may hold (4 Mi: 96 MiB at [`TOK_BYTES`] each). A token per value,
-/// key and container: `tess --mesh -s 512` writes 2.2 M a record; the cap bounds what a line
-/// of [`MAX_RECORD_BYTES`] can hold in memory where its values are one or two bytes each
-/// (`[0,0,0,…]` would otherwise be 32 M tokens, 768 MiB).
-pub const MAX_RECORD_TOKENS: usize = 1 << 22;
+/// Most tokens one record may hold (8 Mi: 192 MiB at [`TOK_BYTES`] each). A token per value,
+/// key and container: a `TriangleMesh` of `tess --mesh --kg -s s` coloured by `radial` holds
+/// about 11 s² (2.9 M at `-s 512`), so meshes reach [`MAX_RECORD_BYTES`] of JSON (near `-s
+/// 780`) before this; the cap bounds what a line of [`MAX_RECORD_BYTES`] can hold in memory
+/// where its values are one or two bytes each (`[0,0,0,…]` would otherwise be 32 M tokens,
+/// 768 MiB).
+pub const MAX_RECORD_TOKENS: usize = 1 << 23;
 
 /// Bytes of one token in memory (the estimate [`Tape::heap_bytes`] and the binary form's
 /// expansion check use).
