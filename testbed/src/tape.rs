@@ -131,7 +131,7 @@ const LINEAR_DUPLICATE_SCAN: usize = 16;
 impl Tape {
     /// True when `name` equals one of the `n` keys already read into the object whose first key
     /// token is at `first` (every value before is complete, so the scan can skip them). Up to
-    /// [`LINEAR_DUPLICATE_SCAN`] keys a linear scan; past it a set, built once into `many` from
+    /// `LINEAR_DUPLICATE_SCAN` keys a linear scan; past it a set, built once into `many` from
     /// the keys so far and kept for the object's later keys (`name` is added to it). The one
     /// check of both text readers.
     pub fn duplicate_key(
