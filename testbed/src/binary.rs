@@ -20,28 +20,119 @@
 //! strings. Any other field passes through as long as it is in a schema: unknown fields cost
 //! nothing but their slots.
 //!
-//! Hostile input: schema texts are at most [`MAX_SCHEMA_BYTES`], strings at most
-//! [`MAX_STRING_BYTES`], schemas at most [`MAX_SCHEMAS`]; non-finite floats, unknown tags, a
-//! schema number not declared and truncation are errors naming the record.
+//! Hostile input: a schema's text is at most [`MAX_SCHEMA_BYTES`], a record's in-memory size at
+//! most [`MAX_EXPANSION`] times its size in the stream plus [`EXPANSION_ALLOWANCE`] (checked
+//! when the schema is declared, before any record of it is decoded), the schemas together at
+//! most [`MAX_SCHEMA_MEMORY`], a record at most [`MAX_RECORD_TOKENS`] tokens and
+//! [`MAX_RECORD_BYTES`] of text, strings at most [`MAX_STRING_BYTES`], schemas at most
+//! [`MAX_SCHEMAS`]; non-finite floats, unknown tags, a schema number not declared and
+//! truncation are errors naming the record. The encoder refuses what the decoder would, so
+//! every binary stream a filter writes reads back.
 
 use std::io::{BufRead, Read};
 
 use crate::json;
-use crate::tape::{Tape, Tok};
+use crate::tape::{Tape, Tok, MAX_RECORD_BYTES, MAX_RECORD_TOKENS, TOK_BYTES};
 
 /// The first bytes of a binary stream.
 pub const MAGIC: &[u8] = b"TBIN1\n";
 
-/// Largest schema text accepted: a record template is a few hundred bytes; 1 MiB leaves
-/// room for any record a filter writes while bounding what a damaged length can allocate.
-pub const MAX_SCHEMA_BYTES: u32 = 1 << 20;
+/// Largest schema text accepted: a template is its record with every value a `0` or `""`,
+/// never longer than a record may be ([`MAX_RECORD_BYTES`]); `tess --mesh -s 512` writes a
+/// 6.2 MB template (the former limit, 1 MiB, refused every `TriangleMesh` from `-s 256`).
+pub const MAX_SCHEMA_BYTES: u32 = MAX_RECORD_BYTES as u32;
 
-/// Largest string slot accepted (16 MiB), for the same reason.
+/// A record decoded holds at most this many times the bytes it takes in the stream (its slots,
+/// 8 bytes a number and 4 plus the text a string, and its 5-byte header), plus
+/// [`EXPANSION_ALLOWANCE`]: the template's tokens ([`TOK_BYTES`] each) and keys are copied
+/// into every record, so a template of constants (`null`s, keys, empty arrays) with few slots
+/// would turn a 5-byte record into a megabyte (a 1 MiB template of `null`s: 18 000× from
+/// binary to JSON). The pipeline's records expand 4–7× (a `Triangle` 6.3×, a `TriangleMesh`
+/// 4.0×, a `BezierTriangle` 4.6×: `binary::tests`), well inside.
+pub const MAX_EXPANSION: usize = 32;
+
+/// Bytes of constants a record may expand to beyond [`MAX_EXPANSION`] times its size: room
+/// for a small record's keys, `type` and a few `null`s or `true`s (`{"type":"Note"}` is 80
+/// bytes decoded from 5); a zero-slot record then decodes to at most 1 184 bytes.
+pub const EXPANSION_ALLOWANCE: usize = 1024;
+
+/// Most memory the schemas of one stream may hold together (their templates, slots and
+/// slot positions; 256 MiB): one schema per record shape, and a stream of one shape (every
+/// filter's) needs one, of a few hundred bytes (`Triangle`) to a few MB (`TriangleMesh`
+/// at large `-s`); without a total, [`MAX_SCHEMAS`] templates of [`MAX_SCHEMA_BYTES`] each
+/// could ask for terabytes.
+pub const MAX_SCHEMA_MEMORY: usize = 256 << 20;
+
+/// Largest string slot accepted (16 MiB): a string longer than any field of the pipeline's,
+/// short enough that a damaged length cannot allocate much.
 pub const MAX_STRING_BYTES: u32 = 1 << 24;
 
 /// Most schemas in one stream: a stream of one record type needs one; a writer that would
 /// need more (every record shaped differently) is better served by JSON.
 pub const MAX_SCHEMAS: usize = 1 << 16;
+
+/// The in-memory size of a record of `template` before its strings: its tokens and the text of
+/// its keys and constant strings (what [`Decoder`] copies into every record).
+fn decoded_bytes(template: &Tape) -> usize {
+    let text: usize = template
+        .toks
+        .iter()
+        .map(|t| match t {
+            Tok::Key(s) | Tok::Str(s) => s.len as usize,
+            _ => 0,
+        })
+        .sum();
+    template.toks.len() * TOK_BYTES + text
+}
+
+/// The fewest bytes a record of `slots` takes in the stream: its tag and schema number, 8
+/// bytes a number, 4 a string's length (its text comes on top, on both sides).
+fn encoded_bytes(slots: &[u8]) -> usize {
+    5 + slots
+        .iter()
+        .map(|&k| if k == b's' { 4 } else { 8 })
+        .sum::<usize>()
+}
+
+/// Memory a schema holds (template tokens and text, slot kinds, positions and runs).
+fn schema_memory(template: &Tape, slots: &[u8]) -> usize {
+    template.toks.len() * TOK_BYTES + template.text.len() + slots.len() * (1 + 4 + 8)
+}
+
+/// Checks what a record of `template` with `slots` may take in memory: at most
+/// [`MAX_RECORD_TOKENS`] tokens and [`MAX_EXPANSION`] × its stream size +
+/// [`EXPANSION_ALLOWANCE`]; `id` names the schema.
+fn check_expansion(template: &Tape, slots: &[u8], id: usize) -> Result<(), String> {
+    if template.toks.len() > MAX_RECORD_TOKENS {
+        return Err(format!("schema {id}: {}", crate::tape::too_many_tokens()));
+    }
+    let (decoded, encoded) = (decoded_bytes(template), encoded_bytes(slots));
+    let allowed = MAX_EXPANSION * encoded + EXPANSION_ALLOWANCE;
+    if decoded > allowed {
+        return Err(format!(
+            "schema {id}: a record of {encoded} bytes ({} slots) would expand to {decoded} bytes \
+             in memory ({} tokens of its template copied into each); at most {MAX_EXPANSION} × \
+             its size + {EXPANSION_ALLOWANCE} bytes = {allowed} bytes (write such records as \
+             JSON)",
+            slots.len(),
+            template.toks.len()
+        ));
+    }
+    Ok(())
+}
+
+/// The schemas' memory after adding `more` bytes, refused past [`MAX_SCHEMA_MEMORY`].
+fn add_schema_memory(held: usize, more: usize) -> Result<usize, String> {
+    let total = held.saturating_add(more);
+    if total > MAX_SCHEMA_MEMORY {
+        return Err(format!(
+            "the schemas would hold {total} bytes, more than the {MAX_SCHEMA_MEMORY} bytes ({} \
+             MiB) a stream's schemas may hold together (write such a stream as JSON)",
+            MAX_SCHEMA_MEMORY >> 20
+        ));
+    }
+    Ok(total)
+}
 
 /// One schema: the template (a record tape), slot kinds, and the template token each slot
 /// fills.
@@ -84,6 +175,8 @@ pub struct Encoder {
     last: usize,
     started: bool,
     scratch: Vec<u8>,
+    /// Memory the schemas hold ([`MAX_SCHEMA_MEMORY`]).
+    memory: usize,
 }
 
 /// The token range of the top-level `type` value (kept in the template, not a slot).
@@ -209,6 +302,10 @@ impl Encoder {
             out.push(b'R');
             out.extend_from_slice(&(id as u32).to_le_bytes());
             if encode(record, schema, out) {
+                if let Err(e) = check_strings(record, schema) {
+                    out.truncate(mark);
+                    return Err(e);
+                }
                 self.last = id;
                 return Ok(());
             }
@@ -220,6 +317,10 @@ impl Encoder {
             ));
         }
         let schema = shape(record);
+        check_expansion(&schema.template, &schema.slots, self.schemas.len())?;
+        check_strings(record, &schema)?;
+        let memory =
+            add_schema_memory(self.memory, schema_memory(&schema.template, &schema.slots))?;
         let mut doc = Tape::default();
         let at = doc.open(true);
         doc.key("template");
@@ -229,7 +330,17 @@ impl Encoder {
         doc.close(at, 2);
         let mut text = Vec::new();
         json::write_json(&mut text, &doc, 0);
-        let len = u32::try_from(text.len()).map_err(|_| "schema too long".to_string())?;
+        let len = u32::try_from(text.len())
+            .ok()
+            .filter(|&l| l <= MAX_SCHEMA_BYTES)
+            .ok_or_else(|| {
+                format!(
+                    "the record's schema would be {} bytes, more than {MAX_SCHEMA_BYTES} bytes \
+                     (a record may hold no more: a TriangleMesh wants a smaller tess -s)",
+                    text.len()
+                )
+            })?;
+        self.memory = memory;
         out.push(b'S');
         out.extend_from_slice(&len.to_le_bytes());
         out.extend_from_slice(&text);
@@ -246,6 +357,32 @@ impl Encoder {
     }
 }
 
+/// Checks that a record of `schema` decodes to at most [`MAX_RECORD_BYTES`] of text (its
+/// template's and its strings'), as the decoder requires. Only a record whose text is that
+/// long can fail, so the count is made for those alone.
+fn check_strings(record: &Tape, schema: &Schema) -> Result<(), String> {
+    if record.text.len() <= MAX_RECORD_BYTES {
+        return Ok(());
+    }
+    let strings: usize = record
+        .toks
+        .iter()
+        .map(|t| match t {
+            Tok::Str(s) => s.len as usize,
+            _ => 0,
+        })
+        .sum();
+    let keys = decoded_bytes(&schema.template) - schema.template.toks.len() * TOK_BYTES;
+    if strings + keys > MAX_RECORD_BYTES {
+        return Err(format!(
+            "the record's strings and keys are {} bytes, more than the {MAX_RECORD_BYTES} \
+             bytes a record may hold",
+            strings + keys
+        ));
+    }
+    Ok(())
+}
+
 /// Decodes records; the magic has been consumed by the caller.
 #[derive(Debug, Default)]
 pub struct Decoder {
@@ -254,6 +391,8 @@ pub struct Decoder {
     /// run is read in one call.
     runs: Vec<Vec<usize>>,
     scratch: Vec<u8>,
+    /// Memory the schemas hold ([`MAX_SCHEMA_MEMORY`]).
+    memory: usize,
 }
 
 /// The numeric runs of `slots` (see [`Decoder`]).
@@ -338,6 +477,12 @@ impl Decoder {
                         "string of {len} bytes (at most {MAX_STRING_BYTES})"
                     ));
                 }
+                if out.text.len() + len as usize > MAX_RECORD_BYTES {
+                    return Err(format!(
+                        "the record's strings and keys exceed {MAX_RECORD_BYTES} bytes (the \
+                         most a record may hold)"
+                    ));
+                }
                 let start = out.text.len();
                 out.text.resize(start + len as usize, 0);
                 read_exact(r, &mut out.text[start..])?;
@@ -405,8 +550,15 @@ impl Decoder {
                     if self.schemas.len() >= MAX_SCHEMAS {
                         return Err(format!("more than {MAX_SCHEMAS} schemas"));
                     }
-                    let mut b = vec![0u8; len as usize];
-                    read_exact(r, &mut b)?;
+                    // Read as it comes (a damaged length allocates no more than is there).
+                    let mut b = Vec::new();
+                    r.by_ref()
+                        .take(u64::from(len))
+                        .read_to_end(&mut b)
+                        .map_err(|e| e.to_string())?;
+                    if b.len() != len as usize {
+                        return Err("truncated stream".into());
+                    }
                     let mut doc = Tape::default();
                     json::parse_record(&b, &mut doc)
                         .map_err(|e| format!("bad schema: {}", e.message))?;
@@ -427,6 +579,8 @@ impl Decoder {
                             self.schemas.len()
                         ));
                     }
+                    check_expansion(&template, &slots, self.schemas.len())?;
+                    self.memory = add_schema_memory(self.memory, schema_memory(&template, &slots))?;
                     self.runs.push(numeric_runs(&slots));
                     self.schemas.push(Schema::new(template, slots));
                 }
@@ -451,6 +605,52 @@ impl Decoder {
 mod tests {
     use super::*;
     use serde_json::Value;
+
+    /// The expansion ([`MAX_EXPANSION`]) of a record: bytes decoded per byte in the stream.
+    fn expansion(v: &Value) -> f64 {
+        let schema = shape(&Tape::from_value(v));
+        decoded_bytes(&schema.template) as f64 / encoded_bytes(&schema.slots) as f64
+    }
+
+    /// The pipeline's records (coloured, with their carried fields) expand far less than
+    /// [`MAX_EXPANSION`]: a `Triangle` 6.3×, a `TriangleMesh` of `-s 8` 4.0×, a quartic
+    /// `BezierTriangle` 4.6× (the figures of [`MAX_EXPANSION`]'s doc); a template of `null`s is
+    /// refused by both sides, naming the limit.
+    #[test]
+    fn pipeline_records_expand_within_the_limit_and_a_template_of_constants_is_refused() {
+        /// Margin kept below the limit by every record the pipeline writes.
+        const MARGIN: f64 = 4.0;
+        let vertex = serde_json::json!({"pos":[0.5,1.0,-2.0],"norm":[0.0,0.6,0.8],"kg":1.5,"color":[0.1,0.2,0.3]});
+        let triangle = serde_json::json!({"type":"Triangle","vertex1":vertex,"vertex2":vertex,
+            "vertex3":vertex,"face":3,"subpatch":1,"scheme":"shirman-sequin"});
+        let n = 45;
+        let col3: Vec<Value> = (0..n)
+            .map(|_| serde_json::json!([0.5, 1.0, -2.0]))
+            .collect();
+        let col1: Vec<Value> = (0..n).map(|_| serde_json::json!(1.5)).collect();
+        let tris: Vec<Value> = (0..64).map(|_| serde_json::json!([0, 1, 2])).collect();
+        let mesh = serde_json::json!({"type":"TriangleMesh","pos":col3,"norm":col3,"kg":col1,
+            "triangles":tris,"face":3,"subpatch":1,"scheme":"shirman-sequin","color":col3});
+        let points: Vec<Value> = (0..15)
+            .map(|_| serde_json::json!([0.5, 1.0, -2.0]))
+            .collect();
+        let patch = serde_json::json!({"type":"BezierTriangle","degree":4,"points":points,
+            "face":3,"subpatch":1,"scheme":"shirman-sequin"});
+        let mut seen = Vec::new();
+        for r in [&triangle, &mesh, &patch] {
+            let x = expansion(r);
+            seen.push(format!("{x:.2}"));
+            assert!(x * MARGIN < MAX_EXPANSION as f64, "{r}: {x}");
+        }
+        eprintln!("expansions: {seen:?}");
+        let nulls = vec![Value::Null; 1000];
+        let hostile = serde_json::json!({"type":"X","a":nulls});
+        let mut out = Vec::new();
+        let e = Encoder::default()
+            .write(&Tape::from_value(&hostile), &mut out)
+            .expect_err("refused");
+        assert!(e.contains("at most 32 × its size + 1024 bytes"), "{e}");
+    }
 
     #[test]
     fn round_trip_of_mixed_records() {

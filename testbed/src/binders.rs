@@ -2,8 +2,11 @@
 //! colour, [`colour`] binds it to every vertex of every `Triangle` and `TriangleMesh` of the
 //! stream (the range fixed from the first block of triangles unless given, [`DEFAULT_BLOCK`]),
 //! in place when present, appended otherwise; records of other types pass through in place.
+//! The records held until the range is fixed stay within [`HELD_BYTES`] of memory (the rest
+//! in a temporary file, [`crate::hold`]); a stream with nothing to colour is an error.
 
 use crate::error::{FieldError, FilterError, StreamError};
+use crate::hold::{Held, HELD_BYTES};
 use crate::pipe::Pipe;
 use crate::record::{self, Vertex};
 use crate::stream::Record;
@@ -60,14 +63,75 @@ impl Coloured {
     }
 }
 
+/// Most triangles a block may hold (4 Mi): their corner values, from which the range is taken,
+/// stay in memory (3 a triangle at 8 bytes: 96 MiB), where the records themselves are held
+/// within [`HELD_BYTES`] (the rest in a temporary file, [`crate::hold`]). `--block 0` holds
+/// the whole stream up to this many triangles; above it, `--block` is refused with the range.
+/// 512 times the default block: the range of 4 M triangles of a surface is its range.
+pub const MAX_BLOCK: usize = 1 << 22;
+
+/// The kinds of records a colouring filter passed without colouring, for the message that says
+/// nothing was coloured: the first [`NAMED_KINDS`] kinds by name, the rest counted.
+#[derive(Default)]
+struct Passed {
+    kinds: Vec<(String, usize)>,
+    others: usize,
+    total: usize,
+}
+
+/// Kinds named in the message of a filter that coloured nothing (the rest are counted).
+const NAMED_KINDS: usize = 4;
+
+/// Longest kind name quoted in that message (a record's `type` can be a megabyte long).
+const KIND_NAME_CHARS: usize = 40;
+
+impl Passed {
+    fn count(&mut self, kind: &str) {
+        self.total += 1;
+        if let Some(k) = self.kinds.iter_mut().find(|(n, _)| n == kind) {
+            k.1 += 1;
+        } else if self.kinds.len() < NAMED_KINDS && kind.chars().count() <= KIND_NAME_CHARS {
+            self.kinds.push((kind.to_string(), 1));
+        } else {
+            self.others += 1;
+        }
+    }
+
+    /// What the stream held, for the message.
+    fn describe(&self, skipped: usize) -> String {
+        let mut parts: Vec<String> = self
+            .kinds
+            .iter()
+            .map(|(n, c)| {
+                let n = if n.is_empty() { "(no type)" } else { n };
+                format!("{c} {n}")
+            })
+            .collect();
+        if self.others > 0 {
+            parts.push(format!("{} of other types", self.others));
+        }
+        if skipped > 0 {
+            parts.push(format!("{skipped} bad record(s) skipped"));
+        }
+        if parts.is_empty() {
+            "the stream is empty".to_string()
+        } else {
+            format!("the stream held {}", parts.join(", "))
+        }
+    }
+}
+
 /// Binds a colour to every vertex of every `Triangle` and `TriangleMesh`. Without `range`
 /// and for a data-dependent colouring the first `block` triangles are held (`0`: the whole
-/// stream; a `TriangleMesh` is held whole, so the block may run on to the end of its
-/// patch), the range is taken from their values at every triangle corner (so a
-/// `TriangleMesh` stream is coloured exactly as the `Triangle` stream of the same triangles
+/// stream, up to [`MAX_BLOCK`]; a `TriangleMesh` is held whole, so the block may run on to
+/// the end of its patch), the range is taken from their values at every triangle corner (so
+/// a `TriangleMesh` stream is coloured exactly as the `Triangle` stream of the same triangles
 /// when the block ends at the end of a patch), and the rest stream through with it. Records
-/// of other types keep their place in the stream (held with the triangles until the range is
-/// fixed).
+/// of other types keep their place in the stream: written at once while nothing is held (a
+/// stream without triangles is never held), held with the triangles otherwise. What is held
+/// stays within [`HELD_BYTES`] of memory, the rest in a temporary file ([`crate::hold`]).
+/// A stream without a single `Triangle` or `TriangleMesh` to colour is an error (after its
+/// records have passed through), naming what it held: a colouring filter before `tess`.
 pub fn colour(
     pipe: &mut Pipe,
     colouring: &dyn Colouring,
@@ -75,25 +139,32 @@ pub fn colour(
     range: Option<(f64, f64)>,
     block: usize,
 ) -> Result<(), FilterError> {
-    let block = if block == 0 { usize::MAX } else { block };
+    let block = if block == 0 {
+        MAX_BLOCK
+    } else {
+        block.min(MAX_BLOCK)
+    };
     let mut range = match range {
         Some(r) => Some(r),
         None if !colouring.data_dependent() => Some((0.0, 1.0)),
         None => None,
     };
     // Held records with their vertex values, and the values at the held triangles' corners.
-    let mut held: Vec<(Record, Vec<f64>)> = Vec::new();
+    let mut held = Held::new(HELD_BYTES);
     let mut corners: Vec<f64> = Vec::new();
     let mut binder = Binder::default();
     let mut mesh = TriangleMesh::default();
     let mut values: Vec<f64> = Vec::new();
     let mut rec = Record::default();
+    let mut coloured = 0usize;
+    let mut passed = Passed::default();
     while pipe.next_good(&mut rec)? {
         let Some(kind) = Coloured::of(&rec) else {
-            if range.is_none() {
-                held.push((std::mem::take(&mut rec), Vec::new()));
-            } else {
+            passed.count(rec.kind());
+            if held.is_empty() {
                 pipe.write(&rec)?;
+            } else {
+                held.push(std::mem::take(&mut rec), Vec::new(), colouring.name())?;
             }
             continue;
         };
@@ -121,6 +192,7 @@ pub fn colour(
             pipe.bad_field(&rec, e)?;
             continue;
         }
+        coloured += 1;
         match range {
             Some(r) => {
                 binder.bind(colouring, &mut rec, kind, &values, r);
@@ -133,7 +205,7 @@ pub fn colour(
                         corners.extend(mesh.triangles.iter().flatten().map(|&i| values[i as usize]))
                     }
                 }
-                held.push((std::mem::take(&mut rec), values.clone()));
+                held.push(std::mem::take(&mut rec), values.clone(), colouring.name())?;
                 if corners.len() / 3 >= block {
                     range = Some(release(
                         pipe,
@@ -151,6 +223,12 @@ pub fn colour(
         release(pipe, colouring, &mut held, &mut corners, &mut binder, block)?;
     }
     pipe.finish()?;
+    if coloured == 0 {
+        return Err(FilterError::NothingToColour {
+            filter: colouring.name(),
+            held: passed.describe(pipe.skipped),
+        });
+    }
     Ok(())
 }
 
@@ -159,16 +237,18 @@ pub fn colour(
 fn release(
     pipe: &mut Pipe,
     colouring: &dyn Colouring,
-    held: &mut Vec<(Record, Vec<f64>)>,
+    held: &mut Held,
     corners: &mut Vec<f64>,
     binder: &mut Binder,
     block: usize,
 ) -> Result<(f64, f64), StreamError> {
     let n = corners.len() / 3;
     let r = colouring.default_range(corners);
-    corners.clear();
+    *corners = Vec::new();
     let whole = if n < block {
         "the whole stream".to_string()
+    } else if block == MAX_BLOCK {
+        format!("the first {n} triangles, the most a block holds")
     } else {
         format!("the first {n} triangles")
     };
@@ -179,12 +259,12 @@ fn release(
         r.1,
         ROBUST_QUANTILE
     );
-    for (mut rec, values) in held.drain(..) {
+    held.drain(&mut |mut rec, values| {
         if let Some(kind) = Coloured::of(&rec) {
             binder.bind(colouring, &mut rec, kind, &values, r);
         }
-        pipe.write(&rec)?;
-    }
+        pipe.write(&rec)
+    })?;
     Ok(r)
 }
 

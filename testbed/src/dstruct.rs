@@ -25,10 +25,12 @@
 //! is `null`. A field name that is not an identifier is written as a string. Duplicate names in
 //! one list are an error (an object cannot hold them).
 //!
-//! Nesting is limited to [`MAX_DEPTH`] levels, so hostile input cannot overflow the stack.
+//! Nesting is limited to [`MAX_DEPTH`] levels, so hostile input cannot overflow the stack; a
+//! record's tokens to [`MAX_RECORD_TOKENS`] (its length, [`crate::tape::MAX_RECORD_BYTES`], is
+//! the stream reader's to check: [`crate::stream`]).
 
 use crate::json;
-use crate::tape::{NumberError, Span, Tape, Tok};
+use crate::tape::{NumberError, Span, Tape, Tok, MAX_RECORD_TOKENS};
 
 /// Deepest nesting of lists and arrays accepted: far above any record of the pipeline (a
 /// Triangle nests 3 levels), low enough that recursion cannot exhaust the stack (JSON's reader
@@ -44,7 +46,9 @@ pub struct SyntaxError {
     pub message: String,
 }
 
-struct Parser<'a, 't> {
+/// The parser; `COUNT`: whether the record's tokens are counted ([`MAX_RECORD_TOKENS`]; only a
+/// record that could exceed it is, [`parse_record`]).
+struct Parser<'a, 't, const COUNT: bool> {
     /// The record when it is UTF-8 throughout (checked once; any ASCII position is then a
     /// character boundary); `None` when some byte is not (in a comment, say): then strings
     /// are checked one by one.
@@ -63,7 +67,7 @@ fn is_ident(c: u8) -> bool {
     c.is_ascii_alphanumeric() || c == b'_' || c == b'-'
 }
 
-impl Parser<'_, '_> {
+impl<const COUNT: bool> Parser<'_, '_, COUNT> {
     fn err<T>(&self, message: impl Into<String>) -> Result<T, SyntaxError> {
         Err(SyntaxError {
             offset: self.i,
@@ -102,6 +106,23 @@ impl Parser<'_, '_> {
             Some(d) => self.err(format!("expected `{}`, found `{}`", c as char, d as char)),
             None => self.err(format!("expected `{}`, found the end", c as char)),
         }
+    }
+
+    /// Refuses a record past [`MAX_RECORD_TOKENS`] (checked after each pair and item: only
+    /// lists and arrays grow a record by more than a token, and their own items are checked).
+    #[inline(always)]
+    fn count(&self) -> Result<(), SyntaxError> {
+        if COUNT && self.tape.toks.len() > MAX_RECORD_TOKENS {
+            return self.too_many();
+        }
+        Ok(())
+    }
+
+    /// The error of [`Self::count`], out of the parser's way.
+    #[cold]
+    #[inline(never)]
+    fn too_many(&self) -> Result<(), SyntaxError> {
+        self.err(crate::tape::too_many_tokens())
     }
 
     fn enter(&mut self) -> Result<(), SyntaxError> {
@@ -220,6 +241,7 @@ impl Parser<'_, '_> {
             self.tape.toks.push(Tok::Key(k));
             self.expect(b'.')?;
             self.value()?;
+            self.count()?;
             self.expect(b')')?;
             n += 1;
         }
@@ -287,6 +309,7 @@ impl Parser<'_, '_> {
         } else {
             loop {
                 self.value()?;
+                self.count()?;
                 n += 1;
                 match self.peek() {
                     Some(b',') => self.i += 1,
@@ -308,11 +331,21 @@ impl Parser<'_, '_> {
 }
 
 /// Parses one record's text (`(Name . …);`, the semicolon optional at the very end) into
-/// `tape` (cleared first): an object whose first field is `type`.
+/// `tape` (cleared first): an object whose first field is `type`. Every token but the `type`
+/// key takes at least one byte of the text, so a record shorter than [`MAX_RECORD_TOKENS`]
+/// bytes cannot exceed it and is parsed without counting.
 pub fn parse_record(text: &[u8], tape: &mut Tape) -> Result<(), SyntaxError> {
+    if text.len() < MAX_RECORD_TOKENS {
+        parse::<false>(text, tape)
+    } else {
+        parse::<true>(text, tape)
+    }
+}
+
+fn parse<const COUNT: bool>(text: &[u8], tape: &mut Tape) -> Result<(), SyntaxError> {
     tape.clear();
     let src = std::str::from_utf8(text).ok();
-    let mut p = Parser {
+    let mut p = Parser::<COUNT> {
         src,
         s: text,
         i: 0,

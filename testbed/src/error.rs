@@ -174,6 +174,15 @@ pub enum FilterError {
     /// A picture would be blank: nothing to draw (the message says why and what to do).
     #[error("{0}")]
     Blank(String),
+    /// A colouring filter found no `Triangle` or `TriangleMesh` to colour (a `tess` forgotten
+    /// before it, most likely); its records passed through.
+    #[error("no Triangle or TriangleMesh records to colour ({held}): put `tess` before `{filter}` (testbed fit … | testbed tess | testbed {filter})")]
+    NothingToColour {
+        /// The filter.
+        filter: &'static str,
+        /// What the stream held instead.
+        held: String,
+    },
     /// `g1 --strict`: a boundary exceeds the tolerance.
     #[error("G1 defect {angle:.3e} rad exceeds the tolerance {tolerance:.1e} rad")]
     G1Exceeded {

@@ -4,12 +4,14 @@
 //! The reader accepts RFC 8259 JSON (one object per line); numbers without a fraction or an
 //! exponent are integers (`i64`, else `u64`), the rest `f64` (correctly rounded by the
 //! standard library; out-of-range numbers are errors, as in `serde_json`). Duplicate field
-//! names in one object are an error. Nesting is limited to [`MAX_DEPTH`].
+//! names in one object are an error. Nesting is limited to [`MAX_DEPTH`], a record's tokens to
+//! [`MAX_RECORD_TOKENS`] (its length, [`crate::tape::MAX_RECORD_BYTES`], is the stream
+//! reader's to check: [`crate::stream`]).
 //! The writer prints floats by Ryū (shortest text that reads back to the same `f64`).
 
 use std::io::Write;
 
-use crate::tape::{Tape, Tok};
+use crate::tape::{Tape, Tok, MAX_RECORD_TOKENS};
 
 /// Deepest nesting accepted (`serde_json`'s limit): hostile input cannot exhaust the stack.
 pub const MAX_DEPTH: usize = 128;
@@ -23,7 +25,9 @@ pub struct JsonError {
     pub message: String,
 }
 
-struct Parser<'a, 't> {
+/// The parser; `COUNT`: whether the record's tokens are counted ([`MAX_RECORD_TOKENS`]; only a
+/// line that could exceed it is, [`parse_record`]).
+struct Parser<'a, 't, const COUNT: bool> {
     /// The line, checked to be UTF-8 once (so any ASCII position is a character boundary).
     src: &'a str,
     s: &'a [u8],
@@ -32,7 +36,7 @@ struct Parser<'a, 't> {
     tape: &'t mut Tape,
 }
 
-impl Parser<'_, '_> {
+impl<const COUNT: bool> Parser<'_, '_, COUNT> {
     fn err<T>(&self, message: impl Into<String>) -> Result<T, JsonError> {
         Err(JsonError {
             offset: self.i,
@@ -97,6 +101,23 @@ impl Parser<'_, '_> {
         Ok(())
     }
 
+    /// Refuses a record past [`MAX_RECORD_TOKENS`] (checked after each field and item: only
+    /// containers grow a record by more than a token, and their own items are checked).
+    #[inline(always)]
+    fn count(&self) -> Result<(), JsonError> {
+        if COUNT && self.tape.toks.len() > MAX_RECORD_TOKENS {
+            return self.too_many();
+        }
+        Ok(())
+    }
+
+    /// The error of [`Self::count`], out of the parser's way.
+    #[cold]
+    #[inline(never)]
+    fn too_many(&self) -> Result<(), JsonError> {
+        self.err(crate::tape::too_many_tokens())
+    }
+
     fn object(&mut self) -> Result<(), JsonError> {
         self.enter()?;
         self.i += 1;
@@ -126,6 +147,7 @@ impl Parser<'_, '_> {
                 }
                 self.i += 1;
                 self.value()?;
+                self.count()?;
                 n += 1;
                 match self.peek() {
                     Some(b',') => self.i += 1,
@@ -152,6 +174,7 @@ impl Parser<'_, '_> {
         } else {
             loop {
                 self.value()?;
+                self.count()?;
                 n += 1;
                 match self.peek() {
                     Some(b',') => self.i += 1,
@@ -252,14 +275,24 @@ impl Parser<'_, '_> {
 }
 
 /// Parses one line (one JSON object, surrounding white space allowed) into `tape` (cleared
-/// first).
+/// first). Every token takes at least one byte of the line, so a line shorter than
+/// [`MAX_RECORD_TOKENS`] bytes cannot exceed it and is parsed without counting: the records of
+/// honest streams pay nothing for the limit.
 pub fn parse_record(line: &[u8], tape: &mut Tape) -> Result<(), JsonError> {
+    if line.len() < MAX_RECORD_TOKENS {
+        parse::<false>(line, tape)
+    } else {
+        parse::<true>(line, tape)
+    }
+}
+
+fn parse<const COUNT: bool>(line: &[u8], tape: &mut Tape) -> Result<(), JsonError> {
     tape.clear();
     let src = std::str::from_utf8(line).map_err(|e| JsonError {
         offset: e.valid_up_to(),
         message: "the line is not UTF-8".into(),
     })?;
-    let mut p = Parser {
+    let mut p = Parser::<COUNT> {
         src,
         s: line,
         i: 0,

@@ -19,7 +19,8 @@
 //! * the filters' shared machinery: [`pipe`] (the stream options every filter takes and the
 //!   [`Pipe`](pipe::Pipe) it reads and writes through), [`sample`] (tessellated vertices and
 //!   the `Triangle` records built from them), [`tessellator`] (the patch tessellator),
-//!   [`binders`] (the colour binders of `mat0`, `kcolor`, `radial`), [`draw`] (reading the
+//!   [`binders`] (the colour binders of `mat0`, `kcolor`, `radial`), [`hold`] (records held
+//!   back in order in bounded memory, the rest in a temporary file), [`draw`] (reading the
 //!   triangles at the end of the pipeline, the pictures), [`options`] (option values parsed
 //!   alike).
 //!
@@ -33,6 +34,7 @@ pub mod draw;
 pub mod dstruct;
 pub mod error;
 pub mod filters;
+pub mod hold;
 pub mod json;
 pub mod options;
 pub mod pipe;

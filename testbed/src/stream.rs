@@ -21,6 +21,7 @@ use crate::dstruct;
 use crate::error::{Position, StreamError};
 use crate::json;
 use crate::tape::Tape;
+pub use crate::tape::{MAX_RECORD_BYTES, MAX_RECORD_TOKENS};
 
 /// A stream format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -82,6 +83,51 @@ pub struct RecordReader<R: BufRead> {
     decoder: binary::Decoder,
     bzp: crate::bzp::Decoder,
     fatal: bool,
+    /// The rest of a record refused as too long, to pass over (not hold) before the next.
+    skip: Option<Skip>,
+}
+
+/// What is left of a record refused for its length ([`MAX_RECORD_BYTES`]): passed over
+/// without being held, so reading can go on with the next record (`--keep-going`).
+#[derive(Clone, Copy, Debug)]
+enum Skip {
+    /// The rest of a JSON line.
+    Line,
+    /// The rest of a dstruct record, up to its `;`, from the scanner's state.
+    Dstruct(DstructScan),
+}
+
+/// Where the dstruct record scanner is: in a string, just after an escaping backslash, in a
+/// comment.
+#[derive(Clone, Copy, Debug, Default)]
+struct DstructScan {
+    in_string: bool,
+    escape: bool,
+    comment: bool,
+}
+
+/// How a dstruct record scan stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ScanEnd {
+    /// At the record's `;`.
+    Ended,
+    /// At the end of the input.
+    Eof,
+    /// Past [`MAX_RECORD_BYTES`] (only when the record is being held).
+    TooLong,
+}
+
+/// What to do about a record too large to write: the pipeline's largest records are one
+/// patch's `TriangleMesh` (`tess --mesh` records pass every filter up to about `-s 750`).
+const MESH_HINT: &str = "a TriangleMesh: a smaller tess -s, or Triangle records without --mesh";
+
+/// The message of a record refused for its length.
+fn too_long(what: &str) -> String {
+    format!(
+        "{what} is longer than {MAX_RECORD_BYTES} bytes ({} MiB, the longest record a stream \
+         may hold)",
+        MAX_RECORD_BYTES >> 20
+    )
 }
 
 impl<R: BufRead> RecordReader<R> {
@@ -96,6 +142,7 @@ impl<R: BufRead> RecordReader<R> {
             decoder: binary::Decoder::default(),
             bzp: crate::bzp::Decoder::default(),
             fatal: false,
+            skip: None,
         }
     }
 
@@ -191,6 +238,12 @@ impl<R: BufRead> RecordReader<R> {
         if self.fatal {
             return None;
         }
+        if let Some(skip) = self.skip.take() {
+            if let Err(e) = self.pass_over(skip) {
+                self.fatal = true;
+                return Some(Err(e));
+            }
+        }
         let format = match self.detect() {
             Ok(Some(f)) => f,
             Ok(None) => return None,
@@ -214,22 +267,65 @@ impl<R: BufRead> RecordReader<R> {
         }
     }
 
+    /// Passes over the rest of a record refused for its length, holding none of it.
+    fn pass_over(&mut self, skip: Skip) -> Result<(), StreamError> {
+        match skip {
+            Skip::Line => self.discard_line(),
+            Skip::Dstruct(mut state) => self.scan_dstruct(&mut state, false).map(|_| ()),
+        }
+    }
+
+    /// Reads past the next newline (counted), holding nothing.
+    fn discard_line(&mut self) -> Result<(), StreamError> {
+        loop {
+            let buf = self
+                .inner
+                .fill_buf()
+                .map_err(|e| StreamError::io("reading the input", e))?;
+            if buf.is_empty() {
+                return Ok(());
+            }
+            match buf.iter().position(|&c| c == b'\n') {
+                Some(p) => {
+                    self.inner.consume(p + 1);
+                    self.line += 1;
+                    return Ok(());
+                }
+                None => {
+                    let n = buf.len();
+                    self.inner.consume(n);
+                }
+            }
+        }
+    }
+
     fn next_json(&mut self, record: &mut Record) -> Result<bool, StreamError> {
         if self.skip_space()?.is_none() {
             return Ok(false);
         }
         self.buf.clear();
         let at_line = self.line;
-        self.inner
+        // At most one byte past the limit is read: a longer line is refused before it is
+        // held whole, and its rest passed over on the next read.
+        let limit = MAX_RECORD_BYTES as u64 + 1;
+        std::io::Read::take(&mut self.inner, limit)
             .read_until(b'\n', &mut self.buf)
             .map_err(|e| StreamError::io("reading the input", e))?;
-        self.line += 1;
         self.count += 1;
         let at = Position {
             record: self.count,
             line: at_line,
         };
         record.at = at;
+        if self.buf.len() > MAX_RECORD_BYTES && self.buf.last() != Some(&b'\n') {
+            self.buf = Vec::new();
+            self.skip = Some(Skip::Line);
+            return Err(StreamError::Syntax {
+                at,
+                message: too_long("the line"),
+            });
+        }
+        self.line += 1;
         // Strings are checked for UTF-8 as they are read; the rest of a line is ASCII syntax.
         json::parse_record(&self.buf, &mut record.tape)
             .map(|()| true)
@@ -239,55 +335,47 @@ impl<R: BufRead> RecordReader<R> {
             })
     }
 
-    fn next_dstruct(&mut self, record: &mut Record) -> Result<bool, StreamError> {
-        // Skip white space and comments before the record.
+    /// Scans a dstruct record from `state` up to its `;` outside strings and comments,
+    /// counting lines: into the buffer when `keep` (stopping past [`MAX_RECORD_BYTES`]),
+    /// passed over otherwise.
+    fn scan_dstruct(
+        &mut self,
+        state: &mut DstructScan,
+        keep: bool,
+    ) -> Result<ScanEnd, StreamError> {
         loop {
-            match self.skip_space()? {
-                None => return Ok(false),
-                Some(b'%') => {
-                    let mut sink = Vec::new();
-                    self.inner
-                        .read_until(b'\n', &mut sink)
-                        .map_err(|e| StreamError::io("reading the input", e))?;
-                    if sink.last() == Some(&b'\n') {
-                        self.line += 1;
-                    }
-                }
-                Some(_) => break,
+            if keep && self.buf.len() > MAX_RECORD_BYTES {
+                return Ok(ScanEnd::TooLong);
             }
-        }
-        let at_line = self.line;
-        self.count += 1;
-        let at = Position {
-            record: self.count,
-            line: at_line,
-        };
-        // Collect up to the `;` outside strings and comments.
-        self.buf.clear();
-        let (mut in_string, mut escape, mut comment) = (false, false, false);
-        let mut ended = false;
-        while !ended {
             let chunk = self
                 .inner
                 .fill_buf()
                 .map_err(|e| StreamError::io("reading the input", e))?;
             if chunk.is_empty() {
-                break;
+                return Ok(ScanEnd::Eof);
             }
+            // Held: no more than one byte past the limit.
+            let room = if keep {
+                MAX_RECORD_BYTES + 1 - self.buf.len()
+            } else {
+                usize::MAX
+            };
+            let chunk = &chunk[..chunk.len().min(room)];
             // Jump from one byte that matters to the next (in a string: `"`, `\\`; in a
             // comment: the line's end; elsewhere: `"`, `%`, `;`), counting lines as we go.
             let mut used = 0;
+            let mut ended = false;
             while used < chunk.len() {
                 let rest = &chunk[used..];
-                if escape {
-                    escape = false;
+                if state.escape {
+                    state.escape = false;
                     self.line += usize::from(rest[0] == b'\n');
                     used += 1;
                     continue;
                 }
-                let hit = if comment {
+                let hit = if state.comment {
                     rest.iter().position(|&c| c == b'\n')
-                } else if in_string {
+                } else if state.in_string {
                     rest.iter()
                         .position(|&c| c == b'"' || c == b'\\' || c == b'\n')
                 } else {
@@ -302,27 +390,64 @@ impl<R: BufRead> RecordReader<R> {
                 match rest[p] {
                     b'\n' => {
                         self.line += 1;
-                        comment = false;
+                        state.comment = false;
                     }
-                    b'\\' => escape = true,
-                    b'"' => in_string = !in_string,
-                    b'%' => comment = true,
+                    b'\\' => state.escape = true,
+                    b'"' => state.in_string = !state.in_string,
+                    b'%' => state.comment = true,
                     _ => {
                         ended = true;
                         break;
                     }
                 }
             }
-            self.buf.extend_from_slice(&chunk[..used]);
+            if keep {
+                self.buf.extend_from_slice(&chunk[..used]);
+            }
             self.inner.consume(used);
+            if ended {
+                return Ok(ScanEnd::Ended);
+            }
         }
-        if !ended {
-            return Err(StreamError::Syntax {
-                at,
-                message: "the stream ends inside a record (no terminating `;`)".into(),
-            });
+    }
+
+    fn next_dstruct(&mut self, record: &mut Record) -> Result<bool, StreamError> {
+        // Skip white space and comments before the record (a comment is passed over, not
+        // held: it may be as long as the input).
+        loop {
+            match self.skip_space()? {
+                None => return Ok(false),
+                Some(b'%') => self.discard_line()?,
+                Some(_) => break,
+            }
         }
+        let at_line = self.line;
+        self.count += 1;
+        let at = Position {
+            record: self.count,
+            line: at_line,
+        };
         record.at = at;
+        // Collect up to the `;` outside strings and comments.
+        self.buf.clear();
+        let mut state = DstructScan::default();
+        match self.scan_dstruct(&mut state, true)? {
+            ScanEnd::Ended => {}
+            ScanEnd::Eof => {
+                return Err(StreamError::Syntax {
+                    at,
+                    message: "the stream ends inside a record (no terminating `;`)".into(),
+                })
+            }
+            ScanEnd::TooLong => {
+                self.buf = Vec::new();
+                self.skip = Some(Skip::Dstruct(state));
+                return Err(StreamError::Syntax {
+                    at,
+                    message: too_long("the record"),
+                });
+            }
+        }
         dstruct::parse_record(&self.buf, &mut record.tape)
             .map(|()| true)
             .map_err(|e| {
@@ -438,6 +563,14 @@ impl<W: Write> RecordWriter<W> {
             message,
         };
         let is_object = matches!(record.toks.first(), Some(crate::tape::Tok::Obj { .. }));
+        // What no reader would take back is not written: a stream a filter writes reads back.
+        if record.toks.len() > MAX_RECORD_TOKENS {
+            return Err(unwritable(format!(
+                "{}; no reader would take it back ({MESH_HINT})",
+                crate::tape::too_many_tokens()
+            )));
+        }
+        let mark = self.buf.len();
         match format {
             Format::Json => {
                 if !is_object {
@@ -459,6 +592,16 @@ impl<W: Write> RecordWriter<W> {
                     "the binary patch file holds the patches of one fit: only `fit` writes it (choose json, dstruct or binary)".into(),
                 ))
             }
+        }
+        // The text formats: the record without its newline is what a reader measures.
+        let text = (self.buf.len() - mark).saturating_sub(1);
+        if format != Format::Binary && text > MAX_RECORD_BYTES {
+            self.buf.truncate(mark);
+            return Err(unwritable(format!(
+                "the record would be {text} bytes, longer than the {MAX_RECORD_BYTES} bytes ({} \
+                 MiB) a record may hold, so no reader would take it back ({MESH_HINT})",
+                MAX_RECORD_BYTES >> 20
+            )));
         }
         self.written += 1;
         if self.buf.len() >= FLUSH_BYTES {

@@ -95,6 +95,35 @@ const MAX_SET: usize = 4;
 /// Largest text a tape may hold (spans are 32-bit): 4 GiB, far beyond any record.
 const MAX_TEXT: usize = u32::MAX as usize;
 
+/// Longest record a stream may hold, in bytes as read: a JSON line, a dstruct record from its
+/// `(` to its `;`, a binary schema's text, a binary record's strings together (64 MiB). The
+/// pipeline's largest honest records are `TriangleMesh`es: at `tess --mesh -s 512` one patch
+/// is 24 MB of JSON, so the limit leaves room for them while a line no filter could use (a
+/// 300 MB line held 4.3 GB) is refused as it is read, before it is held whole. The writers
+/// refuse a record beyond it too, so every stream a filter writes reads back.
+pub const MAX_RECORD_BYTES: usize = 64 << 20;
+
+/// Most tokens one record may hold (8 Mi: 192 MiB at [`TOK_BYTES`] each). A token per value,
+/// key and container: a `TriangleMesh` of `tess --mesh --kg -s s` coloured by `radial` holds
+/// about 11 s² (2.9 M at `-s 512`), so meshes reach [`MAX_RECORD_BYTES`] of JSON (near `-s
+/// 780`) before this; the cap bounds what a line of [`MAX_RECORD_BYTES`] can hold in memory
+/// where its values are one or two bytes each (`[0,0,0,…]` would otherwise be 32 M tokens,
+/// 768 MiB).
+pub const MAX_RECORD_TOKENS: usize = 1 << 23;
+
+/// Bytes of one token in memory (the estimate [`Tape::heap_bytes`] and the binary form's
+/// expansion check use).
+pub const TOK_BYTES: usize = std::mem::size_of::<Tok>();
+
+/// The message of a record over [`MAX_RECORD_TOKENS`].
+pub fn too_many_tokens() -> String {
+    format!(
+        "more than {MAX_RECORD_TOKENS} values, keys and containers in one record (the most a \
+         record may hold: {} MiB in memory)",
+        (MAX_RECORD_TOKENS * TOK_BYTES) >> 20
+    )
+}
+
 /// Objects with more keys than this are checked for duplicate names with a hash set instead
 /// of a linear scan (records have about ten).
 const LINEAR_DUPLICATE_SCAN: usize = 16;
@@ -102,7 +131,7 @@ const LINEAR_DUPLICATE_SCAN: usize = 16;
 impl Tape {
     /// True when `name` equals one of the `n` keys already read into the object whose first key
     /// token is at `first` (every value before is complete, so the scan can skip them). Up to
-    /// [`LINEAR_DUPLICATE_SCAN`] keys a linear scan; past it a set, built once into `many` from
+    /// `LINEAR_DUPLICATE_SCAN` keys a linear scan; past it a set, built once into `many` from
     /// the keys so far and kept for the object's later keys (`name` is added to it). The one
     /// check of both text readers.
     pub fn duplicate_key(
@@ -128,6 +157,12 @@ impl Tape {
         }
         let set = many.get_or_insert_with(|| keys().map(<[u8]>::to_vec).collect());
         !set.insert(name.to_vec())
+    }
+
+    /// The memory the tape holds (its tokens' and text's storage, as allocated): the estimate
+    /// a filter holding records counts against its budget.
+    pub fn heap_bytes(&self) -> usize {
+        self.toks.capacity() * TOK_BYTES + self.text.capacity()
     }
 
     /// Empties the tape, keeping its storage.

@@ -2,7 +2,7 @@
 //! vertex of every `Triangle` and `TriangleMesh` (`crate::binders`, the range from the first
 //! block unless given); other records pass through.
 
-use crate::binders::{colour, robust_max, Colouring, DEFAULT_BLOCK};
+use crate::binders::{colour, robust_max, Colouring, DEFAULT_BLOCK, MAX_BLOCK};
 use crate::error::{FieldError, FilterError};
 use crate::filters::Filter;
 use crate::options;
@@ -16,9 +16,10 @@ pub struct KColorArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub range: Option<String>,
     /// Without --range: triangles held to fix the range before streaming (0: the whole
-    /// stream).
-    #[arg(long, default_value_t = DEFAULT_BLOCK)]
-    pub block: usize,
+    /// stream, up to 4194304 triangles; at most 4194304).
+    #[arg(long, default_value_t = DEFAULT_BLOCK as u64,
+          value_parser = clap::value_parser!(u64).range(0..=MAX_BLOCK as u64))]
+    pub block: u64,
     /// Which curvature: kg (Gaussian) or km (mean).
     #[arg(long, default_value = "kg")]
     pub field: String,
@@ -65,7 +66,10 @@ impl Filter for KColor {
         --block triangles are held, the range is taken from them and printed on standard error, \
         and the rest of the stream is coloured as it comes with the same range. Sets `color` in \
         each vertex of a Triangle and in the `color` column of a TriangleMesh, in place when \
-        present, appended otherwise; records of other types keep their place.";
+        present, appended otherwise; records of other types keep their place (written at once \
+        while no triangle is held). What is held stays within 64 MiB of memory; the rest waits \
+        in a temporary file, removed when the filter ends. A stream without a Triangle or \
+        TriangleMesh is an error (exit 1; `tess` goes before kcolor).";
     const SEED: &'static str = "KColor";
     type Args = KColorArgs;
 
@@ -77,8 +81,10 @@ impl Filter for KColor {
             )));
         }
         let range = options::range(args.range.as_deref())?;
+        // Within MAX_BLOCK by the option's parser.
+        let block = usize::try_from(args.block).unwrap_or(MAX_BLOCK);
         stream.filter(Self::NAME, &mut |p| {
-            colour(p, &KColor, &field, range, args.block)
+            colour(p, &KColor, &field, range, block)
         })
     }
 }

@@ -38,7 +38,8 @@ impl Filter for Mat0 {
     const DESCRIPTION: &'static str = "\
         Sets `color` in each vertex of a Triangle and in the `color` column of a TriangleMesh, \
         in place when present, appended otherwise. Records of other types pass through \
-        unchanged.";
+        unchanged. A stream without a Triangle or TriangleMesh is an error (exit 1; `tess` goes \
+        before mat0).";
     const SEED: &'static str = "Mat0";
     type Args = Mat0Args;
 

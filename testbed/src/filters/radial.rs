@@ -2,7 +2,7 @@
 //! data set's analytic surface), and the distance itself as `dist`, at every vertex of every
 //! `Triangle` and `TriangleMesh` (`crate::binders`); other records pass through.
 
-use crate::binders::{colour, robust_max, Colouring, DEFAULT_BLOCK};
+use crate::binders::{colour, robust_max, Colouring, DEFAULT_BLOCK, MAX_BLOCK};
 use crate::error::{FieldError, FilterError};
 use crate::filters::Filter;
 use crate::options;
@@ -23,9 +23,10 @@ pub struct RadialArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub range: Option<String>,
     /// Without --range: triangles held to fix the range before streaming (0: the whole
-    /// stream).
-    #[arg(long, default_value_t = DEFAULT_BLOCK)]
-    pub block: usize,
+    /// stream, up to 4194304 triangles; at most 4194304).
+    #[arg(long, default_value_t = DEFAULT_BLOCK as u64,
+          value_parser = clap::value_parser!(u64).range(0..=MAX_BLOCK as u64))]
+    pub block: u64,
 }
 
 impl Filter for Radial {
@@ -37,7 +38,10 @@ impl Filter for Radial {
         first --block triangles are held, the range is taken from them and printed on standard \
         error, and the rest of the stream is coloured as it comes with the same range. Sets \
         `color` and `dist` in each vertex of a Triangle and as columns of a TriangleMesh, in \
-        place when present, appended otherwise; records of other types keep their place.";
+        place when present, appended otherwise; records of other types keep their place \
+        (written at once while no triangle is held). What is held stays within 64 MiB of \
+        memory; the rest waits in a temporary file, removed when the filter ends. A stream \
+        without a Triangle or TriangleMesh is an error (exit 1; `tess` goes before radial).";
     const SEED: &'static str = "Radial";
     type Args = RadialArgs;
 
@@ -60,9 +64,9 @@ impl Filter for Radial {
             surface: data.surface,
         };
         let range = options::range(args.range.as_deref())?;
-        stream.filter(Self::NAME, &mut |p| {
-            colour(p, &colouring, "", range, args.block)
-        })
+        // Within MAX_BLOCK by the option's parser.
+        let block = usize::try_from(args.block).unwrap_or(MAX_BLOCK);
+        stream.filter(Self::NAME, &mut |p| colour(p, &colouring, "", range, block))
     }
 }
 

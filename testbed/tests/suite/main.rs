@@ -8,4 +8,5 @@ mod numerics;
 mod pipeline;
 mod registry;
 mod shell_docs;
+mod stream_bounds;
 mod support;

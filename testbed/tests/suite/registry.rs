@@ -117,6 +117,11 @@ fn help_lists_the_registry_in_order() {
         .iter()
         .map(|f| (f.name().to_string(), f.summary().to_string()))
         .collect();
+    // The documentation subcommands after the filters (`clidocs`), then clap's own help.
+    for docs in [clidocs::completions_command(), clidocs::man_command()] {
+        let about = docs.get_about().map(|a| a.to_string()).unwrap_or_default();
+        expected.push((docs.get_name().to_string(), about));
+    }
     expected.push((
         "help".into(),
         "Print this message or the help of the given subcommand(s)".into(),
