@@ -28,6 +28,7 @@
 //! over a regular file or nothing, with temporaries removed on failure and on interruption.
 
 pub mod bounds;
+pub mod convention;
 pub mod error;
 pub mod format;
 pub mod glb;
@@ -37,11 +38,13 @@ pub mod off;
 pub mod outfile;
 pub mod ply;
 pub mod raw;
+pub mod srgb;
 pub mod stl;
 pub mod testbed;
 mod util;
 
 pub use bounds::{bounding_size, BoundingBox};
+pub use convention::{ColorMap, Curvature, UpAxis, GENERATOR};
 pub use error::{Location, MeshIoError, ReadError, WriteError};
 pub use format::{
     format_by_name, format_for_path, read_bytes, read_file, readable_extensions, sniff_format,
