@@ -71,6 +71,37 @@ impl Curvature {
     }
 }
 
+/// How far a model's curvatures may lie from `1/size` (mean) and `1/size²` (Gaussian) for the
+/// scale check [`curvature_scale_fits_f32`]: features a thousandth of the model's size have
+/// a Gaussian curvature a million times the model's, and the check leaves that much room on
+/// both sides of the 32-bit float range.
+pub const CURVATURE_HEADROOM: f64 = 1e6;
+
+/// Whether the curvature of a model of `size` (its largest bounding-box side) can be stored as
+/// 32-bit floats (PLY `float`, glTF `FLOAT`): its Gaussian curvature is about `1/size²` and must
+/// lie, with [`CURVATURE_HEADROOM`] on both sides, within the positive normal `f32` range.
+/// Known before a fit, so that a run whose curvature could not be written is refused before
+/// its work; the error says why and what to do. A size of zero (a single point) passes: its
+/// curvature is zero.
+pub fn curvature_scale_fits_f32(size: f64) -> Result<(), String> {
+    if size == 0.0 {
+        return Ok(());
+    }
+    let k = 1.0 / (size * size);
+    let (lo, hi) = (
+        f64::from(f32::MIN_POSITIVE) * CURVATURE_HEADROOM,
+        f64::from(f32::MAX) / CURVATURE_HEADROOM,
+    );
+    if k.is_finite() && (lo..=hi).contains(&k) {
+        return Ok(());
+    }
+    Err(format!(
+        "the model's size is {size:e}, so its Gaussian curvature is about 1/size² = {k:e}, outside what this format's 32-bit floats store with room for its features ({lo:e} to {hi:e}: sizes {:e} to {:e}); write a format without curvature (.obj, .off, .stl) or rescale the model",
+        1.0 / hi.sqrt(),
+        1.0 / lo.sqrt()
+    ))
+}
+
 /// What the vertex colours show: a colour map of a per-vertex quantity over a range, recorded
 /// in the file (glTF `extras`, PLY/OBJ/OFF comments) so a reader can tell colour from value.
 #[derive(Clone, Debug, PartialEq)]
@@ -192,6 +223,18 @@ mod tests {
             );
         }
         assert_eq!(Curvature::default().principal(0), None);
+    }
+
+    #[test]
+    fn the_scale_check_refuses_curvature_no_float_holds() {
+        assert!(curvature_scale_fits_f32(1.0).is_ok());
+        assert!(curvature_scale_fits_f32(1e-12).is_ok());
+        assert!(curvature_scale_fits_f32(1e12).is_ok());
+        assert!(curvature_scale_fits_f32(0.0).is_ok());
+        // The case that used to fail after the whole fit: K ~ 1e308.
+        let e = curvature_scale_fits_f32(1e-154).err().unwrap_or_default();
+        assert!(e.contains("1e-154") && e.contains(".obj"), "{e}");
+        assert!(curvature_scale_fits_f32(1e100).is_err());
     }
 
     #[test]
