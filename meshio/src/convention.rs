@@ -96,7 +96,7 @@ pub fn curvature_scale_fits_f32(size: f64) -> Result<(), String> {
         return Ok(());
     }
     Err(format!(
-        "the model's size is {size:e}, so its Gaussian curvature is about 1/size² = {k:e}, outside what this format's 32-bit floats store with room for its features ({lo:e} to {hi:e}: sizes {:e} to {:e}); write a format without curvature (.obj, .off, .stl) or rescale the model",
+        "the model's size is {size:.3e}, so its Gaussian curvature is about 1/size² = {k:.3e}, outside what this format's 32-bit floats store with room for its features ({lo:.1e} to {hi:.1e}: sizes {:.1e} to {:.1e}); write a format without curvature (.obj, .off, .stl) or rescale the model",
         1.0 / hi.sqrt(),
         1.0 / lo.sqrt()
     ))
@@ -233,7 +233,7 @@ mod tests {
         assert!(curvature_scale_fits_f32(0.0).is_ok());
         // The case that used to fail after the whole fit: K ~ 1e308.
         let e = curvature_scale_fits_f32(1e-154).err().unwrap_or_default();
-        assert!(e.contains("1e-154") && e.contains(".obj"), "{e}");
+        assert!(e.contains("1.000e-154") && e.contains(".obj"), "{e}");
         assert!(curvature_scale_fits_f32(1e100).is_err());
     }
 
