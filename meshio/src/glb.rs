@@ -831,9 +831,12 @@ fn read_glb(bytes: &[u8]) -> Result<RawMesh, ReadError> {
         ));
     }
     let mut mesh = RawMesh::default();
+    // Each per-vertex attribute is collected while every primitive so far has it; `missing`
+    // counts the primitives without it (then it is dropped, with a note if some had it).
     let mut normals: Option<Vec<Vector3<f64>>> = Some(Vec::new());
     let mut colors: Option<Vec<[f32; 3]>> = Some(Vec::new());
     let mut curvature: Option<Curvature> = Some(Curvature::default());
+    let (mut with_n, mut with_c, mut with_k) = (0usize, 0usize, 0usize);
     let mut alpha = false;
     let mut scaled = false;
     let mut dropped: Vec<&str> = Vec::new();
@@ -896,6 +899,7 @@ fn read_glb(bytes: &[u8]) -> Result<RawMesh, ReadError> {
             // NORMAL
             match (p.attributes.get("NORMAL"), normals.as_mut()) {
                 (Some(&na), Some(ns)) => {
+                    with_n += 1;
                     let nv = accessor(&doc, bin, na, "NORMAL", &[FLOAT], &["VEC3"])?;
                     if nv.count != pos.count {
                         return Err(at(
@@ -925,15 +929,14 @@ fn read_glb(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                         ns.push(Vector3::from(up.from_gltf([t.x, t.y, t.z])));
                     }
                 }
-                (None, Some(_)) => {
-                    normals = None;
-                    dropped.push("normals");
-                }
+                (None, Some(_)) => normals = None,
+                (Some(_), None) => with_n += 1,
                 _ => {}
             }
             // COLOR_0
             match (p.attributes.get("COLOR_0"), colors.as_mut()) {
                 (Some(&ca), Some(cs)) => {
+                    with_c += 1;
                     let cv = accessor(
                         &doc,
                         bin,
@@ -978,10 +981,8 @@ fn read_glb(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                         cs.push(c.map(|x| x as f32));
                     }
                 }
-                (None, Some(_)) => {
-                    colors = None;
-                    dropped.push("colours");
-                }
+                (None, Some(_)) => colors = None,
+                (Some(_), None) => with_c += 1,
                 _ => {}
             }
             // Curvature
@@ -991,6 +992,7 @@ fn read_glb(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                 curvature.as_mut(),
             ) {
                 (Some(&ka), Some(&ha), Some(c)) => {
+                    with_k += 1;
                     for (a, name, out) in [
                         (ka, GAUSSIAN_ATTRIBUTE, &mut c.gaussian),
                         (ha, MEAN_ATTRIBUTE, &mut c.mean),
@@ -1019,10 +1021,8 @@ fn read_glb(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                         }
                     }
                 }
-                (_, _, Some(_)) => {
-                    curvature = None;
-                    dropped.push("curvature");
-                }
+                (Some(_), Some(_), None) => with_k += 1,
+                (_, _, Some(_)) => curvature = None,
                 _ => {}
             }
             // Triangles
@@ -1085,8 +1085,15 @@ fn read_glb(bytes: &[u8]) -> Result<RawMesh, ReadError> {
         mesh.notes
             .push("curvature dropped: a node scales its mesh".into());
     }
-    dropped.sort_unstable();
-    dropped.dedup();
+    for (with, what) in [
+        (with_n, "normals"),
+        (with_c, "colours"),
+        (with_k, "curvature"),
+    ] {
+        if with > 0 && with < prims {
+            dropped.push(what);
+        }
+    }
     if !dropped.is_empty() {
         mesh.notes.push(format!(
             "{} dropped: some primitives have them and some do not",
@@ -1102,9 +1109,9 @@ fn read_glb(bytes: &[u8]) -> Result<RawMesh, ReadError> {
             .push("turned from glTF's y up into z up: (x, y, z) = glTF (x, -z, y)".into());
     }
     let nonempty = !mesh.positions.is_empty();
-    mesh.normals = normals.filter(|_| nonempty);
-    mesh.colors = colors.filter(|_| nonempty);
-    mesh.curvature = curvature.filter(|_| nonempty);
+    mesh.normals = normals.filter(|_| nonempty && with_n == prims);
+    mesh.colors = colors.filter(|_| nonempty && with_c == prims);
+    mesh.curvature = curvature.filter(|_| nonempty && with_k == prims);
     mesh.polygons = polys;
     Ok(mesh)
 }
