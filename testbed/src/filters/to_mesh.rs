@@ -25,8 +25,8 @@ pub struct ToMeshArgs {
 impl Filter for ToMesh {
     const NAME: &'static str = "to-mesh";
     const SUMMARY: &'static str = "\
-        The triangles as the mesh file -o, --output FILE (welded by position within a tolerance: \
-        the library's weld), format by extension";
+        The triangles as a mesh file (welded by position within a tolerance: the library's \
+        weld), format by extension";
     const DESCRIPTION: &'static str = "\
         Reads every Triangle and every triangle of a TriangleMesh; other records are ignored. \
         Corners closer than a tolerance relative to the triangles' size are one vertex (the weld \
