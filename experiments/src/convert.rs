@@ -2,16 +2,17 @@
 //! lacks, and write it in the format its output extension names.
 //!
 //! `.m` output (the testbed format) carries the normals in `norm` and the shape tensors in
-//! `shape`, so `fit --data OUT.m --estimate none` reads them back as exact data. `.ply` output
-//! carries the normals, and the Gaussian and mean curvature as vertex properties `gaussian` and
-//! `mean` when the curvature is known; `.obj`, `.off`, `.glb` carry the normals; `.stl` carries
-//! positions and facets only (the format has no more).
+//! `shape`, so `fit --data OUT.m --estimate none` reads them back as exact data (the
+//! workbench's own sign convention). `.ply` and `.glb` output carry the normals and, when the
+//! curvature is known, the curvature in libigl's, trimesh's and MeshLab's convention (`H > 0`
+//! on a sphere with outward normals: `meshio::convention`): PLY `quality` (K),
+//! `gaussian_curvature`, `mean_curvature`, `k1`, `k2`; glTF `_GAUSSIAN_CURVATURE`,
+//! `_MEAN_CURVATURE` (`--up` says which axis is up; glTF is y up). `.obj`, `.off` carry the
+//! normals; `.stl` carries positions and facets only (the format has no more).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
-
-use meshio::WriteOptions;
 
 use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
@@ -29,7 +30,19 @@ pub struct ConvertArgs {
     /// Write text instead of binary where the format offers both (PLY, STL).
     #[arg(long)]
     ascii: bool,
+    /// How the mesh file is written.
+    #[command(flatten)]
+    mesh_options: fitjob::output::MeshOutputOptions,
 }
+
+/// The PLY vertex properties the curvature is written as (`meshio::ply`).
+const CURVATURE_PROPERTY_NAMES: [&str; 5] = [
+    "quality",
+    "gaussian_curvature",
+    "mean_curvature",
+    "k1",
+    "k2",
+];
 
 /// Runs the conversion.
 pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
@@ -41,7 +54,8 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     loaded.frame.mesh_to_world(&mut world);
     let mesh = &world;
     let mut raw = surface::repair::mesh_to_raw(mesh, true);
-    if format.writes_properties() && mesh.vertices().iter().all(|v| v.curvature_known) {
+    if format.writes_curvature() && mesh.vertices().iter().all(|v| v.curvature_known) {
+        // The workbench's sign internally; the file gets the exported one (H > 0 on a sphere).
         let (k, h): (Vec<f64>, Vec<f64>) = mesh
             .vertices()
             .iter()
@@ -50,14 +64,18 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
                 (a * b, 0.5 * (a + b))
             })
             .unzip();
-        raw.properties.insert("gaussian".into(), k);
-        raw.properties.insert("mean".into(), h);
+        // Properties of the input under the names the curvature is written as give way to it.
+        for name in CURVATURE_PROPERTY_NAMES {
+            if raw.properties.remove(name).is_some() {
+                say!("  the input's vertex property `{name}` is replaced by the curvature");
+            }
+        }
+        raw.curvature = Some(meshio::Curvature::from_internal(k, h));
     }
-    let options = if args.ascii {
-        WriteOptions::new().ascii()
-    } else {
-        WriteOptions::new()
-    };
+    let mut options = args.mesh_options.write_options();
+    if args.ascii {
+        options = options.ascii();
+    }
     let bytes = meshio::write_bytes(&raw, format, &options).map_err(|source| {
         ExperimentError::MeshWrite {
             path: args.output.clone(),

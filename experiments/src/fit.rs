@@ -48,10 +48,16 @@ pub struct FitArgs {
     #[arg(long)]
     strict: bool,
     /// Where to write the tessellation, in the format its extension names (.obj, .ply, .off,
-    /// .stl, .glb, .m): positions and normals; PLY and glTF also get vertex colours by Gaussian
-    /// curvature (the testbed's KColor), PLY the curvatures as properties `gaussian`, `mean`.
+    /// .stl, .glb, .m): positions, normals, vertex colours by Gaussian curvature (the testbed's
+    /// KColor; sRGB in PLY, OBJ and OFF, linear in glTF); PLY and glTF also the curvature, in
+    /// libigl's, trimesh's and MeshLab's convention (H > 0 on a sphere with outward normals):
+    /// PLY `quality` (K), `gaussian_curvature`, `mean_curvature`, `k1`, `k2`; glTF
+    /// `_GAUSSIAN_CURVATURE`, `_MEAN_CURVATURE`.
     #[arg(long)]
     mesh_output: Option<PathBuf>,
+    /// How the mesh file is written.
+    #[command(flatten)]
+    mesh_options: fitjob::output::MeshOutputOptions,
     /// Write the whole report as JSON here: every count the summary prints, every fallback face
     /// with its reason and every degenerate edge (the summary lists the first ten), the G1
     /// split, the timings (under `time`) and the peak memory. `-`: standard output.
@@ -75,6 +81,7 @@ impl FitArgs {
             measure_g1: true,
             patches_out: self.output.clone(),
             mesh_out: self.mesh_output.clone(),
+            mesh_options: self.mesh_options,
             keep: false,
         }
     }

@@ -56,6 +56,8 @@ pub struct FitOptions {
     pub patches_out: Option<PathBuf>,
     /// Where to write the tessellation, in the format its extension names.
     pub mesh_out: Option<PathBuf>,
+    /// How the mesh file is written (the up axis of formats that fix one).
+    pub mesh_options: crate::output::MeshOutputOptions,
     /// Keep the mesh, the fit (every net) and the tessellation in the outcome, for a caller
     /// that works on them in memory (the pipeline's `fit`, the Python package). The fit is then
     /// held whole instead of streamed: the same report, more memory.
@@ -79,6 +81,7 @@ impl Default for FitOptions {
             measure_g1: true,
             patches_out: None,
             mesh_out: None,
+            mesh_options: crate::output::MeshOutputOptions::default(),
             keep: false,
         }
     }

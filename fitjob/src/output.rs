@@ -114,3 +114,93 @@ pub fn writable_extensions() -> String {
         .collect::<Vec<_>>()
         .join(", ")
 }
+
+/// How mesh files are written: the options every command that writes one shares (`--up`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+pub struct MeshOutputOptions {
+    /// The data's up axis, for mesh formats that fix one: glTF is y up, so the default (z, the
+    /// workbench's data) is turned into glTF's y; `y` writes the data unchanged. Recorded in the
+    /// file's `extras`.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = meshio::UpAxis::Z))]
+    pub up: meshio::UpAxis,
+}
+
+impl MeshOutputOptions {
+    /// The writer's options these ask for.
+    pub fn write_options(&self) -> meshio::WriteOptions {
+        meshio::WriteOptions::new().up(self.up)
+    }
+}
+
+/// A tessellation as the mesh a file of `format` stores: positions, normals, colours by
+/// Gaussian curvature (the testbed's KColor: diverging map saturating at the 95th percentile
+/// of `|K|`, so a few spikes do not wash the picture out; the range is recorded with the
+/// colours), and where `format` stores curvature ([`meshio::MeshFormat::writes_curvature`]),
+/// the Gaussian and mean curvature in the exported convention (`H > 0` on a sphere with
+/// outward normals; [`meshio::Curvature::from_internal`]). A format that stores no curvature
+/// is not given any, so nothing it does not store can stop it.
+pub fn tessellation_mesh(
+    tess: &surface::Tessellation,
+    format: &dyn meshio::MeshFormat,
+) -> meshio::RawMesh {
+    let mut raw = meshio::RawMesh::from_triangles(tess.positions.clone(), &tess.faces);
+    raw.normals = Some(tess.normals.clone());
+    let limit = gaussian_colour_limit(&tess.gaussian);
+    raw.colors = Some(
+        tess.gaussian
+            .iter()
+            .map(|k| render::colors::diverging(*k, limit))
+            .collect(),
+    );
+    raw.color_map = Some(meshio::ColorMap {
+        quantity: "gaussian_curvature".into(),
+        map: "diverging".into(),
+        min: -limit,
+        max: limit,
+    });
+    if format.writes_curvature() {
+        raw.curvature = Some(meshio::Curvature::from_internal(
+            tess.gaussian.clone(),
+            tess.mean.clone(),
+        ));
+    }
+    raw
+}
+
+/// The colour limit of [`tessellation_mesh`]: the 95th percentile of the finite `|K|` (by the
+/// index `⌊(n − 1) · 95/100⌋`), 1 when that is zero or there is none.
+pub fn gaussian_colour_limit(gaussian: &[f64]) -> f64 {
+    let mut abs: Vec<f64> = gaussian
+        .iter()
+        .map(|k| k.abs())
+        .filter(|k| k.is_finite())
+        .collect();
+    abs.sort_by(f64::total_cmp);
+    abs.get(abs.len().saturating_sub(1) * 95 / 100)
+        .copied()
+        .filter(|l| *l > 0.0)
+        .unwrap_or(1.0)
+}
+
+/// Refuses, before a fit, a mesh output (given by `option`) whose format stores curvature as
+/// 32-bit floats when the model's `size` (its largest side) puts its curvature outside them
+/// ([`meshio::convention::curvature_scale_fits_f32`]). A format without curvature passes
+/// whatever the size.
+pub fn refuse_unstorable_curvature(
+    option: &'static str,
+    path: &Path,
+    format: &dyn meshio::MeshFormat,
+    size: f64,
+) -> Result<(), JobError> {
+    if !format.writes_curvature() {
+        return Ok(());
+    }
+    meshio::convention::curvature_scale_fits_f32(size).map_err(|message| JobError::MeshWrite {
+        path: path.to_path_buf(),
+        source: meshio::WriteError::Invalid {
+            format: format.name(),
+            message: format!("{option}: {message}"),
+        },
+    })
+}

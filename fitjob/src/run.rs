@@ -112,6 +112,10 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
     let repaired = loaded.repairs.as_ref().is_some_and(|r| !r.is_clean());
     let mesh = loaded.mesh;
     let frame = loaded.frame;
+    if let (Some(path), Some(format)) = (&options.mesh_out, mesh_format) {
+        // Curvature no float of the format holds is refused now, not after the fit.
+        crate::output::refuse_unstorable_curvature("--mesh-output", path, format, frame.scale)?;
+    }
     let t_read = t0.elapsed().as_secs_f64();
     // Peak resident memory after each stage (where the system says), for the summary.
     let mut peaks: Vec<PeakMemory> = Vec::new();
@@ -302,14 +306,14 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         })?;
         let tessellate_time = t3.elapsed().as_secs_f64();
         tess.to_world(&frame);
-        let raw = crate::colour::tessellation_to_raw(&tess);
-        let bytes =
-            meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|source| {
-                JobError::MeshWrite {
-                    path: path.clone(),
-                    source,
-                }
-            })?;
+        let raw = crate::output::tessellation_mesh(&tess, format);
+        let write_options = options.mesh_options.write_options();
+        let bytes = meshio::write_bytes(&raw, format, &write_options).map_err(|source| {
+            JobError::MeshWrite {
+                path: path.clone(),
+                source,
+            }
+        })?;
         write_result(Some(path), &bytes)?;
         t_tess = t3.elapsed().as_secs_f64();
         log(&format!(

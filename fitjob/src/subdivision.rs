@@ -75,10 +75,13 @@ pub fn run(options: &FitOptions) -> Result<FitReport, JobError> {
             .unwrap_or_default();
         refuse_overwriting_input("--mesh-output", path, &input)?;
         let format = mesh_format_for("--mesh-output", path)?;
-        let bytes = meshio::write_bytes(&refined.to_raw(), format, &meshio::WriteOptions::new())
-            .map_err(|source| JobError::MeshWrite {
-                path: path.to_path_buf(),
-                source,
+        let write_options = options.mesh_options.write_options();
+        let bytes =
+            meshio::write_bytes(&refined.to_raw(), format, &write_options).map_err(|source| {
+                JobError::MeshWrite {
+                    path: path.to_path_buf(),
+                    source,
+                }
             })?;
         write_result(Some(path), &bytes)?;
     }

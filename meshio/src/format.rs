@@ -10,6 +10,7 @@
 
 use std::path::Path;
 
+use crate::convention::UpAxis;
 use crate::error::{MeshIoError, ReadError, WriteError};
 use crate::raw::RawMesh;
 
@@ -21,10 +22,13 @@ pub struct WriteOptions {
     pub ascii: bool,
     /// Write positions as 64-bit floats (PLY `double`). Default: 32-bit floats.
     pub double_precision: bool,
+    /// The data's up axis, for formats that fix one (glTF is `y` up). Default: `z`, turned into
+    /// glTF's `y` ([`UpAxis::to_gltf`]).
+    pub up: UpAxis,
 }
 
 impl WriteOptions {
-    /// The defaults: binary, 32-bit floats.
+    /// The defaults: binary, 32-bit floats, `z` up.
     pub fn new() -> Self {
         Self::default()
     }
@@ -38,6 +42,12 @@ impl WriteOptions {
     /// 64-bit positions.
     pub fn double_precision(mut self) -> Self {
         self.double_precision = true;
+        self
+    }
+
+    /// The data's up axis.
+    pub fn up(mut self, up: UpAxis) -> Self {
+        self.up = up;
         self
     }
 }
@@ -69,6 +79,12 @@ pub trait MeshFormat: Sync {
     /// True if its writer keeps [`RawMesh::properties`] (named per-vertex scalars such as
     /// `gaussian` and `mean`), so that a caller adds them only where they are written.
     fn writes_properties(&self) -> bool {
+        false
+    }
+
+    /// True if its writer stores [`RawMesh::curvature`], so that a caller computes it (and its
+    /// values are checked) only where it is written.
+    fn writes_curvature(&self) -> bool {
         false
     }
 

@@ -2,8 +2,9 @@
 //!
 //! # Reading
 //!
-//! * `v x y z [w]` positions (`w` is ignored); `v x y z r g b` also gives a vertex colour (0–1),
-//!   kept in [`RawMesh::colors`] when every vertex has one (otherwise dropped with a note).
+//! * `v x y z [w]` positions (`w` is ignored); `v x y z r g b` also gives a vertex colour (0–1,
+//!   sRGB-encoded as every OBJ viewer reads it, decoded to linear: [`crate::srgb`]), kept in
+//!   [`RawMesh::colors`] when every vertex has one (otherwise dropped with a note).
 //! * `vn x y z` normals, used through the faces' corners (see below).
 //! * `f c1 c2 c3 …` polygons, kept as they are, with corners `a`, `a/b`, `a//c` or `a/b/c`
 //!   (position / texture / normal index, 1-based; negative indices count back from the last
@@ -23,10 +24,13 @@
 //!
 //! # Writing
 //!
-//! `v x y z` (`v x y z r g b` with colours), `vn` per vertex when there are normals, `f` with
-//! `a//a` corners when there are normals; polygons as they are. Numbers are written in Rust's
-//! shortest round-trip form, so reading back gives identical values. Shapes, names and other
-//! properties are not written (OBJ has no place for them).
+//! `#` comment lines first: the generator, the curvature convention where the colours show
+//! curvature, the colour encoding and map ([`crate::convention`]). `v x y z` (`v x y z r g b`
+//! with colours, sRGB-encoded 0–1), `vn` per vertex when there are normals, `f` with `a//a`
+//! corners when there are normals; polygons as they are. Numbers are written in Rust's
+//! shortest round-trip form, so reading back gives identical positions (colours within the
+//! `f32` rounding of the sRGB round trip). Shapes, names, curvature and other properties are
+//! not written (OBJ has no place for them).
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -41,6 +45,9 @@ use crate::util::{
 };
 
 const NAME: &str = "obj";
+
+/// How the colours are stored, for the header comment.
+const COLOUR_NOTE: &str = "0-1 after the position (v x y z r g b)";
 
 /// Two corners of one position whose normals' directions differ by more than this angle
 /// (radians, about 0.06°) disagree: exporters that weld vertices print the same normal with the
@@ -189,7 +196,7 @@ fn read_obj(bytes: &[u8]) -> Result<RawMesh, ReadError> {
                 } else {
                     match n {
                         3 | 4 => {}
-                        6 => colors.push([r as f32, g as f32, b as f32]),
+                        6 => colors.push([r, g, b].map(|c| crate::srgb::decode(c as f32))),
                         _ => {
                             return Err(err(
                                 ln,
@@ -357,11 +364,14 @@ fn vertex_normals(
 fn write_obj(mesh: &RawMesh) -> Result<Vec<u8>, WriteError> {
     validate_for_write(mesh, NAME)?;
     let mut s = String::with_capacity(40 * mesh.positions.len() + 30 * mesh.polygons.len());
-    s.push_str("# written by meshio\n");
+    for line in crate::util::provenance(mesh, Some(COLOUR_NOTE)) {
+        let _ = writeln!(s, "# {line}");
+    }
     for (i, p) in mesh.positions.iter().enumerate() {
         let _ = write!(s, "v {:?} {:?} {:?}", p.x, p.y, p.z);
         if let Some(c) = mesh.colors.as_ref().and_then(|c| c.get(i)) {
-            let _ = write!(s, " {:?} {:?} {:?}", c[0], c[1], c[2]);
+            let [r, g, b] = c.map(crate::srgb::encode);
+            let _ = write!(s, " {r:?} {g:?} {b:?}");
         }
         s.push('\n');
     }

@@ -1,4 +1,5 @@
-//! OFF (Object File Format, Geomview): `OFF`, `COFF`, `NOFF`, `CNOFF`.
+//! OFF (Object File Format, Geomview): reads `OFF`, `COFF`, `NOFF`, `CNOFF`; writes `OFF`,
+//! `COFF` or `NOFF`.
 //!
 //! # Reading
 //!
@@ -6,10 +7,11 @@
 //! `4OFF` are refused) may be followed on the same line by the counts `nv nf ne`, or the counts
 //! come on the next line (`ne` is read and ignored). `#` starts a comment; blank lines are
 //! skipped. Then one line per vertex: `x y z`, then `nx ny nz` for `N` variants (→ normals),
-//! then 3 or 4 colour values for `C` variants (→ colours; integers are 0–255 and divided by
-//! 255, numbers with a decimal point or exponent are 0–1 and kept; the fourth value, alpha,
-//! is dropped with a note). Then one line per face: `n i1 … in`, optionally followed by a face
-//! colour (ignored, with a note). Polygons are kept as they are.
+//! then 3 or 4 colour values for `C` variants (→ colours, read as sRGB-encoded, as every OFF
+//! viewer does, and decoded to linear: [`crate::srgb`]; integers are 0–255 and divided by 255,
+//! numbers with a decimal point or exponent are 0–1; the fourth value, alpha, is dropped with a
+//! note). Then one line per face: `n i1 … in`, optionally followed by a face colour (ignored,
+//! with a note). Polygons are kept as they are.
 //!
 //! Refused, naming the line: a wrong number of values on a vertex line, numbers that do not
 //! parse or are not finite, faces with fewer than 3 corners, indices out of range, fewer
@@ -17,8 +19,14 @@
 //!
 //! # Writing
 //!
-//! `OFF`, or `NOFF` with normals, `COFF`/`CNOFF` with colours (as 0–1 numbers), counts on their
-//! own line, polygons as they are, numbers in Rust's shortest round-trip form.
+//! A header other tools read: `COFF` with colours (sRGB bytes 0–255, what libigl and MeshLab
+//! read), `NOFF` with normals and no colours, else `OFF`. `CNOFF`, colours and normals, is
+//! refused by libigl and by Python's meshio, so with colours the normals are left out (a
+//! comment says so). Python's meshio 5.3 reads only plain `OFF`. Then `#` comment lines (the
+//! generator, the curvature convention where the colours show curvature, the colour encoding
+//! and map: [`crate::convention`]), which every reader skips after the header line; the counts
+//! on their own line, polygons as they are, numbers in Rust's shortest round-trip form.
+//! Curvature is not written (OFF has no place for it).
 
 use std::fmt::Write as _;
 
@@ -32,6 +40,9 @@ use crate::util::{
 };
 
 const NAME: &str = "off";
+
+/// How the colours are stored, for the header comment.
+const COLOUR_NOTE: &str = "bytes 0-255 after the position";
 
 /// The OFF format (`.off`).
 #[derive(Clone, Copy, Debug, Default)]
@@ -178,8 +189,9 @@ fn read_off(bytes: &[u8]) -> Result<RawMesh, ReadError> {
         }
         if colors_flag {
             let scale = if float_color { 1.0 } else { 255.0 };
-            let col =
-                [0, 1, 2].map(|k| (vals.get(ncols + k).copied().unwrap_or(0.0) / scale) as f32);
+            let col = [0, 1, 2].map(|k| {
+                crate::srgb::decode((vals.get(ncols + k).copied().unwrap_or(0.0) / scale) as f32)
+            });
             colors.push(col);
             if n == ncols + 4 {
                 alpha += 1;
@@ -244,21 +256,36 @@ fn read_off(bytes: &[u8]) -> Result<RawMesh, ReadError> {
 fn write_off(mesh: &RawMesh) -> Result<Vec<u8>, WriteError> {
     validate_for_write(mesh, NAME)?;
     let mut s = String::with_capacity(40 * mesh.positions.len() + 30 * mesh.polygons.len());
-    if mesh.colors.is_some() {
-        s.push('C');
+    // One of the headers libigl, MeshLab and trimesh all read: `COFF` when there are colours
+    // (normals then left out: no reader takes both), `NOFF` with normals, else `OFF`.
+    let colors = mesh.colors.as_ref();
+    let normals = if colors.is_some() {
+        None
+    } else {
+        mesh.normals.as_ref()
+    };
+    s.push_str(match (colors.is_some(), normals.is_some()) {
+        (true, _) => "COFF\n",
+        (false, true) => "NOFF\n",
+        (false, false) => "OFF\n",
+    });
+    for line in crate::util::provenance(mesh, Some(COLOUR_NOTE)) {
+        let _ = writeln!(s, "# {line}");
     }
-    if mesh.normals.is_some() {
-        s.push('N');
+    if colors.is_some() && mesh.normals.is_some() {
+        s.push_str(
+            "# normals not written: OFF readers take colours (COFF) or normals (NOFF), not both\n",
+        );
     }
-    s.push_str("OFF\n");
     let _ = writeln!(s, "{} {} 0", mesh.positions.len(), mesh.polygons.len());
     for (i, p) in mesh.positions.iter().enumerate() {
         let _ = write!(s, "{:?} {:?} {:?}", p.x, p.y, p.z);
-        if let Some(n) = mesh.normals.as_ref().and_then(|n| n.get(i)) {
+        if let Some(n) = normals.and_then(|n| n.get(i)) {
             let _ = write!(s, " {:?} {:?} {:?}", n.x, n.y, n.z);
         }
-        if let Some(c) = mesh.colors.as_ref().and_then(|c| c.get(i)) {
-            let _ = write!(s, " {:?} {:?} {:?}", c[0], c[1], c[2]);
+        if let Some(c) = colors.and_then(|c| c.get(i)) {
+            let [r, g, b] = c.map(crate::srgb::encode_byte);
+            let _ = write!(s, " {r} {g} {b}");
         }
         s.push('\n');
     }

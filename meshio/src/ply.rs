@@ -7,10 +7,13 @@
 //! float32 float64`.
 //!
 //! * Element `vertex` (required): `x y z` (required) → positions; `nx ny nz` (all three) →
-//!   normals; `red green blue` (all three) → colours, integer types divided by the type's
-//!   maximum (`uchar`: 255), float types kept as they are; every other scalar property (also
-//!   `alpha`, texture coordinates, `quality`, …) → [`RawMesh::properties`] as `f64`. List
-//!   properties of vertices are skipped (with a note).
+//!   normals; `red green blue` (all three) → colours, read as sRGB-encoded (what every PLY
+//!   viewer assumes) and decoded to linear ([`crate::srgb`]): integer types divided by the
+//!   type's maximum (`uchar`: 255), float types taken as 0–1; `gaussian_curvature` and
+//!   `mean_curvature` (both) → [`RawMesh::curvature`] (the exported convention, as written),
+//!   with `k1`, `k2` and a `quality` equal to `K` dropped as derived from them; every other
+//!   scalar property (also `alpha`, texture coordinates, `quality`, …) →
+//!   [`RawMesh::properties`] as `f64`. List properties of vertices are skipped (with a note).
 //! * Element `face`: the list property `vertex_indices` (or `vertex_index`), any integer count
 //!   and index types → polygons as they are; other face properties are skipped.
 //! * Other elements (`edge`, `material`, …) are parsed and skipped (with a note), lists
@@ -24,11 +27,29 @@
 //!
 //! # Writing
 //!
-//! Binary little endian by default ([`WriteOptions::ascii`] for text): `x y z` as `float`
-//! (`double` with [`WriteOptions::double_precision`]), `nx ny nz` as `float`, colours as
-//! `red green blue` `uchar`, [`RawMesh::properties`] as `float`, faces as
-//! `list uchar int vertex_indices` (`list int int` when a polygon has more than 255 corners).
-//! Shapes and names are not written (PLY has no standard place for them).
+//! One layout for every file the workbench writes, read by libigl (Python `igl` 2.6.3),
+//! trimesh, MeshLab (pymeshlab) and Python's meshio (`scripts/readback/readback.py` checks
+//! each). Binary little endian by default ([`WriteOptions::ascii`] for text). The header's
+//! comments name the generator, the curvature convention where there is curvature or colours
+//! by it, the colour encoding and the colour map ([`crate::convention`]). Vertex properties:
+//!
+//! * `x y z` as `float` (`double` with [`WriteOptions::double_precision`]);
+//! * `nx ny nz` as `float` when there are normals;
+//! * `red green blue` as `float` 0–1, **sRGB-encoded**, when there are colours;
+//! * with [`RawMesh::curvature`]: `quality` (MeshLab's per-vertex scalar, which it colours and
+//!   filters by) holding the Gaussian curvature `K`, then `gaussian_curvature`,
+//!   `mean_curvature`, `k1`, `k2` (`k1 ≥ k2`), all in the exported convention (`H > 0` on a
+//!   sphere with outward normals), each checked to fit a `float`;
+//! * [`RawMesh::properties`] as `float`.
+//!
+//! Every property after `x y z` is a `float`, colours included: libigl's reader requests every
+//! property it does not know (`red`, `quality`, …) as one matrix of one type and aborts the
+//! process (a "double free") when their types differ, so byte colours beside any float
+//! property kill it; Python's meshio 5.3 also reads binary `uchar` as signed bytes (180 → −76).
+//! MeshLab reads colours from `uchar` only, so it shows these files by `quality` (Colorize by
+//! vertex quality), which it reads. Faces as `list uchar int vertex_indices` (`list int int`
+//! when a polygon has more than 255 corners). Shapes and names are not written (PLY has no
+//! standard place for them).
 
 use std::fmt::Write as _;
 
@@ -37,7 +58,7 @@ use nalgebra::{Point3, Vector3};
 use crate::error::{ReadError, WriteError};
 use crate::format::{MeshFormat, WriteOptions};
 use crate::raw::{Polygons, RawMesh};
-use crate::util::{color_byte, show, validate_for_write};
+use crate::util::{show, validate_for_write};
 
 const NAME: &str = "ply";
 
@@ -59,6 +80,10 @@ impl MeshFormat for Ply {
     }
 
     fn writes_properties(&self) -> bool {
+        true
+    }
+
+    fn writes_curvature(&self) -> bool {
         true
     }
 
@@ -552,7 +577,7 @@ fn read_vertices(
                 }
                 Slot::Color(k) => {
                     if let Some(x) = col.get_mut(k) {
-                        *x = (v / scale) as f32;
+                        *x = crate::srgb::decode((v / scale) as f32);
                     }
                 }
                 Slot::Prop(k) => {
@@ -575,6 +600,7 @@ fn read_vertices(
     mesh.normals = has_normals.then_some(normals);
     mesh.colors = has_colors.then_some(colors);
     mesh.properties = prop_names.into_iter().zip(props).collect();
+    take_curvature(mesh);
     if !skipped_lists.is_empty() {
         mesh.notes.push(format!(
             "skipped vertex list properties: {}",
@@ -582,6 +608,26 @@ fn read_vertices(
         ));
     }
     Ok(())
+}
+
+/// Moves `gaussian_curvature` and `mean_curvature` (both present) from the properties into
+/// [`RawMesh::curvature`], with what the writer derives from them (`k1` and `k2`, and `quality`
+/// when it holds `K` exactly, as the writer writes it).
+fn take_curvature(mesh: &mut RawMesh) {
+    let props = &mut mesh.properties;
+    if !(props.contains_key("gaussian_curvature") && props.contains_key("mean_curvature")) {
+        return;
+    }
+    let gaussian = props.remove("gaussian_curvature").unwrap_or_default();
+    let mean = props.remove("mean_curvature").unwrap_or_default();
+    if props.contains_key("k1") && props.contains_key("k2") {
+        props.remove("k1");
+        props.remove("k2");
+    }
+    if props.get("quality") == Some(&gaussian) {
+        props.remove("quality");
+    }
+    mesh.curvature = Some(crate::convention::Curvature { gaussian, mean });
 }
 
 fn read_faces(
@@ -651,15 +697,52 @@ fn read_faces(
     Ok(())
 }
 
+/// Vertex property names the writer sets itself.
 const RESERVED: &[&str] = &["x", "y", "z", "nx", "ny", "nz", "red", "green", "blue"];
 
-fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
-    validate_for_write(mesh, NAME)?;
-    for k in mesh.properties.keys() {
-        if k.is_empty() || k.bytes().any(|b| b.is_ascii_whitespace() || !b.is_ascii()) {
+/// The names the curvature is written under (with `quality`, MeshLab's scalar, holding `K`).
+const CURVATURE_NAMES: &[&str] = &[
+    "quality",
+    "gaussian_curvature",
+    "mean_curvature",
+    "k1",
+    "k2",
+];
+
+/// How the colours are stored, for the header comment.
+const COLOUR_NOTE: &str = "float 0-1 (float, not uchar: libigl 2.6's reader aborts on byte colours beside float properties)";
+
+/// Every vertex property after `x y z` in file order, each as `(name, per-vertex value)`; all
+/// are `float`, so that libigl's reader, which reads every property it does not know into one
+/// matrix of one type, survives (module docs).
+fn float_columns(mesh: &RawMesh) -> Result<Vec<(String, Vec<f64>)>, WriteError> {
+    let mut cols: Vec<(String, Vec<f64>)> = Vec::new();
+    if let Some(ns) = &mesh.normals {
+        for (k, name) in ["nx", "ny", "nz"].iter().enumerate() {
+            cols.push((name.to_string(), ns.iter().map(|n| n[k]).collect()));
+        }
+    }
+    if let Some(cs) = &mesh.colors {
+        for (k, name) in ["red", "green", "blue"].iter().enumerate() {
+            let encoded = cs.iter().map(|c| f64::from(crate::srgb::encode(c[k])));
+            cols.push((name.to_string(), encoded.collect()));
+        }
+    }
+    if let Some(c) = &mesh.curvature {
+        let [k, h, k1, k2] = crate::util::curvature_columns(NAME, c)?;
+        cols.push(("quality".into(), k.1.clone()));
+        for (name, vs) in [k, h, k1, k2] {
+            cols.push((name.into(), vs));
+        }
+    }
+    for (k, vs) in &mesh.properties {
+        if k.is_empty()
+            || k.bytes()
+                .any(|b| b.is_ascii_whitespace() || !b.is_ascii_graphic())
+        {
             return Err(WriteError::invalid(
                 NAME,
-                format!("property name `{k}` is not a PLY name (ASCII without spaces)"),
+                format!("property name `{k}` is not a PLY name (printable ASCII without spaces)"),
             ));
         }
         if RESERVED.contains(&k.as_str()) {
@@ -668,15 +751,21 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
                 format!("property `{k}` would clash with a standard vertex property"),
             ));
         }
-    }
-    for (k, vs) in &mesh.properties {
-        if let Some(i) = vs.iter().position(|v| v.abs() > f32::MAX as f64) {
+        if mesh.curvature.is_some() && CURVATURE_NAMES.contains(&k.as_str()) {
             return Err(WriteError::invalid(
                 NAME,
-                format!("property `{k}` of vertex {i} does not fit a float"),
+                format!("property `{k}` would clash with the curvature written under that name"),
             ));
         }
+        crate::util::check_f32_values(NAME, &format!("property `{k}`"), vs)?;
+        cols.push((k.clone(), vs.clone()));
     }
+    Ok(cols)
+}
+
+fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
+    validate_for_write(mesh, NAME)?;
+    let cols = float_columns(mesh)?;
     if !options.double_precision
         && mesh
             .positions
@@ -687,6 +776,14 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
             NAME,
             "a position does not fit a float (write with double precision)",
         ));
+    }
+    if let Some(ns) = &mesh.normals {
+        if let Some(i) = ns.iter().position(|n| n.amax() > f32::MAX as f64) {
+            return Err(WriteError::invalid(
+                NAME,
+                format!("the normal of vertex {i} does not fit a float"),
+            ));
+        }
     }
     if mesh.positions.len() > i32::MAX as usize {
         return Err(WriteError::invalid(
@@ -708,18 +805,14 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
     } else {
         "format binary_little_endian 1.0\n"
     });
-    h.push_str("comment written by meshio\n");
+    for line in crate::util::provenance(mesh, Some(COLOUR_NOTE)) {
+        let _ = writeln!(h, "comment {line}");
+    }
     let _ = writeln!(h, "element vertex {}", mesh.positions.len());
     for c in ["x", "y", "z"] {
         let _ = writeln!(h, "property {pos_ty} {c}");
     }
-    if mesh.normals.is_some() {
-        h.push_str("property float nx\nproperty float ny\nproperty float nz\n");
-    }
-    if mesh.colors.is_some() {
-        h.push_str("property uchar red\nproperty uchar green\nproperty uchar blue\n");
-    }
-    for k in mesh.properties.keys() {
+    for (k, _) in &cols {
         let _ = writeln!(h, "property float {k}");
     }
     let _ = writeln!(h, "element face {}", mesh.polygons.len());
@@ -729,11 +822,7 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
         "property list uchar int vertex_indices\n"
     });
     h.push_str("end_header\n");
-    let props: Vec<&Vec<f64>> = mesh.properties.values().collect();
-    let vbytes = if options.double_precision { 24 } else { 12 }
-        + if mesh.normals.is_some() { 12 } else { 0 }
-        + if mesh.colors.is_some() { 3 } else { 0 }
-        + 4 * props.len();
+    let vbytes = if options.double_precision { 24 } else { 12 } + 4 * cols.len();
     let mut out = Vec::with_capacity(
         h.len()
             + vbytes * mesh.positions.len()
@@ -749,19 +838,7 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
             } else {
                 let _ = write!(s, "{:?} {:?} {:?}", p.x as f32, p.y as f32, p.z as f32);
             }
-            if let Some(n) = mesh.normals.as_ref().and_then(|n| n.get(i)) {
-                let _ = write!(s, " {:?} {:?} {:?}", n.x as f32, n.y as f32, n.z as f32);
-            }
-            if let Some(c) = mesh.colors.as_ref().and_then(|c| c.get(i)) {
-                let _ = write!(
-                    s,
-                    " {} {} {}",
-                    color_byte(c[0]),
-                    color_byte(c[1]),
-                    color_byte(c[2])
-                );
-            }
-            for vs in &props {
+            for (_, vs) in &cols {
                 let _ = write!(s, " {:?}", vs.get(i).copied().unwrap_or(0.0) as f32);
             }
             s.push('\n');
@@ -783,15 +860,7 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
                     out.extend_from_slice(&(x as f32).to_le_bytes());
                 }
             }
-            if let Some(n) = mesh.normals.as_ref().and_then(|n| n.get(i)) {
-                for x in [n.x, n.y, n.z] {
-                    out.extend_from_slice(&(x as f32).to_le_bytes());
-                }
-            }
-            if let Some(c) = mesh.colors.as_ref().and_then(|c| c.get(i)) {
-                out.extend_from_slice(&[color_byte(c[0]), color_byte(c[1]), color_byte(c[2])]);
-            }
-            for vs in &props {
+            for (_, vs) in &cols {
                 let x = vs.get(i).copied().unwrap_or(0.0) as f32;
                 out.extend_from_slice(&x.to_le_bytes());
             }

@@ -8,6 +8,8 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Matrix3, Point3, Vector3};
 
+use crate::convention::{ColorMap, Curvature};
+
 /// Named per-vertex scalar properties a reader found and did not interpret (PLY `quality`,
 /// `red`, `u`, …), each with one value per vertex, in file order; writers put them back where
 /// their format can carry them.
@@ -116,8 +118,19 @@ pub struct RawMesh {
     /// Per-vertex shape tensors `S` (`κn(d) = dᵀ S d`, positive where the surface bends towards
     /// the normal), if the file gave them (the testbed format's `shape` field).
     pub shapes: Option<Vec<Matrix3<f64>>>,
-    /// Per-vertex colours, linear 0–1 RGB, if the file had them.
+    /// Per-vertex colours, linear 0–1 RGB, if the file had them (PLY, OBJ and OFF store them
+    /// sRGB-encoded: readers decode, writers encode; [`crate::srgb`]).
     pub colors: Option<Vec<[f32; 3]>>,
+    /// What the colours show (a colour map of a quantity over a range), written where a format
+    /// has a place for it ([`crate::convention::ColorMap`]).
+    pub color_map: Option<ColorMap>,
+    /// Per-vertex Gaussian and mean curvature in the exported convention (libigl's, trimesh's
+    /// and MeshLab's: `H > 0` on a sphere with outward normals; [`crate::convention`]), if the
+    /// mesh has them. Written by the formats that store curvature
+    /// ([`crate::MeshFormat::writes_curvature`]: PLY `quality`, `gaussian_curvature`,
+    /// `mean_curvature`, `k1`, `k2`; glTF `_GAUSSIAN_CURVATURE`, `_MEAN_CURVATURE`) and read
+    /// back by their readers.
+    pub curvature: Option<Curvature>,
     /// Per-vertex names (the testbed format names its points), if the file had them and they
     /// are not all implied ([`RawMesh::implied_vertex_names`]); read them through
     /// [`RawMesh::vertex_name`].

@@ -94,8 +94,10 @@ pub(crate) fn skip_space_and_comments(mut bytes: &[u8], comment: u8) -> &[u8] {
     }
 }
 
-/// Checks what every writer relies on: per-vertex arrays of the right length, finite numbers,
-/// face indices in range, no face with fewer than 3 corners.
+/// Checks what every writer relies on: per-vertex arrays of the right length, finite positions,
+/// normals, shapes and colours, face indices in range, no face with fewer than 3 corners.
+/// Properties and curvature are checked by the writers that store them
+/// ([`check_f32_values`]): a format is asked only for what it stores.
 pub(crate) fn validate_for_write(mesh: &RawMesh, format: &'static str) -> Result<(), WriteError> {
     let n = mesh.positions.len();
     let check_len = |what: &str, len: Option<usize>| match len {
@@ -156,10 +158,9 @@ pub(crate) fn validate_for_write(mesh: &RawMesh, format: &'static str) -> Result
             }
         }
     }
-    for (k, vs) in &mesh.properties {
-        if let Some(i) = vs.iter().position(|x| !x.is_finite()) {
-            return nonfinite(&format!("property `{k}`"), i);
-        }
+    if let Some(c) = &mesh.curvature {
+        check_len("curvature (gaussian)", Some(c.gaussian.len()))?;
+        check_len("curvature (mean)", Some(c.mean.len()))?;
     }
     for (f, poly) in mesh.polygons.iter().enumerate() {
         if poly.len() < 3 {
@@ -192,9 +193,77 @@ pub(crate) fn fan_count(mesh: &RawMesh) -> usize {
         .sum()
 }
 
-/// A colour component 0–1 as a byte (rounded, clamped).
-pub(crate) fn color_byte(c: f32) -> u8 {
-    (c.clamp(0.0, 1.0) * 255.0).round() as u8
+/// Checks that every value of a per-vertex quantity stored as a 32-bit float (PLY `float`, glTF
+/// `FLOAT`) is one: finite and at most `f32::MAX` in magnitude. The error names the quantity,
+/// the vertex, the value and the range, so that a curvature overflowing at an extreme scale is
+/// refused rather than written as an infinity or a plausible-looking number.
+pub(crate) fn check_f32_values(
+    format: &'static str,
+    what: &str,
+    values: &[f64],
+) -> Result<(), WriteError> {
+    match values
+        .iter()
+        .position(|x| !x.is_finite() || x.abs() > f64::from(f32::MAX))
+    {
+        Some(i) => Err(WriteError::invalid(
+            format,
+            format!(
+                "{what} of vertex {i} is {:e}, which a 32-bit float does not hold (finite, at most {:e} in magnitude)",
+                values.get(i).copied().unwrap_or(f64::NAN),
+                f32::MAX
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The curvature quantities a writer stores, in the exported convention: `(name, values)` for
+/// the Gaussian and the mean curvature and the principal curvatures `k1 ≥ k2`
+/// ([`crate::convention::Curvature::principal`]); checked with [`check_f32_values`].
+pub(crate) fn curvature_columns(
+    format: &'static str,
+    c: &crate::convention::Curvature,
+) -> Result<[(&'static str, Vec<f64>); 4], WriteError> {
+    check_f32_values(format, "gaussian curvature", &c.gaussian)?;
+    check_f32_values(format, "mean curvature", &c.mean)?;
+    let (k1, k2): (Vec<f64>, Vec<f64>) = (0..c.len())
+        .map(|i| {
+            let [a, b] = c.principal(i).unwrap_or([0.0; 2]);
+            (a, b)
+        })
+        .unzip();
+    check_f32_values(format, "principal curvature k1", &k1)?;
+    check_f32_values(format, "principal curvature k2", &k2)?;
+    Ok([
+        ("gaussian_curvature", c.gaussian.clone()),
+        ("mean_curvature", c.mean.clone()),
+        ("k1", k1),
+        ("k2", k2),
+    ])
+}
+
+/// The lines every written file opens with, each for the format's own comment syntax: the
+/// generator, the curvature convention when the mesh holds curvature or colours by it, the
+/// colour map, and how the colours are stored (`colours`) when there are colours.
+pub(crate) fn provenance(mesh: &RawMesh, colours: Option<&str>) -> Vec<String> {
+    let mut lines = vec![format!("generator {}", crate::convention::GENERATOR)];
+    let by_curvature = mesh
+        .color_map
+        .as_ref()
+        .is_some_and(|m| m.quantity.contains("curvature"));
+    if mesh.curvature.is_some() || by_curvature {
+        lines.push(crate::convention::CURVATURE_CONVENTION.to_string());
+    }
+    if mesh.colors.is_some() {
+        if let Some(c) = colours {
+            lines.push(format!("{}, {c}", crate::convention::SRGB_COLOURS));
+        }
+        if let Some(m) = &mesh.color_map {
+            lines.push(m.describe());
+        }
+    }
+    lines
 }
 
 #[cfg(test)]

@@ -24,8 +24,8 @@ pub struct StreamOptions {
     /// Read this file instead of standard input.
     #[arg(long, global = true)]
     pub input: Option<PathBuf>,
-    /// Write this file (atomically) instead of standard output.
-    #[arg(long, global = true)]
+    /// Write this file (atomically) instead of standard output (`to-mesh`: the mesh file).
+    #[arg(short = 'o', long, global = true)]
     pub output: Option<PathBuf>,
     /// Output format (default: the input's; JSON Lines for fit).
     #[arg(long, global = true, value_enum)]

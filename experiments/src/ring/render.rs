@@ -161,23 +161,33 @@ pub fn render_all(out: &Path, views: &[SurfaceView<'_>]) -> Result<Value, Experi
     )
 }
 
-/// PLY (binary, KColor colours, K as quality) of every surface, and OBJ of the optimized one
-/// (committed results stay a few MB).
+/// PLY (binary, KColor colours, the curvature in the exported convention: `meshio::ply`) of
+/// every surface, and OBJ of the optimized one (committed results stay a few MB).
 pub fn write_meshes(out: &Path, views: &[SurfaceView<'_>]) -> Result<(), ExperimentError> {
     let k_limit = gaussian_limit(views);
     for v in views {
         let t = v.tess;
-        // The workspace's one PLY writer (meshio's): positions, normals, KColor colours, the
-        // curvatures as properties `gaussian`, `mean`, and K once more as `quality`, the
-        // property MeshLab colours and filters by.
-        let mut raw = t.to_raw();
+        // The workspace's one PLY writer (meshio's) and its one layout: positions, normals,
+        // KColor colours (sRGB-encoded, the range recorded), and the curvature (K as MeshLab's
+        // `quality` too), in libigl's, trimesh's and MeshLab's sign (H > 0 on a sphere).
+        let mut raw = meshio::RawMesh::from_triangles(t.positions.clone(), &t.faces);
+        raw.normals = Some(t.normals.clone());
         raw.colors = Some(
             t.gaussian
                 .iter()
                 .map(|k| colormap::diverging(*k, k_limit))
                 .collect(),
         );
-        raw.properties.insert("quality".into(), t.gaussian.clone());
+        raw.color_map = Some(meshio::ColorMap {
+            quantity: "gaussian_curvature".into(),
+            map: "diverging".into(),
+            min: -k_limit,
+            max: k_limit,
+        });
+        raw.curvature = Some(meshio::Curvature::from_internal(
+            t.gaussian.clone(),
+            t.mean.clone(),
+        ));
         let path = out.join(format!("{}.ply", v.name));
         let bytes =
             meshio::MeshFormat::write(&meshio::ply::Ply, &raw, &meshio::WriteOptions::new())
@@ -189,12 +199,15 @@ pub fn write_meshes(out: &Path, views: &[SurfaceView<'_>]) -> Result<(), Experim
         if v.name != "optimized" {
             continue;
         }
-        let mut obj = Vec::new();
-        t.write_obj(&mut obj)
-            .map_err(|source| ExperimentError::Write {
-                path: out.join(format!("{}.obj", v.name)),
-                source,
-            })?;
+        // Positions, normals, triangles and the generator's comment (OBJ holds no curvature).
+        let mut plain = meshio::RawMesh::from_triangles(t.positions.clone(), &t.faces);
+        plain.normals = Some(t.normals.clone());
+        let obj =
+            meshio::MeshFormat::write(&meshio::obj::Obj, &plain, &meshio::WriteOptions::new())
+                .map_err(|source| ExperimentError::MeshWrite {
+                    path: out.join(format!("{}.obj", v.name)),
+                    source,
+                })?;
         write_result(Some(&out.join(format!("{}.obj", v.name))), &obj)?;
     }
     Ok(())

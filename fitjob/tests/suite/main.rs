@@ -1,3 +1,4 @@
 //! The integration tests of `fitjob`, one test binary for all of them: a module a topic.
 
 mod job;
+mod mesh_output;

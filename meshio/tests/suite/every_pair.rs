@@ -1,8 +1,8 @@
 //! Every format to every format: for every readable format A and every writable format B of
 //! [`FORMATS`] (and each of their write variants: PLY binary, text and double precision, STL
 //! binary and text), a mesh written as A and read back is written as B and read back again
-//! (glTF binary, which `meshio` only writes, is read back by the independent `gltf` crate), and
-//! the result is compared with the original mesh: vertex positions within the precision of the
+//! (glTF binary through `meshio`'s own reader; `glb.rs` checks the writer against the
+//! independent `gltf` crate), and the result is compared with the original mesh: vertex positions within the precision of the
 //! formats passed through, the faces (count and corners, through the vertices' positions, so a
 //! format that renumbers vertices — STL welds them — is compared by what it means), and the
 //! vertex normals where both formats carry them (and none invented where one does not).
@@ -85,17 +85,11 @@ impl Variant {
             .unwrap_or_else(|e| panic!("{}: {e}", self.name()))
     }
 
-    /// Reads `bytes` back: with the format's reader, or for glTF binary (write-only here) with
-    /// the `gltf` crate.
+    /// Reads `bytes` back with the format's reader.
     fn read(&self, bytes: &[u8]) -> RawMesh {
-        if self.format.can_read() {
-            return self
-                .format
-                .read(bytes)
-                .unwrap_or_else(|e| panic!("{}: {e}", self.name()));
-        }
-        assert_eq!(self.format.name(), "glb", "the only write-only format");
-        read_glb(bytes)
+        self.format
+            .read(bytes)
+            .unwrap_or_else(|e| panic!("{}: {e}", self.name()))
     }
 }
 
@@ -115,42 +109,6 @@ fn variants() -> Vec<Variant> {
         out.extend(options.iter().map(|&options| Variant { format, options }));
     }
     out
-}
-
-/// A glTF binary as a raw mesh, through the independent `gltf` crate: positions, normals,
-/// triangles.
-fn read_glb(bytes: &[u8]) -> RawMesh {
-    let doc = gltf::Gltf::from_slice(bytes).expect("gltf loads and validates");
-    let blob = doc.blob.clone().expect("BIN chunk");
-    let prim = doc
-        .document
-        .meshes()
-        .next()
-        .expect("mesh")
-        .primitives()
-        .next()
-        .expect("primitive");
-    let reader = prim.reader(|b| (b.index() == 0).then_some(blob.as_slice()));
-    let positions: Vec<Point3<f64>> = reader
-        .read_positions()
-        .expect("positions")
-        .map(|p| Point3::new(p[0].into(), p[1].into(), p[2].into()))
-        .collect();
-    let normals = reader.read_normals().map(|ns| {
-        ns.map(|n| Vector3::new(n[0].into(), n[1].into(), n[2].into()))
-            .collect()
-    });
-    let indices: Vec<usize> = reader
-        .read_indices()
-        .expect("indices")
-        .into_u32()
-        .map(|i| i as usize)
-        .collect();
-    let tris: Vec<[usize; 3]> = indices.chunks(3).map(|t| [t[0], t[1], t[2]]).collect();
-    RawMesh {
-        normals,
-        ..RawMesh::from_triangles(positions, &tris)
-    }
 }
 
 /// A wavy grid of 7 × 7 cells (98 triangles, 64 vertices) with the surface's unit normals:
@@ -287,9 +245,9 @@ fn every_readable_format_to_every_writable_format() {
             }
         }
     }
-    // 8 readable variants (PLY ×3, STL ×2, OFF, testbed, OBJ) × 9 writable (those and glTF),
-    // for each of the two meshes.
-    assert_eq!(pairs, 2 * 8 * 9);
+    // 9 readable and writable variants (PLY ×3, glTF, STL ×2, OFF, testbed, OBJ), each to
+    // each, for each of the two meshes.
+    assert_eq!(pairs, 2 * 9 * 9);
 }
 
 /// The float formats do round: the wavy grid through binary PLY is not the original, so the

@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use meshio::{format_by_name, MeshFormat, RawMesh, WriteOptions};
+use meshio::{format_by_name, MeshFormat, RawMesh, UpAxis, WriteOptions};
 
 fn glb() -> &'static dyn MeshFormat {
     format_by_name("glb").expect("glb")
@@ -45,7 +45,10 @@ fn load(
 #[test]
 fn cube_loads_with_all_attributes() {
     let cube = common::cube();
-    let bytes = glb().write(&cube, &WriteOptions::new()).expect("write");
+    // Y up: written as it is.
+    let bytes = glb()
+        .write(&cube, &WriteOptions::new().up(UpAxis::Y))
+        .expect("write");
     let (p, n, c, idx, (min, max)) = load(&bytes);
     assert_eq!(p.len(), 8);
     assert_eq!(idx.len(), 36);
@@ -71,7 +74,9 @@ fn cube_loads_with_all_attributes() {
 #[test]
 fn grid_without_normals_loads() {
     let m: RawMesh = common::grid(20);
-    let bytes = glb().write(&m, &WriteOptions::new()).expect("write");
+    let bytes = glb()
+        .write(&m, &WriteOptions::new().up(UpAxis::Y))
+        .expect("write");
     let (p, n, c, idx, (min, max)) = load(&bytes);
     assert_eq!(p.len(), 21 * 21);
     assert_eq!(idx.len(), 3 * 800);

@@ -2,6 +2,7 @@
 //! file): a module a topic.
 
 mod common;
+mod conventions;
 mod every_pair;
 mod fuzz;
 mod glb;

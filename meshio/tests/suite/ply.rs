@@ -30,7 +30,10 @@ fn check_cube(back: &RawMesh) {
     );
     for (a, b) in c0.iter().zip(c1) {
         for k in 0..3 {
-            assert!((a[k] - b[k]).abs() <= common::COLOR_QUANTUM, "{a:?} {b:?}");
+            assert!(
+                (a[k] - b[k]).abs() <= common::COLOR_FLOAT_ROUND_TRIP,
+                "{a:?} {b:?}"
+            );
         }
     }
 }
@@ -120,7 +123,9 @@ fn check_handmade(m: &RawMesh) {
     assert_eq!(m.num_vertices(), 4);
     assert_eq!(m.positions[3].coords.as_slice(), &[1.5, -3.0, 300.0]);
     assert_eq!(m.properties.get("flag"), Some(&vec![0.0, -1.0, -2.0, -3.0]));
-    assert_eq!(m.colors.as_ref().map(|c| c[0]), Some([0.25, 0.5, 1.0]));
+    // Colours are sRGB-encoded in a PLY: decoded to linear.
+    let want = [0.25f32, 0.5, 1.0].map(meshio::srgb::decode);
+    assert_eq!(m.colors.as_ref().map(|c| c[0]), Some(want));
     assert_eq!(common::polys(m), vec![vec![0, 1, 2, 3], vec![3, 2, 1]]);
     assert!(
         common::has_note(m, "skipped elements: edge (1)"),
@@ -149,7 +154,9 @@ fn ascii_header_variants_and_uchar_colours() {
                 end_header\n0 0 0 255 0 51 128 0 0 1\n1 0 0 0 0 0 0 0 0 1\n0 1 0 0 0 0 0 0 0 1\n\
                 3 0 1 2\n";
     let m = read(text.as_bytes()).expect("read");
-    assert_eq!(m.colors.as_ref().map(|c| c[0]), Some([1.0, 0.0, 0.2]));
+    // Bytes 255, 0, 51 are sRGB 1, 0, 0.2: decoded to linear.
+    let want = [255u8, 0, 51].map(meshio::srgb::decode_byte);
+    assert_eq!(m.colors.as_ref().map(|c| c[0]), Some(want));
     assert_eq!(m.properties.get("alpha"), Some(&vec![128.0, 0.0, 0.0]));
     assert_eq!(m.normals.as_ref().map(|n| n[2].z), Some(1.0));
     assert_eq!(m.num_faces(), 1);

@@ -1,7 +1,7 @@
 //! `to-mesh`: the stream's triangles as a mesh file, welded by position within a tolerance
 //! (the library's weld), the format by the file's extension.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use nalgebra::{Point3, Vector3};
 
@@ -14,12 +14,12 @@ use crate::record::Vertex;
 /// `testbed to-mesh`.
 pub struct ToMesh;
 
-/// Options of `to-mesh`.
+/// Options of `to-mesh` (the mesh file is the filter's `-o, --output FILE`).
 #[derive(clap::Args, Debug)]
 pub struct ToMeshArgs {
-    /// The mesh file (.ply, .obj, .glb, .off, .stl, .m).
-    #[arg(long)]
-    pub out: PathBuf,
+    /// How the mesh file is written.
+    #[command(flatten)]
+    pub mesh_options: fitjob::output::MeshOutputOptions,
 }
 
 impl Filter for ToMesh {
@@ -32,25 +32,42 @@ impl Filter for ToMesh {
         Corners closer than a tolerance relative to the triangles' size are one vertex (the weld \
         surface::tessellate uses, so patches tessellated one by one close up); triangles the \
         weld collapses are dropped and counted on standard error. Normals and colours are \
-        written when every vertex has them. The file is written atomically.";
+        written when every vertex has them (colours sRGB-encoded in PLY, OBJ and OFF, linear in \
+        glTF), and kg and km, in .ply and .glb, when every vertex has both: in libigl's, \
+        trimesh's and MeshLab's convention (H > 0 on a sphere with outward normals; the \
+        stream's km has the opposite sign). The mesh file is -o, --output FILE, its extension \
+        naming the format; it is written atomically, and nothing goes to standard output.";
     type Args = ToMeshArgs;
 
     fn run(args: ToMeshArgs, stream: StreamOptions) -> Result<(), FilterError> {
-        // The mesh is its own file: an --output would be written empty (a file that looks
-        // like a result and holds nothing), so it is refused before anything is read.
-        if let Some(o) = &stream.output {
+        // The mesh file is the output; its format is checked before anything is read.
+        let Some(path) = stream.output.clone() else {
             return Err(FilterError::Usage(format!(
-                "--output {}: to-mesh writes its mesh to --out and nothing else (leave --output out)",
-                o.display()
+                "to-mesh needs -o, --output FILE: the mesh file, its extension naming the format ({})",
+                fitjob::output::writable_extensions()
             )));
-        }
+        };
+        let format = mesh_format(&path)?;
+        meshio::outfile::writable_target(&path).map_err(render::RenderError::from)?;
         let tris = stream.read(Self::NAME, &mut draw::collect_triangles)?;
         if tris.is_empty() {
             eprintln!("{}: no triangles in the input", Self::NAME);
         }
-        // Nothing goes to the output (standard output or --output): the mesh is its own file.
-        stream.with_output(&mut |_| write_mesh(&tris, &args.out))
+        write_mesh(&tris, &path, format, &args.mesh_options)
     }
+}
+
+/// The writable mesh format `path`'s extension names, or the usage error listing them.
+pub fn mesh_format(path: &Path) -> Result<&'static dyn meshio::MeshFormat, FilterError> {
+    meshio::format_for_path(path)
+        .filter(|f| f.can_write())
+        .ok_or_else(|| {
+            FilterError::Usage(format!(
+                "to-mesh: --output {} names no writable mesh format ({})",
+                path.display(),
+                fitjob::output::writable_extensions()
+            ))
+        })
 }
 
 /// Triangles welded by position with the library's weld ([`surface::weld::weld_triangles`]:
@@ -92,18 +109,19 @@ pub fn to_raw(tris: &[[Vertex; 3]]) -> (meshio::RawMesh, surface::weld::WeldedTr
     (raw, welded)
 }
 
-/// Writes triangles as a mesh file, the format by `path`'s extension, atomically.
-pub fn write_mesh(tris: &[[Vertex; 3]], path: &Path) -> Result<(), FilterError> {
-    let format = meshio::format_for_path(path)
-        .filter(|f| f.can_write())
-        .ok_or_else(|| {
-            FilterError::Usage(format!(
-                "to-mesh: {} names no writable mesh format (.ply, .obj, .glb, .stl, .off, .m)",
-                path.display()
-            ))
-        })?;
-    let (raw, welded) = to_raw(tris);
-    let bytes = meshio::write_bytes(&raw, format, &meshio::WriteOptions::new()).map_err(|e| {
+/// Writes triangles as a mesh file of `format`, atomically; the curvature (`kg`, `km`, when
+/// every vertex has both) where `format` stores it, in the exported convention.
+pub fn write_mesh(
+    tris: &[[Vertex; 3]],
+    path: &Path,
+    format: &dyn meshio::MeshFormat,
+    mesh_options: &fitjob::output::MeshOutputOptions,
+) -> Result<(), FilterError> {
+    let (mut raw, welded) = to_raw(tris);
+    if format.writes_curvature() {
+        raw.curvature = curvature(tris, &welded);
+    }
+    let bytes = meshio::write_bytes(&raw, format, &mesh_options.write_options()).map_err(|e| {
         FilterError::MeshWrite {
             path: path.to_path_buf(),
             message: e.to_string(),
@@ -111,14 +129,43 @@ pub fn write_mesh(tris: &[[Vertex; 3]], path: &Path) -> Result<(), FilterError> 
     })?;
     meshio::outfile::write_atomic(path, &bytes).map_err(render::RenderError::from)?;
     eprintln!(
-        "to-mesh: {} triangles, {} vertices ({} corners welded within {:.1e}: {:.0e} of the size; {} collapsed triangles dropped) → {}",
+        "to-mesh: {} triangles, {} vertices ({} corners welded within {:.1e}: {:.0e} of the size; {} collapsed triangles dropped){} → {}",
         raw.num_faces(),
         raw.num_vertices(),
         welded.welds,
         welded.tolerance,
         surface::tessellate::WELD_RELATIVE,
         welded.collapsed,
+        if raw.curvature.is_some() { ", with curvature" } else { "" },
         path.display()
     );
     Ok(())
+}
+
+/// The welded vertices' curvature from the stream's `kg` and `km` (the workbench's sign:
+/// `km = −1` on the unit sphere) in the exported convention, when every corner has both.
+fn curvature(
+    tris: &[[Vertex; 3]],
+    welded: &surface::weld::WeldedTriangles,
+) -> Option<meshio::Curvature> {
+    if !tris
+        .iter()
+        .flatten()
+        .all(|v| v.kg.is_some() && v.km.is_some())
+    {
+        return None;
+    }
+    let corner = |c: usize| tris.get(c / 3).and_then(|t| t.get(c % 3));
+    let (k, h): (Vec<f64>, Vec<f64>) = welded
+        .source
+        .iter()
+        .map(|&c| {
+            let v = corner(c);
+            (
+                v.and_then(|v| v.kg).unwrap_or(0.0),
+                v.and_then(|v| v.km).unwrap_or(0.0),
+            )
+        })
+        .unzip();
+    Some(meshio::Curvature::from_internal(k, h))
 }

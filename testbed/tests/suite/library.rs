@@ -233,7 +233,7 @@ fn capsule_to_mesh_is_watertight_with_the_topological_vertex_count() {
             );
         }
         let file = dir.path().join(format!("capsule-{mesh}.ply"));
-        let out = testbed(&["to-mesh", "--out", file.to_str().unwrap()], &tris);
+        let out = testbed(&["to-mesh", "--output", file.to_str().unwrap()], &tris);
         assert!(out.status.success(), "{}", stderr(&out));
         assert!(stderr(&out).contains("36866 vertices"), "{}", stderr(&out));
         let (v, e, f, bad) = topology(&file);
@@ -272,24 +272,29 @@ fn fit_sample_beyond_memory_is_refused_before_allocating() {
 }
 
 #[test]
-fn to_mesh_refuses_an_output_it_would_leave_empty() {
+fn to_mesh_writes_its_mesh_to_output_and_needs_it() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = dir.path().join("m.ply");
-    let stray = dir.path().join("stray.out");
     let tris = ok(&["tess", "-s", "1"], &ok(&["fit", "--data", "octa"], b""));
-    let args = [
-        "to-mesh",
-        "--out",
-        mesh.to_str().unwrap(),
-        "--output",
-        stray.to_str().unwrap(),
-    ];
-    let out = testbed(&args, &tris);
-    // Options that cannot go together: a usage error, exit status 2.
+    // No mesh file: refused before anything is read, a usage error (exit status 2).
+    let out = testbed(&["to-mesh"], &tris);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(stderr(&out).contains("--output"), "{}", stderr(&out));
-    assert!(!stray.exists() && !mesh.exists(), "nothing written");
-    // Without it, the mesh is written.
-    ok(&["to-mesh", "--out", mesh.to_str().unwrap()], &tris);
-    assert!(std::fs::metadata(&mesh).unwrap().len() > 0);
+    assert!(
+        stderr(&out).contains("-o, --output FILE"),
+        "{}",
+        stderr(&out)
+    );
+    // An extension no writer takes: refused the same way, nothing written.
+    let bad = dir.path().join("m.xyz");
+    let out = testbed(&["to-mesh", "--output", bad.to_str().unwrap()], &tris);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(!bad.exists());
+    // `--output` (and `-o`) is the mesh file; nothing goes to standard output.
+    let out = testbed(&["to-mesh", "-o", mesh.to_str().unwrap()], &tris);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(out.stdout.is_empty());
+    assert!(std::fs::read(&mesh).unwrap().starts_with(b"ply\n"));
+    // The old spelling is gone.
+    let out = testbed(&["to-mesh", "--out", mesh.to_str().unwrap()], &tris);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
 }

@@ -405,7 +405,7 @@ fn mesh_records_give_the_pictures_and_meshes_of_triangle_records() {
             let shaded = ok(&["render"], &coloured);
             let wire = ok(&["wire"], &coloured);
             let file = dir.path().join(format!("octa-{format}-{mesh}.obj"));
-            ok(&["to-mesh", "--out", file.to_str().unwrap()], &coloured);
+            ok(&["to-mesh", "--output", file.to_str().unwrap()], &coloured);
             let welded = std::fs::read(&file).expect("written");
             assert!(shaded.len() > 1000 && wire.len() > 1000);
             outputs.push((format, mesh, ranges, shaded, wire, welded));
@@ -602,7 +602,10 @@ fn fit_reads_any_mesh_format_from_standard_input() {
     let tris = ok(&["fit", "--scheme", "flat", "-s", "1"], &octa());
     let dir = tempfile::tempdir().expect("dir");
     let ply = dir.path().join("octa.ply");
-    ok(&["to-mesh", "--out", ply.to_str().expect("utf-8")], &tris);
+    ok(
+        &["to-mesh", "--output", ply.to_str().expect("utf-8")],
+        &tris,
+    );
     let bytes = std::fs::read(&ply).expect("ply written");
     let again = ok(&["fit", "--scheme", "flat"], &bytes);
     assert_eq!(json_records(&again).len(), 8);

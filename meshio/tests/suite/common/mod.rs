@@ -4,8 +4,28 @@
 use meshio::{Polygons, RawMesh};
 use nalgebra::{Point3, Vector3};
 
-/// Colours pass through bytes in PLY: half a step of 1/255 is the most they can move.
-pub const COLOR_QUANTUM: f32 = 0.5 / 255.0 + 1e-6;
+/// Colours stored as sRGB bytes (OFF) move by at most half a byte step in sRGB, which is at
+/// most `2.4 / 1.055` times as much in linear (the slope of the sRGB decoding, largest at 1),
+/// plus `f32` rounding.
+pub const COLOR_QUANTUM: f32 = 0.5 / 255.0 * (2.4 / 1.055) + 1e-6;
+
+/// Colours stored as sRGB-encoded floats (PLY, OBJ) come back within the `f32` rounding of
+/// the encoding and decoding (two `powf`, a few ulps of values at most 1).
+pub const COLOR_FLOAT_ROUND_TRIP: f32 = 1e-6;
+
+/// True when two colour lists agree within `tolerance` in every component.
+pub fn colors_close(a: Option<&[[f32; 3]]>, b: Option<&[[f32; 3]]>, tolerance: f32) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => {
+            a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|(x, y)| (0..3).all(|k| (x[k] - y[k]).abs() <= tolerance))
+        }
+        (None, None) => true,
+        _ => false,
+    }
+}
 
 /// A unit cube of 8 vertices and 6 quads (outward, counter-clockwise), coordinates, normals and
 /// properties exact in f32 so that every format round-trips them exactly.
