@@ -360,18 +360,27 @@ pub fn is_json_number(b: &[u8]) -> bool {
 
 /// Appends a scalar token the way every text writer of this crate does: integers as
 /// integers, floats read from text as they came, other floats by Ryū. (`tape` holds the
-/// text of [`Tok::Text`].)
+/// text of [`Tok::Text`].) A float that is not finite (a binary stream can carry one; JSON
+/// cannot) is written `null`, never a number: Ryū's `format_finite` would print a NaN as a
+/// plausible-looking finite value.
 pub fn write_scalar(out: &mut Vec<u8>, t: &Tok, tape: &Tape, ryu: &mut ryu::Buffer) {
+    let mut float = |out: &mut Vec<u8>, x: f64| {
+        if x.is_finite() {
+            out.extend_from_slice(ryu.format_finite(x).as_bytes());
+        } else {
+            out.extend_from_slice(b"null");
+        }
+    };
     match t {
         Tok::Text(x, s) => {
             let text = tape.bytes(*s);
             if text.is_empty() {
-                out.extend_from_slice(ryu.format_finite(*x).as_bytes());
+                float(out, *x);
             } else {
                 out.extend_from_slice(text);
             }
         }
-        Tok::Float(x) => out.extend_from_slice(ryu.format_finite(*x).as_bytes()),
+        Tok::Float(x) => float(out, *x),
         Tok::Int(x) => {
             let _ = write!(out, "{x}");
         }
@@ -444,6 +453,22 @@ pub fn write_json(out: &mut Vec<u8>, tape: &Tape, at: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A NaN or an infinity (which only a binary stream can hold) is written `null`: Ryū's
+    /// `format_finite` printed a NaN as -2.696539702293474e308.
+    #[test]
+    fn a_float_that_is_not_finite_is_written_null() {
+        let tape = Tape::default();
+        let mut ryu = ryu::Buffer::new();
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut out = Vec::new();
+            write_scalar(&mut out, &Tok::Float(x), &tape, &mut ryu);
+            assert_eq!(out, b"null", "{x}");
+        }
+        let mut out = Vec::new();
+        write_scalar(&mut out, &Tok::Float(-0.5), &tape, &mut ryu);
+        assert_eq!(out, b"-0.5");
+    }
 
     #[test]
     fn lines_parse_like_serde_json_and_write_back() {

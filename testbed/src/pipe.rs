@@ -18,13 +18,19 @@ use crate::tape::Tape;
 /// counted).
 pub const REPORTED_SKIPS: usize = 5;
 
+/// `-`, the command language's name for a standard stream (docs/conventions.md).
+fn is_dash(p: &std::path::Path) -> bool {
+    p.as_os_str() == "-"
+}
+
 /// Options of every record filter.
 #[derive(clap::Args, Debug, Clone, Default, PartialEq, Eq)]
 pub struct StreamOptions {
-    /// Read this file instead of standard input.
+    /// Read this file instead of standard input (`-`: standard input).
     #[arg(long, global = true)]
     pub input: Option<PathBuf>,
-    /// Write this file (atomically) instead of standard output (`to-mesh`: the mesh file).
+    /// Write this file (atomically) instead of standard output (`-`: standard output;
+    /// `to-mesh`: the mesh file).
     #[arg(short = 'o', long, global = true)]
     pub output: Option<PathBuf>,
     /// Output format (default: the input's; JSON Lines for fit).
@@ -38,7 +44,7 @@ pub struct StreamOptions {
 impl StreamOptions {
     /// Opens the input: the `--input` file, or standard input.
     pub fn open_input(&self) -> Result<Box<dyn BufRead>, FilterError> {
-        Ok(match &self.input {
+        Ok(match self.input.as_deref().filter(|p| !is_dash(p)) {
             Some(p) => Box::new(BufReader::with_capacity(
                 1 << 16,
                 std::fs::File::open(p)
@@ -53,7 +59,7 @@ impl StreamOptions {
         &self,
         f: &mut dyn FnMut(&mut dyn Write) -> Result<(), FilterError>,
     ) -> Result<(), FilterError> {
-        match &self.output {
+        match self.output.as_deref().filter(|p| !is_dash(p)) {
             None => {
                 let stdout = std::io::stdout();
                 let mut lock = stdout.lock();

@@ -109,7 +109,7 @@ impl Filter for Fit {
                         "--resolution {r} is a data set's: give --data NAME"
                     )));
                 }
-                let (name, bytes) = match &stream.input {
+                let (name, bytes) = match stream.input.as_ref().filter(|p| p.as_os_str() != "-") {
                     Some(p) => (
                         p.clone(),
                         std::fs::read(p)

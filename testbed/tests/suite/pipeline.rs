@@ -610,3 +610,17 @@ fn fit_reads_any_mesh_format_from_standard_input() {
     let again = ok(&["fit", "--scheme", "flat"], &bytes);
     assert_eq!(json_records(&again).len(), 8);
 }
+
+/// `-` names the standard streams for `--input` and `--output` (docs/conventions.md, "The
+/// command language"): the same bytes as leaving the options out.
+#[test]
+fn a_dash_is_standard_input_and_output() {
+    let octa = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../data/octa.m")).unwrap();
+    let plain = ok(&["fit"], &octa);
+    assert_eq!(ok(&["fit", "--input", "-", "--output", "-"], &octa), plain);
+    let tess = ok(&["tess", "-s", "2"], &plain);
+    assert_eq!(
+        ok(&["tess", "-s", "2", "--input", "-", "-o", "-"], &plain),
+        tess
+    );
+}
