@@ -1,7 +1,9 @@
 //! Progress on long work, shown as users of command-line tools expect: a bar (work with a known
 //! count) or a spinner (a stage of unknown length) on standard error, **only** when standard
-//! error is a terminal and only once the work has run for [`DELAY`]; silent in pipes, files,
-//! CI logs and tests, and on work that ends sooner. `NO_PROGRESS` set to anything but `0` or the
+//! error is a terminal and only once the work has run for [`DELAY`]; silent in files, CI logs
+//! and tests, and on work that ends sooner. In a pipeline only the last stage shows progress
+//! (a program whose standard output is a pipe stays silent): the stages share one terminal
+//! line, and the last one's count is the pipeline's. `NO_PROGRESS` set to anything but `0` or the
 //! empty string turns it off on a terminal too.
 //!
 //! Lines a front end prints while a bar is up go through [`Progress::say`], which lifts the
@@ -31,11 +33,25 @@ pub const DELAY: Duration = Duration::from_millis(1500);
 /// measurable cost).
 const TICK: Duration = Duration::from_millis(100);
 
-/// Whether progress may be drawn at all: standard error is a terminal and `NO_PROGRESS` does
-/// not turn it off.
+/// Whether progress may be drawn at all: standard error is a terminal, standard output is not
+/// a pipe into a further stage, and `NO_PROGRESS` does not turn it off.
 pub fn enabled() -> bool {
     let off = std::env::var_os("NO_PROGRESS").is_some_and(|v| !v.is_empty() && v != "0");
-    !off && std::io::stderr().is_terminal()
+    !off && std::io::stderr().is_terminal() && !stdout_is_pipe()
+}
+
+/// Whether standard output is a pipe (a FIFO), as it is in every stage of a pipeline but the
+/// last.
+fn stdout_is_pipe() -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt as _;
+        std::fs::metadata("/dev/stdout").is_ok_and(|m| m.file_type().is_fifo())
+    }
+    #[cfg(not(unix))]
+    {
+        false
+    }
 }
 
 /// A bar or spinner that appears after [`DELAY`] on a terminal and stays hidden otherwise. It
@@ -101,6 +117,14 @@ impl Progress {
     /// Names what is being done now (a stage, a task).
     pub fn stage(&self, what: &str) {
         self.bar.set_message(what.to_string());
+    }
+
+    /// Names what is being done now, built only when the bar can be shown (for messages
+    /// updated in a hot loop: no formatting where nothing is drawn).
+    pub fn stage_with(&self, what: impl FnOnce() -> String) {
+        if self.ticker.is_some() {
+            self.bar.set_message(what());
+        }
     }
 
     /// Prints `line` on standard error above the bar (or plainly, when no bar is shown).

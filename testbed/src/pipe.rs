@@ -123,7 +123,16 @@ pub struct Pipe<'a> {
     pub skipped: usize,
     /// The filter's name, for messages.
     pub name: &'static str,
+    /// Records read so far.
+    pub records: u64,
+    /// The records read, on a terminal once the filter has run a moment (`progress`: only the
+    /// pipeline's last stage shows it).
+    progress: progress::Progress,
 }
+
+/// How often the progress line's count is renewed, in records (a message built per record
+/// would cost more than some filters' work).
+const PROGRESS_EVERY: u64 = 65_536;
 
 impl<'a> Pipe<'a> {
     /// A pipe from `input` to `output`; `format`: the output format (default: the input's).
@@ -140,6 +149,8 @@ impl<'a> Pipe<'a> {
             keep_going,
             skipped: 0,
             name,
+            records: 0,
+            progress: progress::Progress::spinner(name),
         }
     }
 
@@ -151,6 +162,11 @@ impl<'a> Pipe<'a> {
                 None => return Ok(false),
                 Some(Ok(())) => {
                     self.writer.default_format(self.reader.format());
+                    self.records += 1;
+                    if self.records % PROGRESS_EVERY == 1 {
+                        let n = self.records;
+                        self.progress.stage_with(|| format!("{n} records read"));
+                    }
                     return Ok(true);
                 }
                 Some(Err(e)) => self.bad(e)?,
@@ -164,7 +180,7 @@ impl<'a> Pipe<'a> {
         if self.keep_going && e.is_record_error() {
             self.skipped += 1;
             if self.skipped <= REPORTED_SKIPS {
-                eprintln!("{}: skipped {e}", self.name);
+                self.progress.say(&format!("{}: skipped {e}", self.name));
             }
             Ok(())
         } else {
