@@ -13,14 +13,6 @@ macro_rules! say {
     }};
 }
 
-/// `eprint!` that never panics (see `say!`).
-macro_rules! say_inline {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stderr(), $($arg)*);
-    }};
-}
-
 mod convert;
 mod curve;
 mod curve_args;

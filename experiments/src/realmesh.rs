@@ -110,7 +110,11 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     );
     let mut report = Map::new();
     let mut shots: Vec<(String, surface::Tessellation, f64)> = Vec::new();
+    // The bar counts the files begun; its message names the one being fitted.
+    let bar = progress::Progress::bar("realmesh", files.len() as u64);
     for path in &files {
+        bar.inc(1);
+        bar.stage(&path.display().to_string());
         let name = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
@@ -184,11 +188,11 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                    "notes": loaded.notes.iter().filter(|n| !n.starts_with("time:")).collect::<Vec<_>>(), "load_time_seconds": t_load,
                    "methods": per_method}),
         );
-        say!(
+        bar.say(&format!(
             "  {name}: {} faces, {} notes",
             mesh.num_faces(),
             loaded.notes.len()
-        );
+        ));
     }
 
     // Pictures: columns are the objects, rows the views.

@@ -243,7 +243,11 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
          G1: largest normal angle across patch boundaries (9 samples per boundary); a scheme that claims G1 must measure below {G1_CLAIM:e} rad.\n",
         args.data.join(","), args.curves, args.curve.solver, args.face_segments, args.output.display(), args.estimate, args.curves, args.face_segments
     );
+    // The bar counts the meshes begun; its message names the one being compared.
+    let bar = progress::Progress::bar("schemes", args.data.len() as u64);
     for data_item in &args.data {
+        bar.inc(1);
+        bar.stage(data_item);
         let subject_data =
             crate::datasets::load_subject(data_item.trim(), args.resolution, &args.estimate)?;
         let name = subject_data.name.as_str();

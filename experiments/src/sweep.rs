@@ -28,7 +28,7 @@
 mod grid;
 
 use std::fmt::Write as _;
-use std::io::{BufRead, IsTerminal, Read as _};
+use std::io::{BufRead, Read as _};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -392,18 +392,15 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         ensure_dir(&out_dir)?;
         check_manifest(&out_dir, &manifest)?;
     }
-    let tty = std::io::stderr().is_terminal();
     let mut results = Vec::with_capacity(mine.len());
     let started = Instant::now();
-    for (done, t) in mine.iter().enumerate() {
-        if tty {
-            say_inline!("\rsweep: [{:>2}/{}] {:<40}", done + 1, mine.len(), t.id);
-        }
+    let bar = progress::Progress::bar("sweep", mine.len() as u64);
+    for t in &mine {
+        bar.stage(&t.id);
         results.push(run_task(t, &grid)?);
+        bar.inc(1);
     }
-    if tty {
-        say!();
-    }
+    bar.finish();
     let lines = json_lines(&results)?;
     let manifest_text = pretty_json(&manifest, "the task manifest")?;
     if partial {
