@@ -635,8 +635,9 @@ fn write_report(
         md,
         "# Sweep: data × schemes × boundary curves × solvers × parameters\n"
     );
-    let _ = write!(md, "Written by `cargo run --release -p experiments -- {}` (or its tasks and shards joined by `merge`).", command_line());
-    let _ = writeln!(md, " Every task of the grid below (by default every data set at its default resolution × every curve construction × every solver of `optimized`, with the modified Shirman–Séquin scheme at β = 1/3, c = 1), tessellated at the task's segments per patch edge (default 4), measured against the true surface (— for a mesh file, which has none); a subdivision scheme (`--scheme loop|loop-warren|catmull-clark`) is measured at the limit of three levels with curvature estimated on that mesh, its data-to-limit distance in `report.json`. One line a task in `results.jsonl`. Grid: `{options}`.\n");
+    // The same text for a whole run and for its tasks and shards merged (the merged report
+    // equals the whole one): the grid below says what ran, `scripts/results.sh` the command.
+    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` over the grid given below (or its tasks and shards joined by `merge`; `scripts/results.sh` has the commands of the committed sweeps). Every task of the grid below (by default every data set at its default resolution × every curve construction × every solver of `optimized`, with the modified Shirman–Séquin scheme at β = 1/3, c = 1), tessellated at the task's segments per patch edge (default 4), measured against the true surface (— for a mesh file, which has none); a subdivision scheme (`--scheme loop|loop-warren|catmull-clark`) is measured at the limit of three levels with curvature estimated on that mesh, its data-to-limit distance in `report.json`. One line a task in `results.jsonl`. Grid: `{options}`.\n");
     let _ = writeln!(md, "| task | faces | position max | normal RMS (°) | K RMS | H RMS | G1 (rad) | κ error max | shortest α | fallbacks | fit (ms) |");
     let _ = writeln!(
         md,
@@ -668,24 +669,6 @@ fn write_report(
         );
     }
     write_result(Some(&out.join("report.md")), md.as_bytes())
-}
-
-/// The command this run was given (its arguments after the binary's name, quoted where a shell
-/// would need it), for the report's "Written by" line: the exact command that rewrites it.
-fn command_line() -> String {
-    std::env::args()
-        .skip(1)
-        .map(|a| {
-            if a.is_empty()
-                || a.contains(|c: char| c.is_whitespace() || "'\"$`\\*?;&|<>()".contains(c))
-            {
-                format!("'{}'", a.replace('\'', "'\\''"))
-            } else {
-                a
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 #[cfg(test)]
