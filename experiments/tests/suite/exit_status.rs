@@ -76,3 +76,34 @@ fn a_dash_sends_the_patches_or_the_report_to_standard_output() {
     assert!(err.contains("G1"), "{err}");
     assert!(!err.contains('\u{1b}'), "{err:?}");
 }
+
+/// `ring -o LINK` where LINK is a symbolic link to a directory writes the results into the
+/// directory the link names (it was refused as "exists and is not a directory"); the link
+/// stays a link.
+#[cfg(unix)]
+#[test]
+fn a_study_writes_through_a_link_to_a_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("target");
+    std::fs::create_dir(&target).unwrap();
+    let link = dir.path().join("link");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    let (code, _, err) = run(
+        &[
+            "ring",
+            "--resolution",
+            "6",
+            "--segments",
+            "2",
+            "-o",
+            link.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(target.join("report.json").is_file(), "{err}");
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+}
