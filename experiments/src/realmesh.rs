@@ -106,7 +106,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     let staged = Staged::begin(&args.output)?;
     let out = staged.path().to_path_buf();
     let mut md = String::from(
-        "# Real meshes\n\nThe committed corpus (`data/meshes/`, licences there), each file read as it is, repaired by the stated rules, its normals and shape tensors estimated, and fitted with the modified Shirman–Séquin scheme and every curve construction. G1 defects are split into edges between regular faces (the scheme's guarantee) and edges touching a fallback face (C0 only).\n\n| mesh | vertices | faces | repairs | curves | fallback faces | degenerate edges | G1 regular (rad) | G1 at fallbacks (rad) | unconverged | fit time (s) |\n|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|\n",
+        "# Real meshes\n\nThe committed corpus (`data/meshes/`, licences there), each file read as it is, repaired by the stated rules, its normals and shape tensors estimated, and fitted with the modified Shirman–Séquin scheme and every curve construction. G1 defects are split into edges between regular faces (the scheme's guarantee) and edges touching a fallback face (C0 only). A face is folded where a patch normal turns to or past 90° from the data face's normal (`surface::folds`).\n\n| mesh | vertices | faces | repairs | curves | fallback faces | folded faces | degenerate edges | G1 regular (rad) | G1 at fallbacks (rad) | unconverged | fit time (s) |\n|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     let mut report = Map::new();
     let mut shots: Vec<(String, surface::Tessellation, f64)> = Vec::new();
@@ -145,9 +145,11 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 curves::MethodOptions::default(),
             )?;
             let finite = f.points.iter().all(|q| q.iter().all(|c| c.is_finite()));
+            // Faces whose surface turns over (surface::folds).
+            let folds = surface::folds::measure(mesh, &f);
             let _ = writeln!(
                 md,
-                "| {name} | {} | {} | {} | {method} | {} | {} | {:.1e} | {:.2} | {} | {:.3} |",
+                "| {name} | {} | {} | {} | {method} | {} | {} | {} | {:.1e} | {:.2} | {} | {:.3} |",
                 mesh.num_vertices(),
                 mesh.num_faces(),
                 if repairs.is_empty() {
@@ -156,6 +158,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                     repairs.join("; ")
                 },
                 f.face_fallbacks.len(),
+                folds.folded.len(),
                 f.degenerate_edges.len(),
                 g1.max_angle(),
                 g1.fallback_interior_max.max(g1.fallback_exterior_max),
@@ -165,6 +168,8 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             per_method.insert(
                 method.into(),
                 json!({"fallback_faces": f.face_fallbacks.len(),
+                       "folded_faces": folds.folded.len(),
+                       "worst_fold_cosine": folds.worst_cosine,
                        "degenerate_edges": f.degenerate_edges.len(),
                        "g1_regular_radians": g1.max_angle(),
                        "g1_fallback_radians": g1.fallback_interior_max.max(g1.fallback_exterior_max),

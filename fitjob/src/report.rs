@@ -41,6 +41,8 @@ pub struct FitReport {
     pub g1: Option<G1Summary>,
     /// Every face fitted with the C0 fallback patch, with its reason.
     pub fallback_faces: Vec<FallbackFace>,
+    /// The fold test (`surface::folds`; measured with G1, absent for subdivision).
+    pub folds: Option<FoldSummary>,
     /// Every edge whose boundary-curve problem was degenerate (fitted with a straight cubic).
     pub degenerate_edges: Vec<DegenerateEdge>,
     /// The curve construction's counts (when the scheme uses curves).
@@ -81,6 +83,33 @@ pub struct G1Summary {
     pub normal_error: f64,
     /// Samples where a patch normal was undefined (degenerate derivatives), skipped.
     pub undefined_normals: usize,
+}
+
+/// A face of the fitted mesh, with where it came from in the file.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FaceRef {
+    /// The face of the fitted mesh.
+    pub face: usize,
+    /// Its corners in the file's numbering (0-based; the mesh's for a data set).
+    pub file_vertices: [usize; 3],
+    /// The file's face it came from (0-based; absent for a data set).
+    pub file_face: Option<usize>,
+}
+
+/// The fold test (`surface::folds`): faces whose patches' normals turn to or past 90° from the
+/// data face's normal somewhere over the face.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct FoldSummary {
+    /// Faces tested.
+    pub faces_measured: usize,
+    /// The folded faces, in face order.
+    pub folded_faces: Vec<FaceRef>,
+    /// The smallest cosine between a patch normal and its face's normal (≤ 0: folded).
+    pub worst_cosine: Option<f64>,
+    /// Faces of zero area, which have no normal to test against.
+    pub faces_without_normal: usize,
+    /// Samples where a patch is singular (no normal there).
+    pub singular_samples: usize,
 }
 
 /// A face fitted with the C0 fallback patch.
@@ -195,6 +224,10 @@ impl FitReport {
         [
             (usize::from(self.repaired), "repaired input"),
             (self.fallback_faces.len(), "fallback faces"),
+            (
+                self.folds.as_ref().map_or(0, |f| f.folded_faces.len()),
+                "folded faces",
+            ),
             (self.degenerate_edges.len(), "degenerate edges"),
             (counts.fallbacks, "curves fallen back to chord"),
             (counts.unconverged, "unconverged optimizations"),
@@ -273,6 +306,28 @@ impl FitReport {
             }
             if self.fallback_faces.len() > FALLBACKS_LISTED {
                 lines.push(format!("    … ({} in all)", self.fallback_faces.len()));
+            }
+        }
+        if let Some(folds) = self.folds.as_ref().filter(|f| !f.folded_faces.is_empty()) {
+            lines.push(format!(
+                "  folds: {} of {} faces turn over (a patch normal at or past 90° from its face; worst cosine {:.3})",
+                folds.folded_faces.len(),
+                folds.faces_measured,
+                folds.worst_cosine.unwrap_or(f64::NAN)
+            ));
+            for f in folds.folded_faces.iter().take(FALLBACKS_LISTED) {
+                let v = f.file_vertices;
+                let file_face = f
+                    .file_face
+                    .map(|g| format!(", file face {g}"))
+                    .unwrap_or_default();
+                lines.push(format!(
+                    "    folded face {} (file vertices {}, {}, {}{file_face})",
+                    f.face, v[0], v[1], v[2]
+                ));
+            }
+            if folds.folded_faces.len() > FALLBACKS_LISTED {
+                lines.push(format!("    … ({} folded in all)", folds.folded_faces.len()));
             }
         }
         if !self.degenerate_edges.is_empty() {

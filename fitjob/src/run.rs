@@ -21,8 +21,8 @@ pub fn destination(path: &std::path::Path) -> Option<&std::path::Path> {
     (path.as_os_str() != "-").then_some(path)
 }
 use crate::report::{
-    CurveCounts, DegenerateEdge, FallbackFace, FitReport, G1Summary, InteriorSummary, PeakMemory,
-    TessellationSummary, Timings,
+    CurveCounts, DegenerateEdge, FaceRef, FallbackFace, FitReport, FoldSummary, G1Summary,
+    InteriorSummary, PeakMemory, TessellationSummary, Timings,
 };
 
 /// What a job leaves besides its report, when [`FitOptions::keep`] asks for it.
@@ -156,6 +156,8 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         && (options.mesh_out.is_none()
             || surface::welds_by_topology(&scheme.layout(), options.tess));
     let samples = options.g1_samples;
+    // The fold test, measured with G1 (surface::folds).
+    let mut folds: Option<surface::folds::FoldReport> = None;
     let (fitted, g1, stats, t_fit, t_g1): (Fit, G1Report, _, f64, f64) = if stream {
         let to_world = |q: &nalgebra::Point3<f64>| frame.to_world(q);
         let mut streamed: Option<Result<Streamed, StreamError>> = None;
@@ -225,6 +227,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             faces: mesh.num_faces(),
             ..Default::default()
         };
+        folds = Some(s.folds);
         (
             s.fit,
             s.g1,
@@ -245,6 +248,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         peak_after("fit");
         let t2 = Instant::now();
         let g1 = if options.measure_g1 {
+            folds = Some(surface::folds::measure(&mesh, &fitted));
             surface::measure_g1(&mesh, &fitted, samples)
         } else {
             G1Report::default()
@@ -367,6 +371,19 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             reason: fb.reason.to_string(),
         })
         .collect();
+    let file_face = |f: usize| FaceRef {
+        face: f,
+        file_vertices: mesh.faces()[f]
+            .map(|i| vertex_source.and_then(|s| s.get(i).copied()).unwrap_or(i)),
+        file_face: face_source.and_then(|s| s.get(f).copied()),
+    };
+    let folds = folds.map(|r| FoldSummary {
+        faces_measured: r.faces,
+        folded_faces: r.folded.iter().map(|&f| file_face(f)).collect(),
+        worst_cosine: r.worst_cosine,
+        faces_without_normal: r.faces_without_normal,
+        singular_samples: r.singular_samples,
+    });
     let report = FitReport {
         input: label,
         vertices: mesh.num_vertices(),
@@ -391,6 +408,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             undefined_normals: g1.undefined_normals,
         }),
         fallback_faces,
+        folds,
         degenerate_edges: fitted
             .degenerate_edges
             .iter()

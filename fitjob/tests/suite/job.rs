@@ -269,3 +269,54 @@ fn a_subdivision_scheme_reports_its_approximation() {
     assert!(s.approximation_max > 0.0 && s.approximation_max < s.model_size);
     assert!(outcome.report.g1.is_none());
 }
+
+/// Folds are measured with G1, named in the report and the summary, and are a departure that
+/// fails `--strict`: the spoiled sphere (normals turned at random on some vertices) folds
+/// faces; the exact sphere folds none.
+#[test]
+fn folded_faces_are_reported_and_count_as_departures() {
+    let spoiled = quiet(FitOptions {
+        input: InputOptions {
+            source: Source::Raw {
+                label: "spoiled sphere".into(),
+                raw: Box::new(spoiled_sphere()),
+            },
+            ..InputOptions::default()
+        },
+        ..FitOptions::default()
+    })
+    .expect("fit");
+    let r = &spoiled.report;
+    let folds = r.folds.as_ref().expect("measured with G1");
+    assert_eq!(folds.faces_measured, r.faces);
+    assert!(!folds.folded_faces.is_empty());
+    assert!(folds.worst_cosine.expect("measured") <= 0.0);
+    let n = folds.folded_faces.len();
+    assert!(r
+        .departures()
+        .iter()
+        .any(|(k, what)| *k == n && *what == "folded faces"));
+    assert!(r
+        .summary_lines()
+        .iter()
+        .any(|l| l.starts_with(&format!("  folds: {n} of {} faces", r.faces))));
+
+    let exact = quiet(FitOptions {
+        input: InputOptions {
+            source: Source::Data {
+                data: "sphere".into(),
+                resolution: None,
+            },
+            ..InputOptions::default()
+        },
+        ..FitOptions::default()
+    })
+    .expect("fit");
+    let folds = exact.report.folds.as_ref().expect("measured");
+    assert!(folds.folded_faces.is_empty());
+    assert!(!exact
+        .report
+        .departures()
+        .iter()
+        .any(|(_, what)| *what == "folded faces"));
+}

@@ -22,6 +22,7 @@ use nalgebra::Point3;
 use rayon::prelude::*;
 
 use crate::fit::{build_face, fit_curves_into, FaceFallback, FaceFallbackReason, Fit, FitError};
+use crate::folds::{FoldPlan, FoldReport};
 use crate::g1::{G1Report, StreamingG1};
 use crate::mesh::Mesh;
 use crate::patch_io::PatchFormat;
@@ -60,6 +61,8 @@ pub struct Output<'a> {
 /// The result of one window's task: its faces' G1 part, its edges' G1 part, its formatted
 /// bytes.
 struct Task {
+    /// The folds of its faces.
+    folds: FoldReport,
     faces: G1Report,
     edges: G1Report,
     /// How many exterior edges it measured (all of them are, once: checked at the end).
@@ -76,6 +79,8 @@ pub struct Streamed {
     pub g1: G1Report,
     /// Seconds spent on the boundary curves (the rest went to the windows of faces).
     pub curves_seconds: f64,
+    /// The folds of the whole fit, as [`crate::folds::measure`] gives them.
+    pub folds: FoldReport,
 }
 
 /// Fits `mesh` with `scheme` (curves from `method`), measures G1 at `samples` points per
@@ -113,6 +118,8 @@ pub fn fit_streamed_with(
     let patches_per_face = layout.patches_per_face().max(1);
     let format = output.as_ref().map(|o| (o.format, o.to_world));
     let mut g1 = StreamingG1::new(&layout, samples);
+    let fold_plan = FoldPlan::new(&layout);
+    let mut folds = FoldReport::default();
     let mut fallbacks: Vec<FaceFallback> = Vec::new();
     let mut measured_edges = 0usize;
     let curves = &fit.curves;
@@ -124,6 +131,8 @@ pub fn fit_streamed_with(
     let (empty_tx, empty_rx) = mpsc::channel::<Vec<u8>>();
     let result = std::thread::scope(|s| -> Result<(), StreamError> {
         let g1 = &mut g1;
+        let folds = &mut folds;
+        let fold_plan = &fold_plan;
         let fallbacks = &mut fallbacks;
         let measured_edges = &mut measured_edges;
         let compute = s.spawn(move || -> Result<(), FitError> {
@@ -156,8 +165,15 @@ pub fn fit_streamed_with(
                         let mut edges_part = StreamingG1::empty_part();
                         let mut measured = 0;
                         let mut other = vec![Point3::origin(); per_face];
+                        let mut task_folds = FoldReport::default();
                         for i in lo..hi {
                             let f = first + i;
+                            fold_plan.face(
+                                mesh,
+                                f,
+                                &nets[i * per_face..(i + 1) * per_face],
+                                &mut task_folds,
+                            );
                             for l in 0..3 {
                                 let ei = mesh
                                     .edge_index(f, l)
@@ -196,6 +212,7 @@ pub fn fit_streamed_with(
                             );
                         }
                         Ok(Task {
+                            folds: task_folds,
                             faces: faces_part,
                             edges: edges_part,
                             measured,
@@ -206,6 +223,7 @@ pub fn fit_streamed_with(
                 let mut out = Vec::with_capacity(tasks.len());
                 for task in tasks {
                     *measured_edges += task.measured;
+                    folds.merge(task.folds);
                     g1.add_faces(task.faces);
                     g1.add_edges(task.edges);
                     out.push(task.bytes);
@@ -260,5 +278,6 @@ pub fn fit_streamed_with(
         fit,
         g1: g1.finish(),
         curves_seconds,
+        folds,
     })
 }

@@ -2,6 +2,7 @@
 //! errors against the true surface, Section 4's corner measures, boundary-curve statistics.
 
 pub mod curve_stats;
+pub mod folds;
 pub mod g1;
 pub mod interior;
 pub mod metrics;
