@@ -327,7 +327,10 @@ impl FitReport {
                 ));
             }
             if folds.folded_faces.len() > FALLBACKS_LISTED {
-                lines.push(format!("    … ({} folded in all)", folds.folded_faces.len()));
+                lines.push(format!(
+                    "    … ({} folded in all)",
+                    folds.folded_faces.len()
+                ));
             }
         }
         if !self.degenerate_edges.is_empty() {
