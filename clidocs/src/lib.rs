@@ -70,40 +70,49 @@ impl std::error::Error for DocsError {
 }
 
 /// Runs the documentation subcommand `name` with `matches` for the binary's whole `command`;
-/// `None` when `name` is neither of them. The man pages written are listed on standard error.
+/// `None` when `name` is neither of them.
 pub fn run(
     command: &mut Command,
     name: &str,
     matches: &ArgMatches,
 ) -> Option<Result<(), DocsError>> {
     match name {
-        COMPLETIONS => {
-            let shell = *matches.get_one::<Shell>("shell")?;
-            let mut out = Vec::new();
-            write_completions(command, shell, &mut out);
-            Some(
-                std::io::stdout()
-                    .lock()
-                    .write_all(&out)
-                    .map_err(|source| DocsError {
-                        path: "<stdout>".into(),
-                        source,
-                    }),
-            )
-        }
-        MAN => {
-            let dir = matches.get_one::<PathBuf>("output")?;
-            Some(write_man_pages(command, dir).map(|written| {
-                let _ = writeln!(
-                    std::io::stderr(),
-                    "{} man pages written to {}",
-                    written.len(),
-                    dir.display()
-                );
-            }))
-        }
+        COMPLETIONS => Some(print_completions(
+            command,
+            *matches.get_one::<Shell>("shell")?,
+        )),
+        MAN => Some(man_pages_into(
+            command,
+            matches.get_one::<PathBuf>("output")?,
+        )),
         _ => None,
     }
+}
+
+/// Prints the completion script of `command` for `shell` on standard output.
+pub fn print_completions(command: &mut Command, shell: Shell) -> Result<(), DocsError> {
+    let mut out = Vec::new();
+    write_completions(command, shell, &mut out);
+    std::io::stdout()
+        .lock()
+        .write_all(&out)
+        .map_err(|source| DocsError {
+            path: "<stdout>".into(),
+            source,
+        })
+}
+
+/// Writes the man pages of `command` into `dir` ([`write_man_pages`]) and says on standard
+/// error how many.
+pub fn man_pages_into(command: &Command, dir: &Path) -> Result<(), DocsError> {
+    let written = write_man_pages(command, dir)?;
+    let _ = writeln!(
+        std::io::stderr(),
+        "{} man pages written to {}",
+        written.len(),
+        dir.display()
+    );
+    Ok(())
 }
 
 /// The completion script of `command` for `shell`.

@@ -410,7 +410,7 @@ fn ring_rebuilt(report: &mut Map<String, Value>, md: &mut String) -> Result<(), 
     for method in crate::ring::methods() {
         for (label, mesh) in [("exact", &data.mesh), ("estimated", &estimated)] {
             let subject = || format!("ring/{method} ({label} data)");
-            let (f, g1, _) = crate::input::fit_prepared(
+            let crate::input::KeptFit { fit: f, g1, .. } = crate::input::fit_prepared(
                 &subject(),
                 mesh,
                 surface::Frame::identity(),

@@ -57,11 +57,23 @@ pub fn load(args: &InputArgs) -> Result<Loaded, ExperimentError> {
     Ok(fitjob::input::load(&args.job_input())?)
 }
 
+/// A study's fit as the fit job made and measured it ([`fit_kept`]).
+pub struct KeptFit {
+    /// The fit.
+    pub fit: surface::Fit,
+    /// Its whole G1 measurement.
+    pub g1: surface::G1Report,
+    /// The fit's time, seconds.
+    pub seconds: f64,
+    /// Faces whose surface turns over (`surface::folds`, measured by the job).
+    pub folded_faces: usize,
+    /// The smallest cosine between a patch normal and its face's (`None`: nothing measured).
+    pub worst_fold_cosine: Option<f64>,
+}
+
 /// A study's fit through the fit job (`fitjob::run`, the fit and G1 every front end gets), the
 /// fit kept: the fit, its whole G1 measurement and the fit's time in seconds.
-pub fn fit_kept(
-    options: fitjob::FitOptions,
-) -> Result<(surface::Fit, surface::G1Report, f64), ExperimentError> {
+pub fn fit_kept(options: fitjob::FitOptions) -> Result<KeptFit, ExperimentError> {
     let label = options.input.source.label().to_string();
     let outcome = fitjob::run(
         fitjob::FitOptions {
@@ -71,7 +83,17 @@ pub fn fit_kept(
         &mut |_| {},
     )?;
     match (outcome.kept.fit, outcome.kept.g1) {
-        (Some(fit), Some(g1)) => Ok((fit, g1, outcome.report.time.fit)),
+        (Some(fit), Some(g1)) => Ok(KeptFit {
+            fit,
+            g1,
+            seconds: outcome.report.time.fit,
+            folded_faces: outcome
+                .report
+                .folds
+                .as_ref()
+                .map_or(0, |f| f.folded_faces.len()),
+            worst_fold_cosine: outcome.report.folds.and_then(|f| f.worst_cosine),
+        }),
         // A subdivision scheme: no patches to keep.
         _ => Err(ExperimentError::from(fitjob::JobError::Write {
             path: label.into(),
@@ -89,7 +111,7 @@ pub fn fit_prepared(
     scheme: &str,
     curves: &str,
     method_options: curves::MethodOptions,
-) -> Result<(surface::Fit, surface::G1Report, f64), ExperimentError> {
+) -> Result<KeptFit, ExperimentError> {
     fit_kept(fitjob::FitOptions {
         input: fitjob::InputOptions {
             source: fitjob::Source::Prepared {

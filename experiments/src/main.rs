@@ -104,28 +104,9 @@ fn docs(experiment: &Experiment) -> Option<Result<(), clidocs::DocsError>> {
     use clap::CommandFactory as _;
     match experiment {
         Experiment::Completions { shell } => {
-            let mut out = Vec::new();
-            clidocs::write_completions(&mut Cli::command(), *shell, &mut out);
-            use std::io::Write as _;
-            Some(
-                std::io::stdout()
-                    .lock()
-                    .write_all(&out)
-                    .map_err(|source| clidocs::DocsError {
-                        path: "<stdout>".into(),
-                        source,
-                    }),
-            )
+            Some(clidocs::print_completions(&mut Cli::command(), *shell))
         }
-        Experiment::Man { output } => Some(clidocs::write_man_pages(&Cli::command(), output).map(
-            |written| {
-                say!(
-                    "{} man pages written to {}",
-                    written.len(),
-                    output.display()
-                );
-            },
-        )),
+        Experiment::Man { output } => Some(clidocs::man_pages_into(&Cli::command(), output)),
         _ => None,
     }
 }

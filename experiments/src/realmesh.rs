@@ -136,7 +136,13 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             .unwrap_or_default();
         let mut per_method = Map::new();
         for method in curves::REGISTRY.iter().map(|e| e.name) {
-            let (f, g1, t_fit) = crate::input::fit_prepared(
+            let crate::input::KeptFit {
+                fit: f,
+                g1,
+                seconds: t_fit,
+                folded_faces,
+                worst_fold_cosine,
+            } = crate::input::fit_prepared(
                 &format!("{} ({method} curves)", path.display()),
                 mesh,
                 loaded.frame,
@@ -145,8 +151,6 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 curves::MethodOptions::default(),
             )?;
             let finite = f.points.iter().all(|q| q.iter().all(|c| c.is_finite()));
-            // Faces whose surface turns over (surface::folds).
-            let folds = surface::folds::measure(mesh, &f);
             let _ = writeln!(
                 md,
                 "| {name} | {} | {} | {} | {method} | {} | {} | {} | {:.1e} | {:.2} | {} | {:.3} |",
@@ -158,7 +162,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                     repairs.join("; ")
                 },
                 f.face_fallbacks.len(),
-                folds.folded.len(),
+                folded_faces,
                 f.degenerate_edges.len(),
                 g1.max_angle(),
                 g1.fallback_interior_max.max(g1.fallback_exterior_max),
@@ -168,8 +172,8 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             per_method.insert(
                 method.into(),
                 json!({"fallback_faces": f.face_fallbacks.len(),
-                       "folded_faces": folds.folded.len(),
-                       "worst_fold_cosine": folds.worst_cosine,
+                       "folded_faces": folded_faces,
+                       "worst_fold_cosine": worst_fold_cosine,
                        "degenerate_edges": f.degenerate_edges.len(),
                        "g1_regular_radians": g1.max_angle(),
                        "g1_fallback_radians": g1.fallback_interior_max.max(g1.fallback_exterior_max),

@@ -279,7 +279,12 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
         for entry in REGISTRY {
             let scheme = scheme_by_name(entry.name, &SchemeOptions::default())?;
             let subject = format!("{name}/{}", entry.name);
-            let (f, g1, fit_seconds) = crate::input::fit_prepared(
+            let crate::input::KeptFit {
+                fit: f,
+                g1,
+                seconds: fit_seconds,
+                ..
+            } = crate::input::fit_prepared(
                 &subject,
                 mesh,
                 surface::Frame::identity(),

@@ -284,7 +284,12 @@ fn run_task(t: &Task, grid: &Grid) -> Result<Value, ExperimentError> {
         };
         let curves = t.curves.clone();
         // The fit and its G1 by the fit job, as every front end gets them.
-        let (f, g1, fit_time) = crate::input::fit_kept(fitjob::FitOptions {
+        let crate::input::KeptFit {
+            fit: f,
+            g1,
+            seconds: fit_time,
+            ..
+        } = crate::input::fit_kept(fitjob::FitOptions {
             input: fitjob::InputOptions {
                 source: fitjob::Source::Prepared {
                     label: t.id.clone(),

@@ -43,5 +43,6 @@ mod subdivision;
 pub use error::{chain, JobError};
 pub use input::{InputOptions, Source};
 pub use options::FitOptions;
+pub use output::destination;
 pub use report::FitReport;
-pub use run::{destination, run, FitOutcome, Kept};
+pub use run::{run, FitOutcome, Kept};

@@ -7,6 +7,12 @@ use std::path::Path;
 use crate::error::JobError;
 
 /// Writes `bytes` to `path` atomically (temporary file in the same directory, then rename),
+/// The file a stream option names: `-` is the standard stream (`None`: standard input or
+/// output), anything else a file (docs/conventions.md, "The command language").
+pub fn destination(path: &Path) -> Option<&Path> {
+    (path.as_os_str() != "-").then_some(path)
+}
+
 /// creating the parent directory if needed; `None` writes to standard output.
 pub fn write_result(path: Option<&Path>, bytes: &[u8]) -> Result<(), JobError> {
     match path {

@@ -85,6 +85,17 @@ pub struct G1Summary {
     pub undefined_normals: usize,
 }
 
+/// `F (file vertices a, b, c, file face G)`: a face as the summary names it.
+fn face_in_file(face: usize, v: [usize; 3], file_face: Option<usize>) -> String {
+    let file_face = file_face
+        .map(|g| format!(", file face {g}"))
+        .unwrap_or_default();
+    format!(
+        "{face} (file vertices {}, {}, {}{file_face})",
+        v[0], v[1], v[2]
+    )
+}
+
 /// A face of the fitted mesh, with where it came from in the file.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FaceRef {
@@ -294,15 +305,8 @@ impl FitReport {
                 g1.fallback_exterior_max
             ));
             for fb in self.fallback_faces.iter().take(FALLBACKS_LISTED) {
-                let v = fb.file_vertices;
-                let file_face = fb
-                    .file_face
-                    .map(|f| format!(", file face {f}"))
-                    .unwrap_or_default();
-                lines.push(format!(
-                    "    face {} (file vertices {}, {}, {}{file_face}): {}",
-                    fb.face, v[0], v[1], v[2], fb.reason
-                ));
+                let at = face_in_file(fb.face, fb.file_vertices, fb.file_face);
+                lines.push(format!("    face {at}: {}", fb.reason));
             }
             if self.fallback_faces.len() > FALLBACKS_LISTED {
                 lines.push(format!("    … ({} in all)", self.fallback_faces.len()));
@@ -316,15 +320,8 @@ impl FitReport {
                 folds.worst_cosine.unwrap_or(f64::NAN)
             ));
             for f in folds.folded_faces.iter().take(FALLBACKS_LISTED) {
-                let v = f.file_vertices;
-                let file_face = f
-                    .file_face
-                    .map(|g| format!(", file face {g}"))
-                    .unwrap_or_default();
-                lines.push(format!(
-                    "    folded face {} (file vertices {}, {}, {}{file_face})",
-                    f.face, v[0], v[1], v[2]
-                ));
+                let at = face_in_file(f.face, f.file_vertices, f.file_face);
+                lines.push(format!("    folded face {at}"));
             }
             if folds.folded_faces.len() > FALLBACKS_LISTED {
                 lines.push(format!(

@@ -13,13 +13,10 @@ use crate::error::JobError;
 use crate::input::{load_owned, Source};
 use crate::limits::{self, check_memory, check_usize};
 use crate::options::FitOptions;
-use crate::output::{mesh_format_for, refuse_unwritable, write_result, write_result_with};
+use crate::output::{
+    destination, mesh_format_for, refuse_unwritable, write_result, write_result_with,
+};
 
-/// Where a stream output goes: `-` is standard output (`None`), anything else a file
-/// (docs/conventions.md, "The command language").
-pub fn destination(path: &std::path::Path) -> Option<&std::path::Path> {
-    (path.as_os_str() != "-").then_some(path)
-}
 use crate::report::{
     CurveCounts, DegenerateEdge, FaceRef, FallbackFace, FitReport, FoldSummary, G1Summary,
     InteriorSummary, PeakMemory, TessellationSummary, Timings,
@@ -359,24 +356,27 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
     }
     let face_source = loaded.face_source.as_deref();
     let vertex_source = loaded.vertex_source.as_deref();
-    let fallback_faces = fitted
-        .face_fallbacks
-        .iter()
-        .map(|fb| FallbackFace {
-            face: fb.face,
-            // In the file's numbering where the mesh came from a file (0-based).
-            file_vertices: mesh.faces()[fb.face]
-                .map(|i| vertex_source.and_then(|s| s.get(i).copied()).unwrap_or(i)),
-            file_face: face_source.and_then(|s| s.get(fb.face).copied()),
-            reason: fb.reason.to_string(),
-        })
-        .collect();
+    // A face with its corners and its face in the file's numbering where the mesh came from a
+    // file (0-based).
     let file_face = |f: usize| FaceRef {
         face: f,
         file_vertices: mesh.faces()[f]
             .map(|i| vertex_source.and_then(|s| s.get(i).copied()).unwrap_or(i)),
         file_face: face_source.and_then(|s| s.get(f).copied()),
     };
+    let fallback_faces = fitted
+        .face_fallbacks
+        .iter()
+        .map(|fb| {
+            let at = file_face(fb.face);
+            FallbackFace {
+                face: at.face,
+                file_vertices: at.file_vertices,
+                file_face: at.file_face,
+                reason: fb.reason.to_string(),
+            }
+        })
+        .collect();
     let folds = folds.map(|r| FoldSummary {
         faces_measured: r.faces,
         folded_faces: r.folded.iter().map(|&f| file_face(f)).collect(),

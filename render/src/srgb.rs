@@ -27,15 +27,10 @@ use std::sync::OnceLock;
 /// Buckets of the start-level table (a power of two, so `c · BUCKETS` is exact).
 const BUCKETS: usize = 4096;
 
-/// Linear → sRGB byte by the formula (one `powf`): the reference [`to_srgb8`] reproduces.
+/// Linear → sRGB byte by the formula (one `powf`): the reference [`to_srgb8`] reproduces. The
+/// formula is the one the mesh writers store colours by (`meshio::srgb::encode_byte`).
 pub fn to_srgb8_exact(c: f32) -> u8 {
-    let c = c.clamp(0.0, 1.0);
-    let s = if c <= 0.003_130_8 {
-        12.92 * c
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    };
-    (s * 255.0).round() as u8
+    meshio::srgb::encode_byte(c)
 }
 
 /// Linear → sRGB byte by table; equal to [`to_srgb8_exact`] for every `f32` (module docs).

@@ -18,11 +18,6 @@ use crate::tape::Tape;
 /// counted).
 pub const REPORTED_SKIPS: usize = 5;
 
-/// `-`, the command language's name for a standard stream (docs/conventions.md).
-fn is_dash(p: &std::path::Path) -> bool {
-    p.as_os_str() == "-"
-}
-
 /// Options of every record filter.
 #[derive(clap::Args, Debug, Clone, Default, PartialEq, Eq)]
 pub struct StreamOptions {
@@ -44,7 +39,7 @@ pub struct StreamOptions {
 impl StreamOptions {
     /// Opens the input: the `--input` file, or standard input.
     pub fn open_input(&self) -> Result<Box<dyn BufRead>, FilterError> {
-        Ok(match self.input.as_deref().filter(|p| !is_dash(p)) {
+        Ok(match self.input.as_deref().and_then(fitjob::destination) {
             Some(p) => Box::new(BufReader::with_capacity(
                 1 << 16,
                 std::fs::File::open(p)
@@ -59,7 +54,7 @@ impl StreamOptions {
         &self,
         f: &mut dyn FnMut(&mut dyn Write) -> Result<(), FilterError>,
     ) -> Result<(), FilterError> {
-        match self.output.as_deref().filter(|p| !is_dash(p)) {
+        match self.output.as_deref().and_then(fitjob::destination) {
             None => {
                 let stdout = std::io::stdout();
                 let mut lock = stdout.lock();

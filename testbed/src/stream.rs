@@ -465,30 +465,34 @@ impl<R: BufRead> RecordReader<R> {
     }
 
     fn next_binary(&mut self, record: &mut Record) -> Result<bool, StreamError> {
-        let at = Position {
-            record: self.count + 1,
-            line: 0,
-        };
-        record.at = at;
-        match self.decoder.next_into(&mut self.inner, &mut record.tape) {
-            Ok(false) => Ok(false),
-            Ok(true) => {
-                self.count += 1;
-                Ok(true)
-            }
-            Err(message) => Err(StreamError::Binary { at, message }),
-        }
+        record.at = self.next_position();
+        let decoded = self.decoder.next_into(&mut self.inner, &mut record.tape);
+        self.counted(record.at, decoded)
     }
 }
 
 impl<R: BufRead> RecordReader<R> {
     fn next_bzp(&mut self, record: &mut Record) -> Result<bool, StreamError> {
-        let at = Position {
+        record.at = self.next_position();
+        let decoded = self.bzp.next_into(&mut self.inner, &mut record.tape);
+        self.counted(record.at, decoded)
+    }
+
+    /// The position of the next record of a stream without lines (binary, `.bzp`).
+    fn next_position(&self) -> Position {
+        Position {
             record: self.count + 1,
             line: 0,
-        };
-        record.at = at;
-        match self.bzp.next_into(&mut self.inner, &mut record.tape) {
+        }
+    }
+
+    /// A binary decoder's answer for the record at `at`: counted when one was read.
+    fn counted(
+        &mut self,
+        at: Position,
+        decoded: Result<bool, String>,
+    ) -> Result<bool, StreamError> {
+        match decoded {
             Ok(false) => Ok(false),
             Ok(true) => {
                 self.count += 1;

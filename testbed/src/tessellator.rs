@@ -238,22 +238,7 @@ pub struct Casteljau {
 impl Casteljau {
     /// The evaluator of degree-`degree` nets (at least 1).
     pub fn new(degree: usize) -> Self {
-        use surface::beztri::{index, multi_indices};
-        let sources = (3..=degree)
-            .rev()
-            .map(|m| {
-                multi_indices(m - 1)
-                    .into_iter()
-                    .map(|(i, j, k)| {
-                        [
-                            index(m, i + 1, j, k),
-                            index(m, i, j + 1, k),
-                            index(m, i, j, k + 1),
-                        ]
-                    })
-                    .collect()
-            })
-            .collect();
+        let sources = surface::beztri::casteljau_steps(degree, 3);
         Casteljau {
             degree,
             sources,

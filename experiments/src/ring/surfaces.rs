@@ -117,7 +117,12 @@ pub(super) fn fit_methods(
     let mut fits = Vec::new();
     for entry in curves::REGISTRY {
         let name = entry.name;
-        let (f, g1, fit_time_seconds) = crate::input::fit_kept(fitjob::FitOptions {
+        let crate::input::KeptFit {
+            fit: f,
+            g1,
+            seconds: fit_time_seconds,
+            ..
+        } = crate::input::fit_kept(fitjob::FitOptions {
             input: fitjob::InputOptions {
                 source: fitjob::Source::DataSet {
                     name: "ring".into(),

@@ -173,24 +173,34 @@ struct BasisBlossom {
     sources: Vec<Vec<[usize; 3]>>,
 }
 
+/// The index table of de Casteljau's steps from degree `from` down to degree `to − 1`
+/// (`m = from, …, to`): per step, for each point `(i, j, k)` of the lower net of degree `m − 1`
+/// (net order), the indices of `b_{i+1,j,k}`, `b_{i,j+1,k}`, `b_{i,j,k+1}` in the net of
+/// degree `m`; empty when `to > from`.
+pub fn casteljau_steps(from: usize, to: usize) -> Vec<Vec<[usize; 3]>> {
+    (to.max(1)..=from)
+        .rev()
+        .map(|m| {
+            multi_indices(m - 1)
+                .into_iter()
+                .map(|(i, j, k)| {
+                    [
+                        index(m, i + 1, j, k),
+                        index(m, i, j + 1, k),
+                        index(m, i, j, k + 1),
+                    ]
+                })
+                .collect()
+        })
+        .collect()
+}
+
 impl BasisBlossom {
     fn new(degree: usize) -> Self {
-        let sources = (1..=degree)
-            .rev()
-            .map(|m| {
-                multi_indices(m - 1)
-                    .into_iter()
-                    .map(|(i, j, k)| {
-                        [
-                            index(m, i + 1, j, k),
-                            index(m, i, j + 1, k),
-                            index(m, i, j, k + 1),
-                        ]
-                    })
-                    .collect()
-            })
-            .collect();
-        BasisBlossom { degree, sources }
+        BasisBlossom {
+            degree,
+            sources: casteljau_steps(degree, 1),
+        }
     }
 
     /// `b[args]` for the basis nets of all control points at once (`args` as long as the

@@ -109,9 +109,9 @@ impl Filter for Fit {
                         "--resolution {r} is a data set's: give --data NAME"
                     )));
                 }
-                let (name, bytes) = match stream.input.as_ref().filter(|p| p.as_os_str() != "-") {
+                let (name, bytes) = match stream.input.as_deref().and_then(fitjob::destination) {
                     Some(p) => (
-                        p.clone(),
+                        p.to_path_buf(),
                         std::fs::read(p)
                             .map_err(|e| StreamError::io(format!("reading {}", p.display()), e))?,
                     ),
