@@ -2,6 +2,7 @@
 //! file): a module a topic.
 
 mod boundary_curves_on_the_ring;
+mod cad_corpus;
 mod readback;
 mod readme_numbers;
 mod real_meshes;
