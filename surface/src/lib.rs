@@ -26,7 +26,8 @@
 //! * `measure/` — [`g1`] (the testbed's `G1`: normal continuity and interpolation),
 //!   [`patch_g1`] (the same for patches with no mesh, boundaries matched within a tolerance),
 //!   [`metrics`] (errors against the true surface), [`interior`] (Section 4's corner
-//!   measures), [`curve_stats`] (boundary-curve statistics);
+//!   measures), [`curve_stats`] (boundary-curve statistics), [`folds`] (faces whose surface
+//!   turns over), [`sharp`] (kinks across smooth data, creases kept, flat regions kept flat);
 //! * `tessellate/` — [`tessellate`](mod@tessellate) (the testbed's `Tess`: patches to one
 //!   welded triangle mesh with position, normal, Gaussian and mean curvature),
 //!   [`tessellate_fit`](mod@tessellate_fit) (a fitted mesh, welded by topology, in parallel),
@@ -54,7 +55,7 @@ pub mod tessellate;
 pub use construct::{fallback, shirman_sequin};
 pub use fit::{fairing, stream};
 pub use io::patch_io;
-pub use measure::{curve_stats, folds, g1, interior, metrics, patch_g1};
+pub use measure::{curve_stats, folds, g1, interior, metrics, patch_g1, sharp};
 pub use patch::{beztri, side_vertex};
 pub use tessellate::{tessellate_fit, weld};
 

@@ -1,5 +1,6 @@
 //! Measures of a fit: G1 across patch boundaries (of a fitted mesh, or of bare patches),
-//! errors against the true surface, Section 4's corner measures, boundary-curve statistics.
+//! errors against the true surface, Section 4's corner measures, boundary-curve statistics,
+//! folds, and sharp features (kinks on smooth data, creases kept, flat regions kept flat).
 
 pub mod curve_stats;
 pub mod folds;
@@ -7,3 +8,4 @@ pub mod g1;
 pub mod interior;
 pub mod metrics;
 pub mod patch_g1;
+pub mod sharp;

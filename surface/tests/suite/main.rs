@@ -14,4 +14,5 @@ mod scheme_pn_triangles;
 mod scheme_powell_sabin;
 mod scheme_side_vertex;
 mod schemes;
+mod sharp;
 mod shirman_sequin;
