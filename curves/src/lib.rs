@@ -12,11 +12,14 @@
 //! * [`optimized`] — Mann's trade-off between tangent length and end curvature, minimized by any
 //!   adapter of the `solver` crate (objective in the `cost` crate).
 //!
+//! A crease edge's curve runs along the crease, in both sectors' tangent planes ([`crease`]).
+//!
 //! Conventions are those of `docs/conventions.md`: signed curvature is positive where a
 //! plane curve turns left (about the plane normal `w`), normal curvature `κn(d) = dᵀ S d` is
 //! positive where the surface bends towards its normal, `α = 1` is one third of the chord.
 
 pub mod chord;
+pub mod crease;
 pub mod cubicbez;
 pub mod dbhs;
 pub mod jsonl;
@@ -27,6 +30,7 @@ pub mod problem;
 pub mod quadrature;
 
 pub use chord::Chord;
+pub use crease::{apply_tangents, crease_end, CreaseEnd};
 pub use cubicbez::{cross2, CubicBez, CubicBez2, CubicBez3, CurvatureSample, QuarticBez};
 pub use dbhs::{Dbhs, DbhsPick, DbhsSolution, DbhsSolutions};
 pub use method::{

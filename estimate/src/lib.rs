@@ -49,7 +49,10 @@ pub mod topology;
 pub use hybrid::{Hybrid, HYBRID};
 pub use jet::{Jet, JET, JET2, JET3, JET4};
 pub use normals::{vertex_normals, NormalWeighting, Normals};
-pub use prepare::{prepare, prepare_owned, EstimateChoice, PrepareError, Prepared};
+pub use prepare::{
+    attach_creases, prepare, prepare_owned, prepare_with, CreaseSummary, EstimateChoice,
+    PrepareError, Prepared,
+};
 pub use quadric::{Quadric, QUADRIC};
 pub use rusinkiewicz::{Rusinkiewicz, RUSINKIEWICZ};
 pub use topology::{RingMarks, Topology};
@@ -233,7 +236,7 @@ pub fn estimator_by_name(name: &str) -> Result<&'static dyn Estimator, UnknownEs
 pub struct EstimateSummary {
     /// The estimator's name.
     pub estimator: &'static str,
-    /// Vertices written.
+    /// Vertices written (sectors, on a mesh with sectors: one estimate each).
     pub vertices: usize,
     /// Whether the mesh's normals were kept.
     pub kept_normals: bool,
@@ -246,9 +249,20 @@ pub struct EstimateSummary {
 /// Estimates with `est` and writes the normals (unless kept) and shape tensors into the mesh's
 /// vertices, marking their curvature known. `keep_given_normals`: pass the mesh's current
 /// normals as `given` (invalid ones are re-estimated and reported).
+///
+/// A mesh with sectors ([`mesh::sectors`]) is estimated per sector: the estimator runs on the
+/// mesh cut open along its creases ([`mesh::Sectors::split_mesh`]), so each sector's normal and
+/// shape tensor come from its own faces only, by whichever estimator. The results go to the
+/// slots; a vertex of one slot gets its slot's data, a vertex of several (on a crease) the
+/// normalized sum of their normals and the mean of their tensors projected on it (what a
+/// per-vertex output shows; the fit reads the slots). A given normal is kept only at a vertex of
+/// one slot: a file's single normal at a crease vertex describes neither side.
 pub fn apply(mesh: &mut Mesh, est: &dyn Estimator, keep_given_normals: bool) -> EstimateSummary {
     let given: Option<Vec<Vector3<f64>>> =
         keep_given_normals.then(|| mesh.vertices().iter().map(|v| v.data.n).collect());
+    if let Some(summary) = apply_per_sector(mesh, est, given.as_deref()) {
+        return summary;
+    }
     let e = est.estimate(mesh, given.as_deref());
     for (i, v) in mesh.vertices_mut().iter_mut().enumerate() {
         if let (Some(n), Some(s)) = (e.normals.get(i), e.shapes.get(i)) {
@@ -265,6 +279,83 @@ pub fn apply(mesh: &mut Mesh, est: &dyn Estimator, keep_given_normals: bool) -> 
         fallbacks: e.fallbacks,
         fallback_counts,
     }
+}
+
+/// [`apply`] on a mesh with sectors; `None` (nothing done) when it has none, or when the cut
+/// mesh does not validate (not expected: the caller then estimates per vertex).
+fn apply_per_sector(
+    mesh: &mut Mesh,
+    est: &dyn Estimator,
+    given: Option<&[Vector3<f64>]>,
+) -> Option<EstimateSummary> {
+    let sectors = mesh.sectors()?;
+    let split = sectors.split_mesh(mesh).ok()?;
+    let slot_vertex = sectors.slot_vertices().to_vec();
+    let nv = mesh.num_vertices();
+    let per_vertex = sectors.slots_per_vertex(nv);
+    // A given normal is kept at vertices of one slot only (a zero vector asks for an estimate).
+    let slot_given: Option<Vec<Vector3<f64>>> = given.map(|g| {
+        slot_vertex
+            .iter()
+            .map(|&v| match (per_vertex[v], g.get(v)) {
+                (1, Some(n)) => *n,
+                _ => Vector3::zeros(),
+            })
+            .collect()
+    });
+    let e = est.estimate(&split, slot_given.as_deref());
+    // Per vertex: the sum of its slots' normals and tensors.
+    let mut n_sum = vec![Vector3::<f64>::zeros(); nv];
+    let mut s_sum = vec![Matrix3::<f64>::zeros(); nv];
+    for (s, &v) in slot_vertex.iter().enumerate() {
+        if let (Some(n), Some(sh)) = (e.normals.get(s), e.shapes.get(s)) {
+            n_sum[v] += n;
+            s_sum[v] += sh;
+        }
+    }
+    let slots = e.normals.len();
+    if let Some(sec) = mesh.sectors_mut() {
+        sec.set_slot_data(e.normals, e.shapes).ok()?;
+    }
+    for (v, vert) in mesh.vertices_mut().iter_mut().enumerate() {
+        if per_vertex[v] == 0 {
+            continue;
+        }
+        let len = n_sum[v].norm();
+        if len > 0.0 && len.is_finite() {
+            let n = unit(&n_sum[v], len);
+            vert.data.n = n;
+            vert.data.shape = project_shape(&(s_sum[v] / per_vertex[v] as f64), &n);
+        } else {
+            // Opposite sectors (a knife edge): no mean direction; the vertex keeps its normal
+            // (the fit reads the slots).
+            vert.data.shape = Matrix3::zeros();
+        }
+        vert.curvature_known = true;
+    }
+    let mut fallbacks: Vec<Fallback> = e
+        .fallbacks
+        .into_iter()
+        .filter_map(|f| {
+            let vertex = *slot_vertex.get(f.vertex)?;
+            // The normals withheld at crease vertices are not a fault of the input.
+            let withheld = f.kind == FallbackKind::InvalidGivenNormal && per_vertex[vertex] > 1;
+            (!withheld).then_some(Fallback { vertex, ..f })
+        })
+        .collect();
+    fallbacks.sort();
+    fallbacks.dedup();
+    let mut fallback_counts = BTreeMap::new();
+    for f in &fallbacks {
+        *fallback_counts.entry(f.kind.label()).or_insert(0) += 1;
+    }
+    Some(EstimateSummary {
+        estimator: est.name(),
+        vertices: slots,
+        kept_normals: given.is_some(),
+        fallbacks,
+        fallback_counts,
+    })
 }
 
 /// The given normal of vertex `v`, normalized, if it is present and usable.

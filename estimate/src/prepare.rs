@@ -90,14 +90,17 @@ pub struct Prepared {
     pub estimated: &'static str,
     /// Wall-clock time of the repair, seconds.
     pub repair_time_seconds: f64,
-    /// Wall-clock time of the estimation, seconds.
+    /// Wall-clock time of the estimation (crease detection included), seconds.
     pub estimate_time_seconds: f64,
+    /// What the crease detection found.
+    pub creases: CreaseSummary,
 }
 
 impl Prepared {
     /// One line per thing a user should know (repairs, estimation and its fallbacks).
     pub fn summary_lines(&self) -> Vec<String> {
         let mut out = self.report.summary_lines();
+        out.push(self.creases.line());
         if let Some(e) = &self.estimate {
             let counts: Vec<String> = e
                 .fallback_counts
@@ -119,7 +122,119 @@ impl Prepared {
     }
 }
 
-/// Repairs `raw` and estimates what it lacks (module docs).
+/// What the crease detection of [`prepare_with`] found and did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CreaseSummary {
+    /// The rule (`auto`, `angle 30°`, `none`).
+    pub rule: String,
+    /// Crease edges the data is split at (both ends' sectors differ at one end at least).
+    pub creases: usize,
+    /// Of the edges found, those from the geometry.
+    pub from_geometry: usize,
+    /// Of the edges found, those the file marks (and the geometry did not).
+    pub from_file: usize,
+    /// Crease edges found that separate no sectors (between two darts), treated as smooth.
+    pub demoted: usize,
+    /// Vertices where creases meet (three or more, or two turning sharply, or on a boundary).
+    pub corners: usize,
+    /// Vertices where a crease ends inside a smooth region.
+    pub darts: usize,
+    /// Vertices with two or more sectors.
+    pub split_vertices: usize,
+    /// Sectors (slots) in all.
+    pub sectors: usize,
+    /// Components, and those taken as tessellated models (geometric creases by default).
+    pub components: usize,
+    /// Components taken as tessellated models.
+    pub tessellated_components: usize,
+    /// Wall-clock time of the detection and the sector assignment, seconds.
+    pub seconds: f64,
+}
+
+impl CreaseSummary {
+    /// One line for the fit's notes.
+    pub fn line(&self) -> String {
+        if self.creases == 0 {
+            return format!(
+                "creases ({}): none{}",
+                self.rule,
+                if self.rule == "auto" && self.tessellated_components < self.components {
+                    format!(
+                        " ({} of {} components are not tessellated models: geometric creases need --crease-angle)",
+                        self.components - self.tessellated_components,
+                        self.components
+                    )
+                } else {
+                    String::new()
+                }
+            );
+        }
+        format!(
+            "creases ({}): {} edges ({} from the geometry, {} from the file), {} corners, {} darts; {} vertices split into {} sectors",
+            self.rule,
+            self.creases,
+            self.from_geometry,
+            self.from_file,
+            self.corners,
+            self.darts,
+            self.split_vertices,
+            self.sectors
+        )
+    }
+}
+
+/// Finds the creases of `mesh` by `rule` and the file's `file_creases` (vertex pairs of the
+/// mesh), and attaches the sectors when there is a crease: the estimation that follows is then
+/// per sector ([`crate::apply`]).
+pub fn attach_creases(
+    mesh: &mut Mesh,
+    rule: mesh::features::CreaseRule,
+    file_creases: &[[usize; 2]],
+) -> CreaseSummary {
+    use mesh::features::{CreaseRule, Features, VertexKind};
+    let t0 = std::time::Instant::now();
+    let features = Features::find(mesh, rule, file_creases);
+    let mut summary = CreaseSummary {
+        rule: match rule {
+            CreaseRule::Auto => "auto".into(),
+            CreaseRule::Angle(d) => format!("angle {d}°"),
+            CreaseRule::None => "none".into(),
+        },
+        components: features.components,
+        tessellated_components: features.tessellated_components,
+        ..CreaseSummary::default()
+    };
+    if features.num_creases() > 0 {
+        if let Ok(sectors) = mesh::Sectors::new(mesh, &features.crease) {
+            summary.creases = sectors.num_creases();
+            summary.demoted = sectors.demoted();
+            summary.sectors = sectors.num_slots();
+            summary.split_vertices = sectors
+                .slots_per_vertex(mesh.num_vertices())
+                .iter()
+                .filter(|&&n| n > 1)
+                .count();
+            let kept = sectors.creases();
+            summary.from_file = (0..kept.len())
+                .filter(|&e| kept[e] && features.by_file[e])
+                .count();
+            summary.from_geometry = summary.creases - summary.from_file;
+            summary.corners = features.count(VertexKind::Corner);
+            summary.darts = features.count(VertexKind::Dart);
+            if kept.iter().any(|&c| c) && mesh.set_sectors(Some(sectors)).is_err() {
+                summary = CreaseSummary {
+                    rule: summary.rule,
+                    ..CreaseSummary::default()
+                };
+            }
+        }
+    }
+    summary.seconds = t0.elapsed().as_secs_f64();
+    summary
+}
+
+/// Repairs `raw` and estimates what it lacks (module docs), with creases by the default rule
+/// ([`mesh::features::CreaseRule::Auto`]).
 pub fn prepare(
     raw: &RawMesh,
     choice: EstimateChoice,
@@ -135,6 +250,21 @@ pub fn prepare_owned(
     raw: RawMesh,
     choice: EstimateChoice,
     replace_normals: bool,
+) -> Result<Prepared, PrepareError> {
+    prepare_with(
+        raw,
+        choice,
+        replace_normals,
+        mesh::features::CreaseRule::Auto,
+    )
+}
+
+/// [`prepare_owned`] with the crease rule `creases` (`--crease-angle`, `--no-creases`).
+pub fn prepare_with(
+    raw: RawMesh,
+    choice: EstimateChoice,
+    replace_normals: bool,
+    creases: mesh::features::CreaseRule,
 ) -> Result<Prepared, PrepareError> {
     let t0 = std::time::Instant::now();
     let frame = mesh::Frame::of_points(&raw.positions)?;
@@ -158,6 +288,7 @@ pub fn prepare_owned(
     drop(work);
     let repair_time_seconds = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
+    let crease_summary = attach_creases(&mut mesh, creases, &[]);
     let curvature_given = mesh.vertices().iter().all(|v| v.curvature_known);
     let (estimate, estimated) = match choice {
         EstimateChoice::None => {
@@ -175,10 +306,21 @@ pub fn prepare_owned(
                 // (projected into the new tangent planes so that S n = 0 holds).
                 let shapes: Vec<_> = mesh.vertices().iter().map(|v| v.data.shape).collect();
                 let summary = apply(&mut mesh, est, false);
-                for (v, s) in mesh.vertices_mut().iter_mut().zip(shapes) {
-                    let n = v.data.n;
+                let project = |n: &nalgebra::Vector3<f64>, s: &nalgebra::Matrix3<f64>| {
                     let p = nalgebra::Matrix3::identity() - n * n.transpose();
-                    v.data.shape = p * s * p;
+                    p * s * p
+                };
+                for (v, s) in mesh.vertices_mut().iter_mut().zip(&shapes) {
+                    v.data.shape = project(&v.data.n, s);
+                }
+                if let Some(sec) = mesh.sectors_mut() {
+                    for slot in 0..sec.num_slots() {
+                        if let (Some(&v), Some(&n)) =
+                            (sec.slot_vertices().get(slot), sec.normal(slot))
+                        {
+                            sec.set_slot(slot, n, project(&n, &shapes[v]), true);
+                        }
+                    }
                 }
                 (Some(summary), "normals")
             } else {
@@ -205,5 +347,6 @@ pub fn prepare_owned(
         estimated,
         repair_time_seconds,
         estimate_time_seconds: t1.elapsed().as_secs_f64(),
+        creases: crease_summary,
     })
 }

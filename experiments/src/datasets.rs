@@ -62,6 +62,7 @@ pub fn load_subject(
             },
             estimate: estimate.to_string(),
             replace_normals: false,
+            creases: mesh::features::CreaseRule::Auto,
         })?;
         return Ok(Subject {
             name: data.to_string(),

@@ -23,6 +23,9 @@ pub struct InputArgs {
     /// and only the curvature is estimated, in their tangent planes).
     #[arg(long)]
     pub replace_normals: bool,
+    /// How creases are found (`--crease-angle DEG`, `--no-creases`).
+    #[command(flatten)]
+    pub creases: fitjob::cli::CreaseArgs,
 }
 
 /// `--data`'s help: the data sets and the readable mesh formats, from their registries.
@@ -47,6 +50,7 @@ impl InputArgs {
             },
             estimate: self.estimate.clone(),
             replace_normals: self.replace_normals,
+            creases: self.creases.rule(),
         }
     }
 }

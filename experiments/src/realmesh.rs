@@ -124,6 +124,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             resolution: None,
             estimate: args.estimate.clone(),
             replace_normals: false,
+            creases: fitjob::cli::CreaseArgs::default(),
         };
         let t = Instant::now();
         let loaded = load(&input)?;

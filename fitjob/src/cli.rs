@@ -130,6 +130,47 @@ pub fn curve_method_names() -> PossibleValuesParser {
     PossibleValuesParser::new(curves::REGISTRY.iter().map(|e| e.name))
 }
 
+/// How creases are found (`--crease-angle DEG`, `--no-creases`); by default the file's creases
+/// and, on tessellated models, edges over 40° (`mesh::features::CreaseRule::Auto`, the rules
+/// in docs/conventions.md).
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct CreaseArgs {
+    /// Edges whose faces' planes meet at more than DEG degrees (0 < DEG ≤ 180) are creases, on
+    /// every part of the mesh (scans included); the file's marked creases too. Default: 40° on
+    /// tessellated models only, the file's creases everywhere.
+    #[arg(long, value_name = "DEG", value_parser = parse_crease_angle, conflicts_with = "no_creases")]
+    pub crease_angle: Option<f64>,
+    /// No creases at all, not even those the file marks: one normal per vertex.
+    #[arg(long)]
+    pub no_creases: bool,
+}
+
+impl CreaseArgs {
+    /// The rule these options ask for.
+    pub fn rule(&self) -> mesh::features::CreaseRule {
+        use mesh::features::CreaseRule;
+        match (self.no_creases, self.crease_angle) {
+            (true, _) => CreaseRule::None,
+            (false, Some(d)) => CreaseRule::Angle(d),
+            (false, None) => CreaseRule::Auto,
+        }
+    }
+}
+
+/// `--crease-angle`'s value: degrees in (0, 180].
+fn parse_crease_angle(s: &str) -> Result<f64, String> {
+    let d: f64 = s
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number of degrees"))?;
+    if d > 0.0 && d <= 180.0 {
+        Ok(d)
+    } else {
+        Err(format!(
+            "{s}° is out of range: a dihedral angle lies in (0, 180] degrees (180 finds no geometric crease)"
+        ))
+    }
+}
+
 /// The registered estimators and `none` as the values `--estimate` accepts.
 pub fn estimator_names() -> PossibleValuesParser {
     PossibleValuesParser::new(

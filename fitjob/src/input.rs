@@ -81,6 +81,9 @@ pub struct InputOptions {
     pub estimate: String,
     /// Estimate normals even where the file gives them.
     pub replace_normals: bool,
+    /// How creases are found in a mesh file (`--crease-angle`, `--no-creases`); data sets are
+    /// smooth and taken as they are.
+    pub creases: mesh::features::CreaseRule,
 }
 
 impl Default for InputOptions {
@@ -93,6 +96,7 @@ impl Default for InputOptions {
             },
             estimate: estimate::DEFAULT_ESTIMATOR.into(),
             replace_normals: false,
+            creases: mesh::features::CreaseRule::Auto,
         }
     }
 }
@@ -146,26 +150,16 @@ pub fn load(options: &InputOptions) -> Result<Loaded, JobError> {
                 let t = std::time::Instant::now();
                 let raw = meshio::read_file(path).map_err(JobError::MeshIo)?;
                 let read_time = t.elapsed().as_secs_f64();
-                prepare(
-                    raw,
-                    &options.estimate,
-                    options.replace_normals,
-                    path.to_path_buf(),
-                    read_time,
-                )
+                prepare(raw, options.how(), path.to_path_buf(), read_time)
             } else {
                 dataset(data, *resolution)
             }
         }
         Source::DataSet { name, resolution } => dataset(name, *resolution),
         Source::Prepared { mesh, frame, .. } => Ok(prepared((**mesh).clone(), *frame)),
-        Source::Raw { label, raw } => prepare(
-            (**raw).clone(),
-            &options.estimate,
-            options.replace_normals,
-            PathBuf::from(label),
-            0.0,
-        ),
+        Source::Raw { label, raw } => {
+            prepare((**raw).clone(), options.how(), PathBuf::from(label), 0.0)
+        }
     }
 }
 
@@ -189,8 +183,11 @@ pub fn load_owned(options: InputOptions) -> Result<Loaded, JobError> {
     match options.source {
         Source::Raw { label, raw } => prepare(
             *raw,
-            &options.estimate,
-            options.replace_normals,
+            How {
+                estimate: &options.estimate,
+                replace_normals: options.replace_normals,
+                creases: options.creases,
+            },
             PathBuf::from(label),
             0.0,
         ),
@@ -199,14 +196,32 @@ pub fn load_owned(options: InputOptions) -> Result<Loaded, JobError> {
     }
 }
 
+/// How a raw mesh is completed: [`InputOptions`] but the source.
+#[derive(Clone, Copy)]
+struct How<'a> {
+    estimate: &'a str,
+    replace_normals: bool,
+    creases: mesh::features::CreaseRule,
+}
+
+impl InputOptions {
+    fn how(&self) -> How<'_> {
+        How {
+            estimate: &self.estimate,
+            replace_normals: self.replace_normals,
+            creases: self.creases,
+        }
+    }
+}
+
 /// A raw mesh repaired and completed.
 fn prepare(
     mut raw: meshio::RawMesh,
-    estimator: &str,
-    replace_normals: bool,
+    options: How<'_>,
     path: PathBuf,
     read_time: f64,
 ) -> Result<Loaded, JobError> {
+    let estimator = options.estimate;
     let choice = EstimateChoice::parse(estimator).map_err(|source| JobError::Estimate {
         value: estimator.to_string(),
         source,
@@ -214,7 +229,7 @@ fn prepare(
     let peak_read = crate::limits::peak_resident_bytes();
     let mut notes: Vec<String> = std::mem::take(&mut raw.notes);
     // The raw mesh is handed over and freed once repaired: a large file is not held twice.
-    let prepared = estimate::prepare_owned(raw, choice, replace_normals)
+    let prepared = estimate::prepare_with(raw, choice, options.replace_normals, options.creases)
         .map_err(|source| JobError::Prepare { path, source })?;
     notes.extend(prepared.summary_lines());
     notes.push(format!(

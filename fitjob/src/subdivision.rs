@@ -15,6 +15,42 @@ use crate::options::FitOptions;
 use crate::output::{mesh_format_for, refuse_overwriting_input, write_result};
 use crate::report::{FitReport, SubdivisionSummary, Timings};
 
+/// The crease tags of a file's polygons: the creases `rule` finds on the file's mesh (repaired
+/// and triangulated as the Bézier schemes see it, `mesh::features::Features::find`), mapped back
+/// to the file's vertices and kept where they are edges of its polygons (a fan diagonal of a
+/// polygon is never one). A mesh the repair cannot make anything of gets no tags (the
+/// subdivision then reports what is wrong with it).
+fn raw_creases(raw: &meshio::RawMesh, rule: mesh::features::CreaseRule) -> Vec<[usize; 2]> {
+    let Ok(repaired) = mesh::repair::repair(raw, &mesh::repair::RepairOptions::default()) else {
+        return Vec::new();
+    };
+    let features = mesh::features::Features::find(&repaired.mesh, rule, &[]);
+    let mut polygon_edges = std::collections::BTreeSet::new();
+    for poly in raw.polygons.iter() {
+        for i in 0..poly.len() {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            polygon_edges.insert([a.min(b), a.max(b)]);
+        }
+    }
+    let source = &repaired.vertex_source;
+    let mut out: Vec<[usize; 2]> = repaired
+        .mesh
+        .edges()
+        .iter()
+        .zip(&features.crease)
+        .filter(|(_, &c)| c)
+        .filter_map(|(e, _)| {
+            let [a, b] = e.vertices.map(|v| source.get(v).copied());
+            let (a, b) = (a?, b?);
+            let key = [a.min(b), a.max(b)];
+            polygon_edges.contains(&key).then_some(key)
+        })
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
 /// Runs the subdivision scheme of `options`.
 pub fn run(options: &FitOptions) -> Result<FitReport, JobError> {
     let t0 = Instant::now();
@@ -42,14 +78,20 @@ pub fn run(options: &FitOptions) -> Result<FitReport, JobError> {
             let positions = d.mesh.vertices().iter().map(|v| v.data.p).collect();
             subdiv::PolyMesh::from_triangles(positions, d.mesh.faces()).map_err(subject)?
         }
-        (None, Source::Raw { raw, .. }) => subdiv::PolyMesh::from_raw(raw).map_err(subject)?,
+        (None, Source::Raw { raw, .. }) => {
+            let creases = raw_creases(raw, options.input.creases);
+            subdiv::PolyMesh::with_creases(raw.positions.clone(), &raw.polygons, &creases)
+                .map_err(subject)?
+        }
         (None, Source::Prepared { mesh, .. }) => {
             let positions = mesh.vertices().iter().map(|v| v.data.p).collect();
             subdiv::PolyMesh::from_triangles(positions, mesh.faces()).map_err(subject)?
         }
         (None, _) => {
             let raw = meshio::read_file(Path::new(&label)).map_err(JobError::MeshIo)?;
-            subdiv::PolyMesh::from_raw(&raw).map_err(subject)?
+            let creases = raw_creases(&raw, options.input.creases);
+            subdiv::PolyMesh::with_creases(raw.positions, &raw.polygons, &creases)
+                .map_err(subject)?
         }
     };
     let refined = subdiv::subdivide(s.as_ref(), &mesh, options.levels, subdiv::DEFAULT_MAX_FACES)

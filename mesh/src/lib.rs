@@ -7,6 +7,8 @@
 //!   fundamental form;
 //! * [`mesh`](mod@mesh) — [`Mesh`]: validated triangle meshes with half-edge adjacency, stable
 //!   edge indices, vertex fans, walks;
+//! * [`features`] — creases, darts and corners found from the geometry; [`sectors`] — data
+//!   per sector of a vertex (per face corner), and the mesh cut open along its creases;
 //! * [`repair`] — a file's raw mesh to a valid mesh by stated, counted rules;
 //! * [`frame`] — the working frame of a user's mesh (unit bounding box), and the way back;
 //! * [`analytic`] — points of analytic surfaces (sphere, torus) with exact normals and shape
@@ -26,6 +28,7 @@ pub mod features;
 pub mod frame;
 pub mod mesh;
 pub mod repair;
+pub mod sectors;
 pub mod testbed_format;
 pub mod vertex;
 mod vertex_pieces;
@@ -36,6 +39,7 @@ pub use datasets::{
 };
 pub use frame::{Frame, FrameError};
 pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex};
+pub use sectors::{SectorError, Sectors};
 pub use testbed_format::{
     read_testbed, read_testbed_file, write_testbed, write_testbed_file, TestbedError,
 };

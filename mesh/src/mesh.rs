@@ -30,6 +30,7 @@
 
 use std::collections::BTreeMap;
 
+use crate::sectors::{SectorError, Sectors};
 use crate::vertex::VertexData;
 use nalgebra::{Matrix3, Point3, Vector3};
 use rayon::prelude::*;
@@ -211,6 +212,9 @@ pub struct Mesh {
     outgoing: Vec<Option<usize>>,
     /// Per-mesh fields a reader kept.
     pub extra: ExtraFields,
+    /// Per-sector data at the creases ([`crate::sectors`]); `None`: one normal and shape tensor
+    /// per vertex.
+    sectors: Option<Box<Sectors>>,
 }
 
 /// The twin of every half-edge of valid faces ([`NO_TWIN`] on the boundary), or the first
@@ -568,6 +572,7 @@ impl Mesh {
             edges,
             outgoing,
             extra: ExtraFields::new(),
+            sectors: None,
         }
     }
 
@@ -653,6 +658,57 @@ impl Mesh {
             &self.vertices[b].data,
             &self.vertices[c].data,
         ])
+    }
+
+    /// The data of corner `c` of face `f` as the fit reads it: the vertex's position with the
+    /// normal and shape tensor of its sector ([`crate::sectors`]), or of the vertex when the
+    /// mesh has no sectors. `None` for a missing face or corner.
+    pub fn corner_data(&self, f: usize, c: usize) -> Option<VertexData> {
+        let v = *self.faces.get(f)?.get(c)?;
+        let data = self.vertices[v].data;
+        match &self.sectors {
+            None => Some(data),
+            Some(s) => {
+                let slot = s.slot(f, c)?;
+                Some(VertexData::new(data.p, *s.normal(slot)?, *s.shape(slot)?))
+            }
+        }
+    }
+
+    /// Whether the shape tensor of corner `c` of face `f` is known (see [`Mesh::corner_data`]).
+    pub fn corner_curvature_known(&self, f: usize, c: usize) -> bool {
+        let Some(&v) = self.faces.get(f).and_then(|face| face.get(c)) else {
+            return false;
+        };
+        match &self.sectors {
+            None => self.vertices[v].curvature_known,
+            Some(s) => s.slot(f, c).is_some_and(|slot| s.curvature_known(slot)),
+        }
+    }
+
+    /// The sectors and their data, when the mesh has creases.
+    pub fn sectors(&self) -> Option<&Sectors> {
+        self.sectors.as_deref()
+    }
+
+    /// The sectors, to set their data.
+    pub fn sectors_mut(&mut self) -> Option<&mut Sectors> {
+        self.sectors.as_deref_mut()
+    }
+
+    /// Attaches sectors made for this mesh ([`Sectors::new`]), or removes them (`None`).
+    pub fn set_sectors(&mut self, sectors: Option<Sectors>) -> Result<(), SectorError> {
+        if let Some(s) = &sectors {
+            s.check(self)?;
+        }
+        self.sectors = sectors.map(Box::new);
+        Ok(())
+    }
+
+    /// True when edge `e` is a crease the data is split at ([`Sectors::is_crease`]); false
+    /// without sectors.
+    pub fn is_crease(&self, e: usize) -> bool {
+        self.sectors.as_ref().is_some_and(|s| s.is_crease(e))
     }
 
     /// The geometric normal of face `f`: `(p1 − p0) × (p2 − p0)`, twice the area in length.

@@ -30,7 +30,11 @@ fn main() {
     };
     let choice = EstimateChoice::parse(DEFAULT_ESTIMATOR).expect("the default estimator");
     let scheme = scheme_by_name(DEFAULT_SCHEME, &SchemeOptions::default()).expect("the scheme");
-    let method = method_by_name("chord", &MethodOptions::default()).expect("chord");
+    let method = method_by_name(
+        &std::env::var("CURVES").unwrap_or("chord".into()),
+        &MethodOptions::default(),
+    )
+    .expect("chord");
     for path in files {
         let raw = meshio::read_file(&path).expect("a readable mesh");
         let mesh = prepare_owned(raw, choice, false)
@@ -45,7 +49,7 @@ fn main() {
             |n| n.to_string_lossy().into_owned(),
         );
         println!(
-            "{name}: {} faces ({} fallback), {} interior edges; smooth {} (kinked {}, severe {}, worst {:.3e} rad); creases kept {} ({} at a fallback) of {}; flat regions {} ({} faces, largest {}, {} rejected), deviation {:.3e}; measured in {:.3} s",
+            "{name}: {} faces ({} fallback), {} interior edges; smooth {} (kinked {}, severe {}, worst {:.3e} rad); creases kept {} ({} at a fallback) of {}; flat regions {} ({} faces, largest {}, {} rejected, {} blended), deviation {:.3e}; measured in {:.3} s",
             mesh.num_faces(),
             fit.face_fallbacks.len(),
             r.interior_edges,
@@ -60,6 +64,7 @@ fn main() {
             r.flat.faces,
             r.flat.largest_region,
             r.flat.rejected_regions,
+            r.flat.blended_regions,
             r.flat.deviation,
             seconds,
         );

@@ -209,10 +209,17 @@ pub fn choose_interior_with(
         .into_par_iter()
         .map(|f| {
             let kept = (InteriorParameters::default(), false, true, 0.0, 0.0, 0);
-            let (Ok(face), Ok(edges)) = (mesh.face(f), fit.face_curves(mesh, f)) else {
+            let Ok(edges) = fit.face_curves(mesh, f) else {
                 return kept;
             };
-            let verts = face.map(|i| mesh.vertices()[i].data);
+            let (Some(a), Some(b), Some(c)) = (
+                mesh.corner_data(f, 0),
+                mesh.corner_data(f, 1),
+                mesh.corner_data(f, 2),
+            ) else {
+                return kept;
+            };
+            let verts = [a, b, c];
             let Some(problem) = macro_patch_energy(energy, verts, edges) else {
                 return kept;
             };

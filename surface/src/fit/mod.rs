@@ -163,6 +163,12 @@ pub struct Fit {
     pub flipped_tangents: usize,
     /// Edges whose curve problem was degenerate, fitted with the straight cubic (module docs).
     pub degenerate_edges: Vec<DegenerateEdge>,
+    /// Crease edges ([`Mesh::is_crease`]): their curves run along the crease ([`edge_ends`]).
+    pub crease_edges: usize,
+    /// Crease edges with an end where the crease tangent could not be used (the crease leaves
+    /// the edge sideways, or folds flat: [`curves::CreaseEnd`]); the curve there takes the
+    /// bisector plane's tangent.
+    pub crease_ends_off_line: usize,
     /// Faces fitted with the fallback patch (module docs), in face order.
     pub face_fallbacks: Vec<FaceFallback>,
     /// The control points of every patch, face after face and within a face patch after patch
@@ -186,6 +192,8 @@ impl Default for Fit {
             unconverged: 0,
             flipped_tangents: 0,
             degenerate_edges: Vec::new(),
+            crease_edges: 0,
+            crease_ends_off_line: 0,
             face_fallbacks: Vec::new(),
             points: Vec::new(),
         }
@@ -313,6 +321,93 @@ pub fn fit_scheme(
     Ok(out)
 }
 
+/// The data a mesh edge's boundary curve is built from ([`edge_ends`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeEnds {
+    /// The data at `edge.vertices[0]` and `[1]` for the curve problem: the corner data of the
+    /// edge's first face, or at a crease end the bisector data of both sectors
+    /// ([`curves::crease_end`]).
+    pub data: [curves::VertexData; 2],
+    /// The crease tangent the curve takes at each end, where the crease fixes one.
+    pub tangents: [Option<nalgebra::Vector3<f64>>; 2],
+    /// The edge separates two sectors at an end.
+    pub crease: bool,
+    /// At a crease end the crease tangent could not be used ([`curves::CreaseEnd`]).
+    pub off_line: bool,
+    /// The line the boundary leaves each crease end along, for the schemes that make their own
+    /// boundaries ([`FaceInput::creases`]): the crease tangent, or the chord where it could not
+    /// be used (shared by both faces either way).
+    pub lines: [Option<nalgebra::Vector3<f64>>; 2],
+}
+
+/// The end data of edge `e`'s boundary curve. On a smooth edge (or a mesh without sectors),
+/// both faces see the same data at each end, and that is the data. At an end where the two
+/// faces lie in different sectors (a crease), the curve must lie in both tangent planes: it
+/// gets the crease's bisector data and tangent ([`curves::crease`]), the same for both faces
+/// (the construction is symmetric in the two sectors), so the curve is shared and the surface
+/// stays C0 along the crease while each face keeps its own sector's tangent plane.
+pub fn edge_ends(mesh: &Mesh, e: usize) -> EdgeEnds {
+    let edge = mesh.edges()[e];
+    let corner = |f: usize, v: usize| mesh.faces()[f].iter().position(|&x| x == v).unwrap_or(0);
+    let (f1, _) = edge.first;
+    let data_at = |f: usize, v: usize| {
+        mesh.corner_data(f, corner(f, v))
+            .unwrap_or_else(|| mesh.vertices()[v].data)
+    };
+    let mut out = EdgeEnds {
+        data: edge.vertices.map(|v| data_at(f1, v)),
+        tangents: [None, None],
+        crease: false,
+        off_line: false,
+        lines: [None, None],
+    };
+    let (Some(sectors), Some((f2, _))) = (mesh.sectors(), edge.second) else {
+        return out;
+    };
+    if !sectors.is_crease(e) {
+        return out;
+    }
+    for end in 0..2 {
+        let v = edge.vertices[end];
+        if sectors.slot(f1, corner(f1, v)) == sectors.slot(f2, corner(f2, v)) {
+            continue;
+        }
+        out.crease = true;
+        let other = mesh.vertices()[edge.vertices[1 - end]].data.p;
+        let (d, how) = curves::crease_end(&data_at(f1, v), &data_at(f2, v), &other);
+        out.data[end] = d;
+        out.tangents[end] = how.tangent().map(|t| if end == 0 { t } else { -t });
+        out.off_line |= matches!(how, curves::CreaseEnd::Sideways | curves::CreaseEnd::Knife);
+        out.lines[end] = how.tangent().or_else(|| (other - d.p).try_normalize(0.0));
+    }
+    out
+}
+
+/// [`FaceInput::creases`] of face `f`: the crease tangents of its edges, oriented along the
+/// face ([`edge_ends`]).
+fn face_creases(mesh: &Mesh, f: usize) -> [[Option<nalgebra::Vector3<f64>>; 2]; 3] {
+    let mut out = crate::scheme::NO_CREASES;
+    if mesh.sectors().is_none() {
+        return out;
+    }
+    let face = mesh.faces()[f];
+    for (l, slot) in out.iter_mut().enumerate() {
+        let Ok(ei) = mesh.edge_index(f, l) else {
+            continue;
+        };
+        if !mesh.is_crease(ei) {
+            continue;
+        }
+        let t = edge_ends(mesh, ei).lines;
+        *slot = if mesh.edges()[ei].vertices[0] == face[l] {
+            t
+        } else {
+            [t[1], t[0]]
+        };
+    }
+    out
+}
+
 /// The straight cubic at thirds from `a` to `b`.
 fn straight(a: nalgebra::Point3<f64>, b: nalgebra::Point3<f64>) -> CubicBez3 {
     CubicBez3::new([a, a + (b - a) / 3.0, a + (b - a) * (2.0 / 3.0), b])
@@ -374,10 +469,9 @@ pub fn fit_curves_into(
     method: &dyn CurveMethod,
     out: &mut Fit,
 ) -> Result<(), FitError> {
-    let verts = mesh.vertices();
     let uses_curves = scheme.uses_curves();
     if uses_curves && method.needs_curvature() {
-        if let Some(v) = verts.iter().position(|v| !v.curvature_known) {
+        if let Some(v) = mesh.vertices().iter().position(|v| !v.curvature_known) {
             return Err(FitError::NeedsCurvature {
                 method: method.name(),
                 vertex: v,
@@ -411,21 +505,25 @@ pub fn fit_curves_into(
         .zip(alphas.par_iter_mut())
         .zip(flags.par_iter_mut())
         .zip(edge_errors.par_iter_mut())
-        .zip(mesh.edges().par_iter())
-        .for_each(|((((curve, alpha), flag), err), e)| {
+        .zip(mesh.edges().par_iter().enumerate())
+        .for_each(|((((curve, alpha), flag), err), (ei, e))| {
             let [a, b] = e.vertices;
-            match BoundaryProblem::new((a, b), &verts[a].data, &verts[b].data) {
+            let ends = edge_ends(mesh, ei);
+            match BoundaryProblem::new((a, b), &ends.data[0], &ends.data[1]) {
                 Ok(p) => {
                     let choice = method.construct(&p.unit);
-                    *curve = p.curve(choice.alpha);
+                    *curve = curves::apply_tangents(&p.curve(choice.alpha), ends.tangents);
                     *alpha = choice.alpha;
                     let unconverged = choice.report.as_ref().is_some_and(|r| !r.converged());
                     let flipped = p.flipped.iter().filter(|f| **f).count() as u8;
-                    *flag =
-                        u8::from(choice.fallback) | (u8::from(unconverged) << 1) | (flipped << 2);
+                    *flag = u8::from(choice.fallback)
+                        | (u8::from(unconverged) << 1)
+                        | (flipped << 2)
+                        | (u8::from(ends.crease) << 4)
+                        | (u8::from(ends.off_line) << 5);
                 }
                 Err(error) => {
-                    *curve = straight(verts[a].data.p, verts[b].data.p);
+                    *curve = straight(ends.data[0].p, ends.data[1].p);
                     *alpha = [1.0, 1.0];
                     *flag = 0;
                     *err = Some(error);
@@ -439,7 +537,9 @@ pub fn fit_curves_into(
         .collect();
     out.fallbacks = flags.iter().filter(|f| *f & 1 != 0).count();
     out.unconverged = flags.iter().filter(|f| *f & 2 != 0).count();
-    out.flipped_tangents = flags.iter().map(|f| usize::from(f >> 2)).sum();
+    out.flipped_tangents = flags.iter().map(|f| usize::from((f >> 2) & 3)).sum();
+    out.crease_edges = flags.iter().filter(|f| *f & 16 != 0).count();
+    out.crease_ends_off_line = flags.iter().filter(|f| *f & 32 != 0).count();
     Ok(())
 }
 
@@ -456,21 +556,22 @@ pub fn build_face(
     f: usize,
     out: &mut [nalgebra::Point3<f64>],
 ) -> Result<Option<FaceFallbackReason>, FitError> {
-    let verts = mesh.vertices();
-    let face = mesh.face(f).map_err(|e| FitError::Mesh(e.to_string()))?;
+    let missing = || FitError::Mesh(format!("face {f} does not exist"));
+    let data = [
+        mesh.corner_data(f, 0).ok_or_else(missing)?,
+        mesh.corner_data(f, 1).ok_or_else(missing)?,
+        mesh.corner_data(f, 2).ok_or_else(missing)?,
+    ];
     let edges = if scheme.uses_curves() {
         face_curves(mesh, curves, f).map_err(|e| FitError::Mesh(e.to_string()))?
     } else {
-        std::array::from_fn(|l| straight(verts[face[l]].data.p, verts[face[(l + 1) % 3]].data.p))
+        std::array::from_fn(|l| straight(data[l].p, data[(l + 1) % 3].p))
     };
     let input = FaceInput {
         face: f,
-        vertices: [
-            &verts[face[0]].data,
-            &verts[face[1]].data,
-            &verts[face[2]].data,
-        ],
+        vertices: [&data[0], &data[1], &data[2]],
         edges: &edges,
+        creases: face_creases(mesh, f),
     };
     let built = if mesh.is_degenerate_face(f) {
         Err(FaceFallbackReason::ZeroArea)

@@ -7,15 +7,16 @@ use crate::fit::Fit;
 use crate::mesh::Mesh;
 use crate::metrics::median;
 
-/// Every edge of `mesh` as a boundary-curve problem, in edge order; the first degenerate edge is
-/// an error naming it.
+/// Every edge of `mesh` as a boundary-curve problem, in edge order (a crease edge's with its
+/// crease data, [`crate::fit::edge_ends`]); the first degenerate edge is an error naming it.
 pub fn edge_problems(mesh: &Mesh) -> Result<Vec<BoundaryProblem>, EdgeError> {
-    let v = mesh.vertices();
     mesh.edges()
         .iter()
-        .map(|e| {
+        .enumerate()
+        .map(|(ei, e)| {
             let [a, b] = e.vertices;
-            BoundaryProblem::new((a, b), &v[a].data, &v[b].data)
+            let ends = crate::fit::edge_ends(mesh, ei);
+            BoundaryProblem::new((a, b), &ends.data[0], &ends.data[1])
         })
         .collect()
 }

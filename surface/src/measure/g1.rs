@@ -62,6 +62,8 @@ pub struct G1Report {
     pub fallback_exterior_max: f64,
     /// Exterior edges touching a fallback face (shared by two faces).
     pub fallback_edges: usize,
+    /// Crease edges ([`crate::mesh::Mesh::is_crease`]): C0 by construction, not measured.
+    pub crease_edges: usize,
 }
 
 impl G1Report {
@@ -82,6 +84,7 @@ impl G1Report {
             fallback_interior_max: 0.0,
             fallback_exterior_max: 0.0,
             fallback_edges: 0,
+            crease_edges: 0,
         }
     }
 
@@ -107,6 +110,7 @@ impl G1Report {
         self.fallback_interior_max = self.fallback_interior_max.max(later.fallback_interior_max);
         self.fallback_exterior_max = self.fallback_exterior_max.max(later.fallback_exterior_max);
         self.fallback_edges += later.fallback_edges;
+        self.crease_edges += later.crease_edges;
         self
     }
 
@@ -515,9 +519,10 @@ impl Plan {
                 }
             }
         }
-        let face = mesh.faces()[f];
         for (i, (point, tangents)) in self.corners.iter().enumerate() {
-            let v = &mesh.vertices()[face[i]].data;
+            let Some(v) = mesh.corner_data(f, i) else {
+                continue;
+            };
             let (at, normal) = tangents.point_and_normal(pts, np);
             let at = at.unwrap_or(pts[*point]);
             r.position_error = r.position_error.max((at - v.p).norm());
@@ -544,6 +549,11 @@ impl Plan {
         let (Some((_, lg)), (_, lf)) = (e.second, e.first) else {
             return;
         };
+        if mesh.is_crease(ei) {
+            // C0 by construction, the data's dihedral kept: not a G1 boundary.
+            r.crease_edges += 1;
+            return;
+        }
         let np = self.np;
         let [pf, pg] = pts;
         let touches_fallback = fallback[0] || fallback[1];

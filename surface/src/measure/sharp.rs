@@ -69,6 +69,12 @@
 //! of rounding size; one that bulges over a planar face (the vertex normals at its rim leaning
 //! over the crease) shows the bulge.
 //!
+//! Only **planar faces** are held to that: a counted region meets every neighbouring face
+//! across a crease candidate (`θ_e > `[`CREASE_CANDIDATE_DEG`]) or the mesh boundary. A flat
+//! region that meets a neighbour across a gentler edge (a tessellated cylinder's facet, two
+//! coplanar triangles of a quad; a plane blending tangentially into a fillet) is reported as
+//! *blended* and not measured: a smooth interpolant rightly curves there.
+//!
 //! # Cost and determinism
 //!
 //! Face normals, edges and the flat deviation are computed in parallel (rayon) and merged in
@@ -226,6 +232,13 @@ pub struct FlatRegions {
     /// The smallest data flatness of a rejected region, relative to the bounding-box diagonal
     /// (how near the nearest miss came to [`DATA_FLATNESS`]; `None` without one).
     pub closest_rejected: Option<f64>,
+    /// Flat regions with flat data not counted because they meet a neighbour across an edge
+    /// of at most [`CREASE_CANDIDATE_DEG`]: a facet of a tessellated cylinder (two coplanar
+    /// triangles of a quad), a plane blending into a fillet. A smooth interpolant rightly
+    /// curves there; only planar faces bounded by creases (or the mesh boundary) must stay flat.
+    pub blended_regions: usize,
+    /// Faces in those.
+    pub blended_faces: usize,
     /// The largest distance of a patch sample from its region's plane, relative to the
     /// bounding-box diagonal.
     pub deviation: f64,
@@ -611,10 +624,34 @@ fn flat_regions(
     for &r in region_of.iter().filter(|r| **r != usize::MAX) {
         faces_in[r] += 1;
     }
-    for ((region, flat), faces) in regions.iter_mut().zip(&flatness).zip(&faces_in) {
+    // Regions that meet a neighbour across an edge that is not sharp (a blend).
+    let crease = CREASE_CANDIDATE_DEG.to_radians();
+    let mut blended = vec![false; regions.len()];
+    for e in mesh.edges() {
+        let Some((g, _)) = e.second else { continue };
+        let (rf, rg) = (region_of[e.first.0], region_of[g]);
+        if rf == rg || dihedral(e).is_some_and(|t| t > crease) {
+            continue;
+        }
+        for r in [rf, rg] {
+            if let Some(b) = blended.get_mut(r) {
+                *b = true;
+            }
+        }
+    }
+    for (((region, flat), faces), blend) in regions
+        .iter_mut()
+        .zip(&flatness)
+        .zip(&faces_in)
+        .zip(&blended)
+    {
         // A NaN flatness (a region of zero total area) compares false: not flat data.
-        region.counted = diagonal > 0.0 && *flat <= DATA_FLATNESS * diagonal;
-        if region.counted {
+        let flat_data = diagonal > 0.0 && *flat <= DATA_FLATNESS * diagonal;
+        region.counted = flat_data && !blend;
+        if flat_data && *blend {
+            out.blended_regions += 1;
+            out.blended_faces += faces;
+        } else if region.counted {
             out.regions += 1;
             out.faces += faces;
             out.largest_region = out.largest_region.max(*faces);

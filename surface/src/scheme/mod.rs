@@ -29,7 +29,7 @@ pub mod powell_sabin;
 pub mod shirman_sequin;
 
 use curves::{CubicBez3, VertexData};
-use nalgebra::Point3;
+use nalgebra::{Point3, Vector3};
 
 use crate::fit::FaceFallbackReason;
 
@@ -205,6 +205,40 @@ pub struct FaceInput<'a> {
     /// Its edge curves, `edges[e]` from `V_e` to `V_{e+1}` (the shared curve oriented along the
     /// face). For schemes that do not use curves: the straight cubics at thirds of the edges.
     pub edges: &'a [CubicBez3; 3],
+    /// Per face edge `e`, at its start `V_e` (`[0]`) and end `V_{e+1}` (`[1]`): the direction of
+    /// the crease line where the edge is a crease at that end ([`crate::fit::edge_ends`]), else
+    /// `None` ([`NO_CREASES`] for a face without creases).
+    pub creases: [[Option<Vector3<f64>>; 2]; 3],
+}
+
+/// [`FaceInput::creases`] of a face with no crease edge.
+pub const NO_CREASES: [[Option<Vector3<f64>>; 2]; 3] = [[None; 2]; 3];
+
+impl FaceInput<'_> {
+    /// The crease line's direction at corner `corner` of face edge `edge` (one of the corner's
+    /// two edges), where the edge is a crease there.
+    pub fn crease_line(&self, corner: usize, edge: usize) -> Option<Vector3<f64>> {
+        let end = usize::from(edge != corner);
+        self.creases.get(edge).and_then(|c| c[end])
+    }
+
+    /// The direction `d` from corner `corner` along face edge `edge` (one of the two edges at the
+    /// corner: `edge == corner` leaves it, `edge == corner + 2 (mod 3)` arrives at it), mapped
+    /// into the surface's tangent space there: projected onto the corner's tangent plane
+    /// (`d − (d·n) n`, `n` its unit normal), or, where the edge is a crease at that corner, onto
+    /// the crease line (`(d·t) t`): the line both sectors' tangent planes share, so the two faces
+    /// on the crease build the same boundary from their own normals. The schemes that make their
+    /// own boundaries (PN triangles, Phong, Powell–Sabin) project through this.
+    pub fn project(&self, corner: usize, edge: usize, d: &Vector3<f64>) -> Vector3<f64> {
+        if let Some(t) = self.crease_line(corner, edge) {
+            return t * t.dot(d);
+        }
+        let n = self.vertices[corner]
+            .n
+            .try_normalize(0.0)
+            .unwrap_or_else(Vector3::zeros);
+        d - n * d.dot(&n)
+    }
 }
 
 /// A surface scheme (module docs).

@@ -91,8 +91,13 @@ impl Scheme for Phong {
         for c in 0..3 {
             let d = (c + 1) % 3;
             let flat = (p[c].coords + p[d].coords) * 0.5;
-            let proj =
-                (project(&p[d], &p[c], &n[c]).coords + project(&p[c], &p[d], &n[d]).coords) * 0.5;
+            // On a crease end the projection is onto the crease line both faces share
+            // (`FaceInput::project`).
+            let onto = |from: usize, to: usize| match input.crease_line(from, c) {
+                Some(t) => p[from] + t * t.dot(&(p[to] - p[from])),
+                None => project(&p[to], &p[from], &n[from]),
+            };
+            let proj = (onto(c, d).coords + onto(d, c).coords) * 0.5;
             let mut m = [0usize; 3];
             m[c] = 1;
             m[d] = 1;

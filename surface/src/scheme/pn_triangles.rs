@@ -100,8 +100,17 @@ impl Scheme for PnTriangles {
             m[a] = 3;
             out[index(3, m[0], m[1], m[2])] = p[a];
             for b in [(a + 1) % 3, (a + 2) % 3] {
-                let w = (p[b] - p[a]).dot(&n[a]);
-                let q = (p[a].coords * 2.0 + p[b].coords - n[a] * w) / 3.0;
+                // The face edge between a and b: leaving a (index a) or arriving (index b).
+                let edge = if b == (a + 1) % 3 { a } else { b };
+                let q = match input.crease_line(a, edge) {
+                    // On a crease: the third point projected onto the crease line, which both
+                    // faces share (`FaceInput::project`).
+                    Some(t) => p[a].coords + t * (t.dot(&(p[b] - p[a])) / 3.0),
+                    None => {
+                        let w = (p[b] - p[a]).dot(&n[a]);
+                        (p[a].coords * 2.0 + p[b].coords - n[a] * w) / 3.0
+                    }
+                };
                 let mut m = [0usize; 3];
                 m[a] = 2;
                 m[b] = 1;

@@ -94,11 +94,26 @@ pub fn edge_point(p: &Point3<f64>, n: &Vector3<f64>, q: &Point3<f64>) -> Point3<
     p + (d - n * d.dot(n)) / 4.0
 }
 
-/// The shared boundary points of edge `e`: `[Q_a, M, Q_b]` (module docs).
-fn boundary(p: &[Point3<f64>; 3], n: &[Vector3<f64>; 3], e: usize) -> [Point3<f64>; 3] {
+/// The crease lines of a face's edges at their ends ([`super::FaceInput::creases`]).
+pub type CreaseLines = [[Option<Vector3<f64>>; 2]; 3];
+
+/// The shared boundary points of edge `e`: `[Q_a, M, Q_b]` (module docs). At an end where the
+/// edge is a crease, the quarter point is projected onto the crease line `t` instead of the
+/// tangent plane, `p + ¼ (d·t) t` ([`super::FaceInput::project`]): both faces then build the
+/// same boundary from their own sectors' normals, and it lies in both tangent planes.
+fn boundary(
+    p: &[Point3<f64>; 3],
+    n: &[Vector3<f64>; 3],
+    creases: &CreaseLines,
+    e: usize,
+) -> [Point3<f64>; 3] {
     let (a, b) = (e, (e + 1) % 3);
-    let qa = edge_point(&p[a], &n[a], &p[b]);
-    let qb = edge_point(&p[b], &n[b], &p[a]);
+    let point = |at: usize, to: usize, end: usize| match creases[e][end] {
+        Some(t) => p[at] + t * (t.dot(&(p[to] - p[at])) / 4.0),
+        None => edge_point(&p[at], &n[at], &p[to]),
+    };
+    let qa = point(a, b, 0);
+    let qb = point(b, a, 1);
     [qa, mid(&qa, &qb), qb]
 }
 
@@ -126,7 +141,16 @@ fn assemble(
 /// The six quadratic nets of a face with corners `p` and unit normals `n` (module docs), in
 /// the order of [`SIX_SPLIT`].
 pub fn macro_patch(p: &[Point3<f64>; 3], n: &[Vector3<f64>; 3]) -> [[Point3<f64>; NP]; 6] {
-    let bd: [[Point3<f64>; 3]; 3] = std::array::from_fn(|e| boundary(p, n, e));
+    macro_patch_with_creases(p, n, &super::NO_CREASES)
+}
+
+/// [`macro_patch`] of a face with crease edges (`creases` as [`super::FaceInput::creases`]).
+pub fn macro_patch_with_creases(
+    p: &[Point3<f64>; 3],
+    n: &[Vector3<f64>; 3],
+    creases: &CreaseLines,
+) -> [[Point3<f64>; NP]; 6] {
+    let bd: [[Point3<f64>; 3]; 3] = std::array::from_fn(|e| boundary(p, n, creases, e));
     // Q⁺_i = bd[i][0], Q⁻_i = bd[i − 1][2].
     let w: [Point3<f64>; 3] = std::array::from_fn(|i| {
         let qp = bd[i][0].coords;
@@ -142,7 +166,16 @@ pub fn macro_patch(p: &[Point3<f64>; 3], n: &[Vector3<f64>; 3]) -> [[Point3<f64>
 /// and straight interior boundaries (`W_i`, `Z_e` at their midpoints); affine, so planar data
 /// stay flat.
 pub fn fallback_patch(p: &[Point3<f64>; 3], n: &[Vector3<f64>; 3]) -> [[Point3<f64>; NP]; 6] {
-    let bd: [[Point3<f64>; 3]; 3] = std::array::from_fn(|e| boundary(p, n, e));
+    fallback_patch_with_creases(p, n, &super::NO_CREASES)
+}
+
+/// [`fallback_patch`] of a face with crease edges (as [`macro_patch_with_creases`]).
+pub fn fallback_patch_with_creases(
+    p: &[Point3<f64>; 3],
+    n: &[Vector3<f64>; 3],
+    creases: &CreaseLines,
+) -> [[Point3<f64>; NP]; 6] {
+    let bd: [[Point3<f64>; 3]; 3] = std::array::from_fn(|e| boundary(p, n, creases, e));
     let s = Point3::from((bd[0][1].coords + bd[1][1].coords + bd[2][1].coords) / 3.0);
     let w: [Point3<f64>; 3] = std::array::from_fn(|i| mid(&p[i], &s));
     let z: [Point3<f64>; 3] = std::array::from_fn(|e| mid(&bd[e][1], &s));
@@ -177,7 +210,7 @@ impl Scheme for PowellSabin {
         }
         let p = input.vertices.map(|v| v.p);
         let n = input.vertices.map(|v| v.n.normalize());
-        let nets = macro_patch(&p, &n);
+        let nets = macro_patch_with_creases(&p, &n, &input.creases);
         if !nets
             .iter()
             .flatten()
@@ -198,7 +231,7 @@ impl Scheme for PowellSabin {
         let n = input
             .vertices
             .map(|v| v.n.try_normalize(0.0).unwrap_or_else(Vector3::zeros));
-        let nets = fallback_patch(&p, &n);
+        let nets = fallback_patch_with_creases(&p, &n, &input.creases);
         for (chunk, net) in out.chunks_exact_mut(NP).zip(&nets) {
             chunk.copy_from_slice(net);
         }

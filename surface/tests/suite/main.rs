@@ -2,6 +2,7 @@
 //! file): a module a topic.
 
 mod c0_continuity;
+mod creases;
 mod fallback;
 mod interior;
 mod mesh_invariants;

@@ -49,6 +49,7 @@ fn run(f: impl Fn(&dyn Scheme, &FaceInput<'_>, &mut [Point3<f64>])) -> Vec<Point
         face: 0,
         vertices: [&vd[0], &vd[1], &vd[2]],
         edges: &edges,
+        creases: surface::scheme::NO_CREASES,
     };
     let s = scheme_by_name("clough-tocher", &SchemeOptions::default()).unwrap();
     let mut out = vec![Point3::origin(); 30];
@@ -147,6 +148,7 @@ fn the_fallback_is_c0_on_the_curves_and_flat_on_planar_data() {
         face: 0,
         vertices: [&vd[0], &vd[1], &vd[2]],
         edges: &edges,
+        creases: surface::scheme::NO_CREASES,
     };
     let s = scheme_by_name("clough-tocher", &SchemeOptions::default()).unwrap();
     let mut out = vec![Point3::origin(); 30];

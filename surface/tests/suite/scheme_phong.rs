@@ -25,6 +25,7 @@ fn net(alpha: f64) -> Result<Vec<Point3<f64>>, FaceFallbackReason> {
         face: 0,
         vertices: [&v[0], &v[1], &v[2]],
         edges: &edges,
+        creases: surface::scheme::NO_CREASES,
     };
     let mut out = vec![Point3::origin(); 6];
     Phong { alpha }.build(&input, &mut out).map(|()| out)

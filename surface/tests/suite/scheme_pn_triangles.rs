@@ -35,6 +35,7 @@ fn a_net_derived_by_hand() {
         face: 0,
         vertices: [&v[0], &v[1], &v[2]],
         edges: &edges,
+        creases: surface::scheme::NO_CREASES,
     };
     let scheme = scheme_by_name("pn-triangles", &SchemeOptions::default()).unwrap();
     let mut net = vec![Point3::origin(); 10];

@@ -32,6 +32,7 @@ fn nets(v: &[VertexData; 3], fallback: bool) -> Vec<Point3<f64>> {
         face: 0,
         vertices: [&v[0], &v[1], &v[2]],
         edges: &edges,
+        creases: surface::scheme::NO_CREASES,
     };
     let s = scheme_by_name("powell-sabin", &SchemeOptions::default()).unwrap();
     let mut out = vec![Point3::origin(); 36];

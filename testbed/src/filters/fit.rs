@@ -53,6 +53,9 @@ pub struct FitArgs {
     /// Estimate normals even where the mesh has them.
     #[arg(long)]
     pub replace_normals: bool,
+    /// How creases are found (`--crease-angle DEG`, `--no-creases`).
+    #[command(flatten)]
+    pub creases: fitjob::cli::CreaseArgs,
     /// A data set (ring, sphere, capsule, octa) or a mesh file (the format by extension,
     /// checked against the content), instead of the input stream.
     #[arg(long, value_name = "NAME|FILE")]
@@ -94,7 +97,7 @@ impl Filter for Fit {
     type Args = FitArgs;
 
     fn run(args: FitArgs, stream: StreamOptions) -> Result<(), FilterError> {
-        let input = match &args.data {
+        let mut input = match &args.data {
             Some(d) => {
                 if stream.input.is_some() {
                     return Err(FilterError::Usage(format!(
@@ -125,6 +128,7 @@ impl Filter for Fit {
                 input_from_bytes(&name, &bytes, &args.estimate, args.replace_normals)?
             }
         };
+        input.creases = args.creases.rule();
         if let Some(s) = args.segments {
             crate::filters::tess::check_segments(Self::NAME, s)?;
         }
@@ -197,6 +201,7 @@ pub fn input_from_bytes(
         },
         estimate: estimate.to_string(),
         replace_normals,
+        creases: mesh::features::CreaseRule::Auto,
     })
 }
 
@@ -224,6 +229,7 @@ pub fn data_input(
         },
         estimate: estimate.to_string(),
         replace_normals,
+        creases: mesh::features::CreaseRule::Auto,
     })
 }
 
