@@ -123,7 +123,7 @@ impl Prepared {
 }
 
 /// What the crease detection of [`prepare_with`] found and did.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct CreaseSummary {
     /// The rule (`auto`, `angle 30°`, `none`).
     pub rule: String,

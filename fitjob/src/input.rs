@@ -115,6 +115,8 @@ pub struct Loaded {
     pub face_source: Option<Vec<usize>>,
     /// For each mesh vertex, the file's vertex it came from (`None` for a data set).
     pub vertex_source: Option<Vec<usize>>,
+    /// What the crease detection found (`None` for a data set).
+    pub creases: Option<estimate::CreaseSummary>,
     /// The process's peak resident memory once the file was read, before the repair (`None`
     /// for a data set, or where the system does not say), bytes.
     pub peak_after_read: Option<u64>,
@@ -172,6 +174,7 @@ fn prepared(mesh: Mesh, frame: Frame) -> Loaded {
         repairs: None,
         face_source: None,
         vertex_source: None,
+        creases: None,
         peak_after_read: None,
         time: InputTime::default(),
     }
@@ -243,6 +246,7 @@ fn prepare(
         repairs: Some(prepared.report),
         face_source: Some(prepared.face_source),
         vertex_source: Some(prepared.vertex_source),
+        creases: Some(prepared.creases),
         peak_after_read: peak_read,
         time: InputTime {
             read_time,

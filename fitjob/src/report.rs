@@ -43,6 +43,8 @@ pub struct FitReport {
     pub fallback_faces: Vec<FallbackFace>,
     /// The fold test (`surface::folds`; measured with G1, absent for subdivision).
     pub folds: Option<FoldSummary>,
+    /// What the crease detection found (absent for a data set).
+    pub creases: Option<estimate::CreaseSummary>,
     /// Every edge whose boundary-curve problem was degenerate (fitted with a straight cubic).
     pub degenerate_edges: Vec<DegenerateEdge>,
     /// The curve construction's counts (when the scheme uses curves).
@@ -73,6 +75,8 @@ pub struct G1Summary {
     pub exterior_max: f64,
     /// Mesh edges touching a fallback face (shared by two faces).
     pub fallback_edges: usize,
+    /// Crease edges: C0 by construction with the data's dihedral kept, not measured.
+    pub crease_edges: usize,
     /// Largest angle along interior boundaries of fallback faces.
     pub fallback_interior_max: f64,
     /// Largest angle along edges touching a fallback face.
@@ -154,6 +158,11 @@ pub struct CurveCounts {
     pub unconverged: usize,
     /// Tangents flipped past 90° (a vertex normal leaning past the chord).
     pub flipped_tangents: usize,
+    /// Crease edges: curves along the crease, in both sectors' tangent planes.
+    pub crease_edges: usize,
+    /// Crease edges with an end where the crease tangent could not be used (the crease leaves
+    /// the edge sideways or folds flat): the bisector plane's tangent there.
+    pub crease_ends_off_line: usize,
 }
 
 /// The per-triangle interior choice.
@@ -296,6 +305,12 @@ impl FitReport {
             g1.position_error,
             g1.normal_error
         ));
+        if g1.crease_edges > 0 {
+            lines.push(format!(
+                "  creases: {} edges C0 with the data's dihedral (not G1 boundaries; the G1 figures are the smooth edges')",
+                g1.crease_edges
+            ));
+        }
         if !self.fallback_faces.is_empty() {
             lines.push(format!(
                 "  fallback: {} faces fitted C0 ({} edges touch them; G1 defect there: interior {:.3e} rad, exterior {:.3e} rad)",
@@ -344,8 +359,18 @@ impl FitReport {
         }
         if let Some(c) = &self.curve_counts {
             lines.push(format!(
-                "  curves: {} fallbacks to chord, {} unconverged optimizations, {} flipped tangents",
-                c.fallbacks, c.unconverged, c.flipped_tangents
+                "  curves: {} fallbacks to chord, {} unconverged optimizations, {} flipped tangents{}",
+                c.fallbacks,
+                c.unconverged,
+                c.flipped_tangents,
+                if c.crease_edges > 0 {
+                    format!(
+                        "; {} along creases ({} with an end off the crease line)",
+                        c.crease_edges, c.crease_ends_off_line
+                    )
+                } else {
+                    String::new()
+                }
             ));
         }
         let t = &self.time;
