@@ -154,6 +154,7 @@ pub fn prepare_owned(
         face_source,
         vertex_source,
         report,
+        ..
     } = repair(&work, &RepairOptions::default())?;
     drop(work);
     let repair_time_seconds = t0.elapsed().as_secs_f64();
