@@ -56,9 +56,13 @@
 //! vertex quality), which it reads. Faces as `list uchar int vertex_indices` (`list int int`
 //! when a polygon has more than 255 corners). With [`RawMesh::crease_edges`] (and only then:
 //! a mesh without creases gives the same bytes as before there were any), an element `edge`
-//! follows the faces, one record a crease: `int vertex1`, `int vertex2` (libigl's `readPLY`
-//! reads these as its edge list `E`, and the `crease` as its edge data; trimesh, Python's
-//! meshio and MeshLab read the vertices and faces and skip the element), `uchar crease` (1).
+//! follows the faces, one record a crease: `int vertex1`, `int vertex2`, `uchar crease` (1).
+//! libigl 2.6.3 (`read_triangle_mesh`; its `readPLY` takes the pairs as its edge list `E` and
+//! `crease` as edge data) and MeshLab (pymeshlab 2025.7: 12 edges on a cube) read such a file;
+//! trimesh 5.2.0 reads the ascii one but refuses the binary one (it turns every column of a
+//! binary `edge` element into path indices: "edges are not (n, 2)"), and Python's meshio 5.3.5
+//! refuses any element but `vertex` and `face`. No file the workbench writes today has creases
+//! (its tessellations and repaired meshes carry none), so those are unchanged for every reader.
 //! Shapes and names are not written (PLY has no standard place for them).
 
 use std::fmt::Write as _;
