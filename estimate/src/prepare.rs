@@ -284,6 +284,7 @@ pub fn prepare_with(
         face_source,
         vertex_source,
         report,
+        ..
     } = repair(&work, &RepairOptions::default())?;
     drop(work);
     let repair_time_seconds = t0.elapsed().as_secs_f64();

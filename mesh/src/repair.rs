@@ -34,6 +34,15 @@
 //! Normals given by the file are normalized; if any is zero or not finite, all are discarded
 //! (a note says so) and the caller estimates them. Shape tensors given by the file (the testbed
 //! format) are kept and make the curvature known.
+//!
+//! **Crease edges** the file marks ([`RawMesh::crease_edges`], pairs of file vertices) are
+//! carried to the mesh ([`Repaired::crease_edges`]): a mesh edge is a crease when the file
+//! vertices its two ends come from ([`Repaired::vertex_source`]) are a file crease pair. So
+//! every copy of a split vertex keeps the creases of the file vertex along the edges it still
+//! has, and dropped vertices take none with them; a diagonal of a fanned polygon is a crease
+//! only if the file marked that very pair (an OBJ reader never marks one: its creases are
+//! sides of polygons). A file pair that is no edge of the mesh (its faces skipped or dropped,
+//! or never a side of a face) is dropped; the report counts the pairs kept and dropped.
 
 use std::borrow::Cow;
 
@@ -129,6 +138,11 @@ pub struct RepairReport {
     pub components: usize,
     /// Boundary edges of the result (0 for closed meshes).
     pub boundary_edges: usize,
+    /// The file's crease edges (distinct pairs) that are edges of the result, on one or more
+    /// mesh edges ([`Repaired::crease_edges`]).
+    pub file_creases_kept: usize,
+    /// The file's crease edges (distinct pairs) that are not edges of the result.
+    pub file_creases_dropped: usize,
     /// Things a user should know that are not counted above (discarded normals, …).
     pub notes: Vec<String>,
 }
@@ -234,6 +248,14 @@ impl RepairReport {
                 list(&self.dropped_faces)
             ));
         }
+        if self.file_creases_kept + self.file_creases_dropped > 0 {
+            out.push(format!(
+                "{} of the file's {} crease edges kept, {} dropped (not edges of the mesh)",
+                self.file_creases_kept,
+                self.file_creases_kept + self.file_creases_dropped,
+                self.file_creases_dropped
+            ));
+        }
         if self.components > 1 || self.boundary_edges > 0 {
             out.push(format!(
                 "{} components, {} boundary edges",
@@ -257,6 +279,9 @@ pub struct Repaired {
     pub face_source: Vec<usize>,
     /// For each mesh vertex, the file's vertex it came from (copies of a split vertex repeat it).
     pub vertex_source: Vec<usize>,
+    /// The mesh edges the file marks as creases, in **mesh** vertex indices (module docs):
+    /// each pair smaller index first, the list sorted; empty when the file marks none.
+    pub crease_edges: Vec<[usize; 2]>,
     /// What was done.
     pub report: RepairReport,
 }
@@ -584,13 +609,53 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     });
     report.components = components.unwrap_or_else(|| count_components(&mesh));
     report.boundary_edges = mesh.edges().par_iter().filter(|e| e.is_boundary()).count();
+    let crease_edges = mesh_creases(raw, &mesh, &vertex_source, &mut report);
     Ok(Repaired {
         normals_given: given_normals.is_some(),
         mesh,
         face_source,
         vertex_source,
+        crease_edges,
         report,
     })
+}
+
+/// The file's crease pairs on the mesh (module docs): every mesh edge whose ends come from a
+/// file crease pair, sorted pairs, sorted; counts the distinct file pairs kept and dropped.
+/// The file's list is taken as it is (a hand-built [`RawMesh`] may have it unsorted, reversed
+/// or with repeats); a pair naming no vertex, or one vertex twice, matches no edge.
+fn mesh_creases(
+    raw: &RawMesh,
+    mesh: &Mesh,
+    vertex_source: &[usize],
+    report: &mut RepairReport,
+) -> Vec<[usize; 2]> {
+    if raw.crease_edges.is_empty() {
+        return Vec::new();
+    }
+    let mut file: Vec<[usize; 2]> = raw
+        .crease_edges
+        .iter()
+        .map(|&[a, b]| [a.min(b), a.max(b)])
+        .collect();
+    file.sort_unstable();
+    file.dedup();
+    let mut kept = vec![false; file.len()];
+    let mut out: Vec<[usize; 2]> = Vec::new();
+    for e in mesh.edges() {
+        let [a, b] = e.vertices;
+        let (sa, sb) = (vertex_source[a], vertex_source[b]);
+        if let Ok(k) = file.binary_search(&[sa.min(sb), sa.max(sb)]) {
+            kept[k] = true;
+            out.push([a.min(b), a.max(b)]);
+        }
+    }
+    out.sort_unstable();
+    // (A validated mesh has one edge per vertex pair; this keeps the list's promise whatever.)
+    out.dedup();
+    report.file_creases_kept = kept.iter().filter(|&&k| k).count();
+    report.file_creases_dropped = file.len() - report.file_creases_kept;
+    out
 }
 
 /// Rules 1 and 2: the file's polygons as triangles (fans), without those repeating a vertex,

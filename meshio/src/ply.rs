@@ -16,12 +16,18 @@
 //!   [`RawMesh::properties`] as `f64`. List properties of vertices are skipped (with a note).
 //! * Element `face`: the list property `vertex_indices` (or `vertex_index`), any integer count
 //!   and index types → polygons as they are; other face properties are skipped.
-//! * Other elements (`edge`, `material`, …) are parsed and skipped (with a note), lists
-//!   included.
+//! * Element `edge` with its two vertices (the scalar properties `vertex1` and `vertex2`, the
+//!   convention of the PLY documentation and libigl, or a list property `ends` or
+//!   `vertex_indices` of two) and a scalar property `crease` (or `sharp`): the edges whose
+//!   `crease` is not zero → [`RawMesh::crease_edges`] (each pair smaller index first, sorted,
+//!   without repeats), as listed: they need not be sides of a face. A note counts them.
+//!   Without such properties the element is skipped like any other.
+//! * Other elements (`material`, …) are parsed and skipped (with a note), lists included.
 //!
 //! Refused, naming the element and record (`element vertex 17, property y: …`): a truncated
 //! body, a number that does not parse or is not finite, a list count that is negative, faces
-//! with fewer than 3 corners and indices out of range; header errors name the header line.
+//! with fewer than 3 corners, edges without two distinct ends, and indices out of range;
+//! header errors name the header line.
 //! Binary bodies are read without allocating per record, and nothing is reserved from a header
 //! count before checking it against the bytes left.
 //!
@@ -48,8 +54,16 @@
 //! property kill it; Python's meshio 5.3 also reads binary `uchar` as signed bytes (180 → −76).
 //! MeshLab reads colours from `uchar` only, so it shows these files by `quality` (Colorize by
 //! vertex quality), which it reads. Faces as `list uchar int vertex_indices` (`list int int`
-//! when a polygon has more than 255 corners). Shapes and names are not written (PLY has no
-//! standard place for them).
+//! when a polygon has more than 255 corners). With [`RawMesh::crease_edges`] (and only then:
+//! a mesh without creases gives the same bytes as before there were any), an element `edge`
+//! follows the faces, one record a crease: `int vertex1`, `int vertex2`, `uchar crease` (1).
+//! libigl 2.6.3 (`read_triangle_mesh`; its `readPLY` takes the pairs as its edge list `E` and
+//! `crease` as edge data) and MeshLab (pymeshlab 2025.7: 12 edges on a cube) read such a file;
+//! trimesh 5.2.0 reads the ascii one but refuses the binary one (it turns every column of a
+//! binary `edge` element into path indices: "edges are not (n, 2)"), and Python's meshio 5.3.5
+//! refuses any element but `vertex` and `face`. No file the workbench writes today has creases
+//! (its tessellations and repaired meshes carry none), so those are unchanged for every reader.
+//! Shapes and names are not written (PLY has no standard place for them).
 
 use std::fmt::Write as _;
 
@@ -445,6 +459,7 @@ fn read_ply(bytes: &[u8]) -> Result<RawMesh, ReadError> {
     let mut mesh = RawMesh::default();
     let mut seen_vertex = false;
     let mut seen_face = false;
+    let mut seen_edge = false;
     let mut skipped: Vec<String> = Vec::new();
     for el in &elements {
         let cap = el.count.min(body.left() / el.min_record_bytes(enc));
@@ -458,6 +473,9 @@ fn read_ply(bytes: &[u8]) -> Result<RawMesh, ReadError> {
         } else if el.name == "face" && !seen_face {
             seen_face = true;
             read_faces(&mut body, el, cap, nv, &mut mesh, &at)?;
+        } else if let (false, Some(layout)) = (seen_edge, EdgeLayout::of(el)?) {
+            seen_edge = true;
+            read_edges(&mut body, el, &layout, cap, nv, &mut mesh, &at)?;
         } else {
             let all_scalar_size: Option<usize> = el
                 .props
@@ -697,6 +715,136 @@ fn read_faces(
     Ok(())
 }
 
+/// Where an `edge` element keeps what [`read_edges`] reads (property positions).
+struct EdgeLayout {
+    /// The two ends: `vertex1` and `vertex2`, or one list of two.
+    ends: Ends,
+    /// The `crease` (or `sharp`) property.
+    crease: usize,
+}
+
+/// The ends of an edge record.
+enum Ends {
+    /// Scalar properties `vertex1`, `vertex2`.
+    Pair(usize, usize),
+    /// A list property (`ends`, `vertex_indices`).
+    List(usize),
+}
+
+impl EdgeLayout {
+    /// The layout of an element `edge` with ends and a crease property; `None` for another
+    /// element or an edge element without them. Float index types are refused (a header error).
+    fn of(el: &Element) -> Result<Option<EdgeLayout>, ReadError> {
+        if el.name != "edge" {
+            return Ok(None);
+        }
+        let scalar = |names: &[&str]| {
+            el.props
+                .iter()
+                .position(|p| names.contains(&p.name.as_str()) && matches!(p.kind, Kind::Scalar(_)))
+        };
+        let list = el.props.iter().position(|p| {
+            (p.name == "ends" || p.name == "vertex_indices") && matches!(p.kind, Kind::List { .. })
+        });
+        let ends = match (scalar(&["vertex1"]), scalar(&["vertex2"]), list) {
+            (Some(a), Some(b), _) => Ends::Pair(a, b),
+            (_, _, Some(l)) => Ends::List(l),
+            _ => return Ok(None),
+        };
+        let Some(crease) = scalar(&["crease", "sharp"]) else {
+            return Ok(None);
+        };
+        let index_props = match ends {
+            Ends::Pair(a, b) => vec![a, b],
+            Ends::List(l) => vec![l],
+        };
+        for k in index_props {
+            let float = match el.props.get(k).map(|p| p.kind) {
+                Some(Kind::Scalar(s)) | Some(Kind::List { item: s, .. }) => s.is_float(),
+                None => false,
+            };
+            if float {
+                let name = el.props.get(k).map_or("", |p| p.name.as_str());
+                return Err(ReadError::header(
+                    NAME,
+                    format!("edge property {name} has a float index type"),
+                ));
+            }
+        }
+        Ok(Some(EdgeLayout { ends, crease }))
+    }
+}
+
+/// Reads an `edge` element laid out as `layout`: the pairs whose crease value is not zero into
+/// [`RawMesh::crease_edges`] (sorted pairs, sorted, without repeats), with a note.
+fn read_edges(
+    body: &mut Body<'_>,
+    el: &Element,
+    layout: &EdgeLayout,
+    cap: usize,
+    nv: usize,
+    mesh: &mut RawMesh,
+    at: &dyn Fn(usize, Option<&str>, String) -> ReadError,
+) -> Result<(), ReadError> {
+    let mut creases: Vec<[usize; 2]> = Vec::with_capacity(cap);
+    for i in 0..el.count {
+        let mut ends = [usize::MAX; 2];
+        let mut sharp = false;
+        for (k, p) in el.props.iter().enumerate() {
+            let ctx = |m: String| at(i, Some(&p.name), m);
+            let index = |v: f64| {
+                if v < 0.0 || v >= nv as f64 {
+                    Err(ctx(format!(
+                        "vertex index {v} is out of range ({nv} vertices)"
+                    )))
+                } else {
+                    Ok(v as usize)
+                }
+            };
+            match (&layout.ends, p.kind) {
+                (Ends::Pair(a, b), Kind::Scalar(s)) if k == *a || k == *b => {
+                    let v = body.value(s).map_err(ctx)?;
+                    ends[usize::from(k == *b)] = index(v)?;
+                }
+                (Ends::List(l), Kind::List { count, item }) if k == *l => {
+                    let n = body.count(count).map_err(ctx)?;
+                    if n != 2 {
+                        return Err(ctx(format!("edge has {n} ends, 2 needed")));
+                    }
+                    for end in &mut ends {
+                        *end = index(body.value(item).map_err(ctx)?)?;
+                    }
+                }
+                (_, Kind::Scalar(s)) if k == layout.crease => {
+                    let v = body.value(s).map_err(ctx)?;
+                    if !v.is_finite() {
+                        return Err(ctx(format!("{v} is not finite")));
+                    }
+                    sharp = v != 0.0;
+                }
+                (_, kind) => body.skip(kind).map_err(ctx)?,
+            }
+        }
+        let [a, b] = ends;
+        if a == b {
+            return Err(at(i, None, format!("edge joins vertex {a} to itself")));
+        }
+        if sharp {
+            creases.push([a.min(b), a.max(b)]);
+        }
+    }
+    creases.sort_unstable();
+    creases.dedup();
+    let crease_name = el.props.get(layout.crease).map_or("", |p| p.name.as_str());
+    mesh.notes.push(format!(
+        "{} of {} edges marked sharp (element edge, property {crease_name})",
+        creases.len(),
+        el.count
+    ));
+    mesh.crease_edges = creases;
+    Ok(())
+}
+
 /// Vertex property names the writer sets itself.
 const RESERVED: &[&str] = &["x", "y", "z", "nx", "ny", "nz", "red", "green", "blue"];
 
@@ -791,6 +939,15 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
             "more vertices than int indices hold",
         ));
     }
+    for (k, &[a, b]) in mesh.crease_edges.iter().enumerate() {
+        let n = mesh.positions.len();
+        if a == b || a >= n || b >= n {
+            return Err(WriteError::invalid(
+                NAME,
+                format!("crease edge {k} ({a}, {b}) is not two distinct vertices of {n}"),
+            ));
+        }
+    }
     let big_faces = mesh.polygons.iter().any(|p| p.len() > 255);
     let ascii = options.ascii;
     let pos_ty = if options.double_precision {
@@ -821,13 +978,19 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
     } else {
         "property list uchar int vertex_indices\n"
     });
+    let creases = &mesh.crease_edges;
+    if !creases.is_empty() {
+        let _ = writeln!(h, "element edge {}", creases.len());
+        h.push_str("property int vertex1\nproperty int vertex2\nproperty uchar crease\n");
+    }
     h.push_str("end_header\n");
     let vbytes = if options.double_precision { 24 } else { 12 } + 4 * cols.len();
     let mut out = Vec::with_capacity(
         h.len()
             + vbytes * mesh.positions.len()
             + 4 * mesh.polygons.corner_count()
-            + mesh.polygons.len(),
+            + mesh.polygons.len()
+            + 9 * creases.len(),
     );
     out.extend_from_slice(h.as_bytes());
     if ascii {
@@ -849,6 +1012,9 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
                 let _ = write!(s, " {i}");
             }
             s.push('\n');
+        }
+        for [a, b] in creases {
+            let _ = writeln!(s, "{a} {b} 1");
         }
         out.extend_from_slice(s.as_bytes());
     } else {
@@ -874,6 +1040,11 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
             for &i in poly {
                 out.extend_from_slice(&(i as i32).to_le_bytes());
             }
+        }
+        for &[a, b] in creases {
+            out.extend_from_slice(&(a as i32).to_le_bytes());
+            out.extend_from_slice(&(b as i32).to_le_bytes());
+            out.push(1);
         }
     }
     Ok(out)

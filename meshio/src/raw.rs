@@ -97,14 +97,21 @@ impl Polygons {
     pub fn corner_count(&self) -> usize {
         self.indices.len()
     }
+
+    /// Every polygon's corners, one polygon after the other (what [`Polygons::iter`] gives,
+    /// joined).
+    pub(crate) fn all_corners(&self) -> &[usize] {
+        &self.indices
+    }
 }
 
 /// A mesh as read from a file: positions, whatever per-vertex data the file had, polygons, and
 /// notes about what the reader did (a fan triangulation, a welded STL, ignored statements).
 ///
 /// Invariants a reader guarantees: every optional per-vertex array has one entry per position;
-/// every face index is `< positions.len()` (a reader reports an out-of-range index as an error
-/// naming the line or element, it never stores it); every number is finite unless a note says
+/// every face index and every index of [`RawMesh::crease_edges`] is `< positions.len()` (a
+/// reader reports an out-of-range index as an error naming the line or element, it never
+/// stores it), and the crease pairs are sorted as that field says; every number is finite unless a note says
 /// otherwise (readers refuse NaN and infinities with an error). Nothing else is guaranteed:
 /// faces may be degenerate, repeated, non-manifold or inconsistently oriented, and vertices may
 /// be unused. `surface` validates and repairs.
@@ -144,6 +151,14 @@ pub struct RawMesh {
     pub properties: VertexProperties,
     /// The faces.
     pub polygons: Polygons,
+    /// The edges the file marks as sharp (creases), as unordered pairs of vertex indices: each
+    /// pair `[a, b]` with `a < b`, the list sorted and without repeats; empty when the file
+    /// says nothing about sharp edges. The OBJ reader finds them from per-corner normals and
+    /// smoothing groups, and they are sides of its polygons ([`crate::obj`]); the PLY reader
+    /// takes them from an `edge` element as listed ([`crate::ply`]), so they need not be sides
+    /// of a polygon there. Writers ignore them except PLY's, which writes them back as such an
+    /// element.
+    pub crease_edges: Vec<[usize; 2]>,
     /// Per-face names (the testbed format names its faces), if the file had them and they are
     /// not all implied ([`RawMesh::implied_face_names`]); read them through
     /// [`RawMesh::face_name`].

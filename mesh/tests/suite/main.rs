@@ -3,3 +3,4 @@
 
 mod datasets;
 mod repair;
+mod repair_creases;

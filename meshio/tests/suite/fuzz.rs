@@ -28,6 +28,23 @@ fn seeds() -> Vec<Vec<u8>> {
         b"v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nf 1/1/1 -2//1 3/1\nf 1 2 3\ng x\n"
             .to_vec(),
     );
+    // Crease edges: a PLY edge element (every encoding), and an OBJ with normals per face
+    // corner and smoothing groups.
+    let mut creased = common::cube();
+    creased.crease_edges = vec![[0, 1], [0, 2], [1, 3], [2, 3], [4, 5]];
+    let ply = format_by_name("ply").expect("ply");
+    for opts in [
+        WriteOptions::new(),
+        WriteOptions::new().ascii(),
+        WriteOptions::new().double_precision(),
+    ] {
+        out.push(ply.write(&creased, &opts).expect("write"));
+    }
+    out.push(
+        b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nvn 0 0 1\nvn 0 0.6 0.8\ns 1\n\
+          f 1//1 2//1 3//1 4//1\ns off\nf 2//2 5//2 3//2\ns 2\nf 3 5 4\n"
+            .to_vec(),
+    );
     out.push(b"CNOFF 3 1 0\n0 0 0 0 0 1 255 0 0 255\n1 0 0 0 0 1 0.5 0.5 0.5\n0 1 0 0 0 1 0 0 0\n3 0 1 2 1 0 0\n".to_vec());
     out
 }

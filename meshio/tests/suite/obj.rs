@@ -52,7 +52,7 @@ fn corner_forms_and_negative_indices() {
         let m = read(&format!("{SQUARE}{face}\n")).expect(face);
         assert_eq!(common::polys(&m), vec![vec![0, 1, 2, 3]], "{face}");
         assert!(
-            common::has_note(&m, "ignored 6 statements"),
+            common::has_note(&m, "ignored 5 statements"),
             "{:?}",
             m.notes
         );

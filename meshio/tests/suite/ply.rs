@@ -69,7 +69,7 @@ fn float_positions_round_to_f32() {
 
 /// A binary file built by hand in the given byte order, with comments, obj_info, an int8
 /// property, a list property on vertices, float colours, `vertex_index`, an extra face property
-/// and an `edge` element with a list.
+/// and an `edge` element with a list of ends and a crease value (5: sharp).
 fn handmade(big: bool) -> Vec<u8> {
     let order = if big {
         "binary_big_endian"
@@ -127,11 +127,17 @@ fn check_handmade(m: &RawMesh) {
     let want = [0.25f32, 0.5, 1.0].map(meshio::srgb::decode);
     assert_eq!(m.colors.as_ref().map(|c| c[0]), Some(want));
     assert_eq!(common::polys(m), vec![vec![0, 1, 2, 3], vec![3, 2, 1]]);
+    // The edge 0–1 with crease 5 is read, not skipped.
+    assert_eq!(m.crease_edges, vec![[0, 1]]);
     assert!(
-        common::has_note(m, "skipped elements: edge (1)"),
+        common::has_note(
+            m,
+            "1 of 1 edges marked sharp (element edge, property crease)"
+        ),
         "{:?}",
         m.notes
     );
+    assert!(!common::has_note(m, "skipped elements"), "{:?}", m.notes);
     assert!(common::has_note(m, "tex"), "{:?}", m.notes);
 }
 
