@@ -284,12 +284,12 @@ pub fn prepare_with(
         face_source,
         vertex_source,
         report,
-        ..
+        crease_edges,
     } = repair(&work, &RepairOptions::default())?;
     drop(work);
     let repair_time_seconds = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
-    let crease_summary = attach_creases(&mut mesh, creases, &[]);
+    let crease_summary = attach_creases(&mut mesh, creases, &crease_edges);
     let curvature_given = mesh.vertices().iter().all(|v| v.curvature_known);
     let (estimate, estimated) = match choice {
         EstimateChoice::None => {
