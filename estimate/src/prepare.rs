@@ -148,7 +148,7 @@ pub struct CreaseSummary {
     /// Components taken as tessellated models.
     pub tessellated_components: usize,
     /// Wall-clock time of the detection and the sector assignment, seconds.
-    pub seconds: f64,
+    pub time_seconds: f64,
 }
 
 impl CreaseSummary {
@@ -170,7 +170,7 @@ impl CreaseSummary {
             );
         }
         format!(
-            "creases ({}): {} edges ({} from the geometry, {} from the file), {} corners, {} darts; {} vertices split into {} sectors",
+            "creases ({}): {} edges ({} from the geometry, {} from the file), {} corners, {} darts; {} vertices split by them ({} sectors in all)",
             self.rule,
             self.creases,
             self.from_geometry,
@@ -229,7 +229,7 @@ pub fn attach_creases(
             }
         }
     }
-    summary.seconds = t0.elapsed().as_secs_f64();
+    summary.time_seconds = t0.elapsed().as_secs_f64();
     summary
 }
 

@@ -85,6 +85,14 @@ pub enum ExperimentError {
         /// Why.
         source: surface::FitError,
     },
+    /// A fit could not be measured (its patches do not match its mesh: a bug, reported).
+    #[error("{subject}: cannot measure the fit: {message}")]
+    Measure {
+        /// What was being measured.
+        subject: String,
+        /// Why.
+        message: String,
+    },
     /// A tessellation could not be made.
     #[error("{subject}: cannot tessellate")]
     Tessellate {

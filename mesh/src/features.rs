@@ -28,6 +28,7 @@
 //! reconstruction") name the same vertex classes (smooth, dart, crease, corner).
 
 use nalgebra::Vector3;
+use rayon::prelude::*;
 
 use crate::mesh::Mesh;
 
@@ -241,26 +242,23 @@ impl Features {
             CreaseRule::None => std::f64::consts::PI,
         };
         let normals: Vec<Option<Vector3<f64>>> = (0..mesh.num_faces())
+            .into_par_iter()
             .map(|f| unit_normal(mesh, f))
             .collect();
-        let mut undefined = 0;
         let dihedral: Vec<Option<f64>> = mesh
             .edges()
-            .iter()
+            .par_iter()
             .map(|e| {
-                let (f1, _) = e.first;
                 let (f2, _) = e.second?;
-                let a = normals[f1];
-                let b = normals[f2];
-                match (a, b) {
-                    (Some(a), Some(b)) => Some(angle(&a, &b)),
-                    _ => {
-                        undefined += 1;
-                        None
-                    }
-                }
+                Some(angle(&normals[e.first.0]?, &normals[f2]?))
             })
             .collect();
+        let undefined = mesh
+            .edges()
+            .par_iter()
+            .zip(&dihedral)
+            .filter(|(e, d)| e.second.is_some() && d.is_none())
+            .count();
         let (component, tessellated) = tessellated_components(mesh, &dihedral);
         let geometric = |e: usize, d: &Option<f64>| -> bool {
             let over = d.is_some_and(|t| t > threshold);

@@ -770,6 +770,16 @@ impl Mesh {
         self.edges.iter().all(|e| !e.is_boundary())
     }
 
+    /// The undirected edge of half-edge `h` (which must exist).
+    pub(crate) fn edge_of_half_edge(&self, h: usize) -> usize {
+        self.edge_of[h]
+    }
+
+    /// The twin of every half-edge ([`NO_TWIN`] on the boundary).
+    pub(crate) fn twin_array(&self) -> &[usize] {
+        &self.twin
+    }
+
     /// The twin of half-edge `h`, `None` on the boundary.
     fn twin_of(&self, h: usize) -> Option<usize> {
         self.twin.get(h).copied().filter(|&t| t != NO_TWIN)

@@ -30,7 +30,9 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use crate::mesh::{Mesh, MeshError, Vertex};
+use rayon::prelude::*;
+
+use crate::mesh::{Mesh, MeshError, Vertex, NO_TWIN};
 use crate::vertex::VertexData;
 
 /// The sectors of a mesh and their data (module docs).
@@ -258,7 +260,23 @@ impl Sectors {
         let faces: Vec<[usize; 3]> = (0..mesh.num_faces())
             .map(|f| std::array::from_fn(|c| self.corner_slot[3 * f + c]))
             .collect();
-        Mesh::new_allowing_degenerate(vertices, faces).map_err(SectorError::Split)
+        // The same twins but across the creases: cutting a valid mesh along edges leaves every
+        // face valid and every fan one fan, so the split mesh needs no validation beyond its
+        // vertex data ([`Mesh::from_twins`]; debug builds check the rest).
+        let twin: Vec<usize> = mesh
+            .twin_array()
+            .par_iter()
+            .enumerate()
+            .map(|(h, &t)| {
+                let e = mesh.edge_of_half_edge(h);
+                if t == NO_TWIN || self.crease.get(e).copied().unwrap_or(false) {
+                    NO_TWIN
+                } else {
+                    t
+                }
+            })
+            .collect();
+        Mesh::from_twins(vertices, faces, twin).map_err(SectorError::Split)
     }
 
     /// Sets every slot's normal and shape tensor (one each per slot, e.g. an estimate on

@@ -351,3 +351,38 @@ fn fit_prints_and_writes_the_same_with_and_without_a_tessellation() {
         );
     }
 }
+
+/// The CAD box of the committed corpus: `fit` finds its creases by default, says so, keeps them
+/// (the report's G1 leaves crease edges out and counts them), and `--no-creases` and
+/// `--crease-angle` change what is found; bad angles and both options at once are usage errors.
+#[test]
+fn fit_finds_creases_on_a_cad_part_and_takes_the_crease_options() {
+    let (_dir, report) = tmp("report.json");
+    let box_ply = root().join("data/cad/box.ply");
+    let data = box_ply.to_str().unwrap();
+    let (code, err) = run(&["fit", "--data", data, "--report", &report]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("creases (auto): 152 edges"), "{err}");
+    assert!(err.contains("creases: 152 edges C0"), "{err}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["creases"]["creases"], 152);
+    assert_eq!(json["g1"]["crease_edges"], 152);
+    assert_eq!(json["curve_counts"]["crease_edges"], 152);
+    let (code, err) = run(&["fit", "--data", data, "--no-creases"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("creases (none): none"), "{err}");
+    // At 100° the box's 90° edges are not creases.
+    let (code, err) = run(&["fit", "--data", data, "--crease-angle", "100"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("creases (angle 100°): none"), "{err}");
+    for bad in [
+        vec!["--crease-angle", "0"],
+        vec!["--crease-angle", "181"],
+        vec!["--crease-angle", "x"],
+        vec!["--crease-angle", "30", "--no-creases"],
+    ] {
+        let (code, err) = run(&[&["fit", "--data", data][..], &bad[..]].concat());
+        assert_eq!(code, 2, "{bad:?}: {err}");
+    }
+}

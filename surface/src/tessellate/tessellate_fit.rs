@@ -365,10 +365,22 @@ fn tessellate_by_topology(
     let ppf = layout.patches_per_face();
     let np = layout.points_per_patch();
     // Owners: a vertex belongs to the lowest-numbered face around it, an edge to its first face.
-    let mut vertex_owner = vec![usize::MAX; mesh.num_vertices()];
+    // Along a crease the surface has two tangent planes: each sector of a vertex is a vertex of
+    // its own (its slot, `mesh::sectors`), and each face owns its side of a crease edge, so the
+    // normals are not averaged over the crease (the positions still coincide).
+    let sectors = mesh.sectors();
+    let corner_key = |f: usize, c: usize| -> usize {
+        match sectors.and_then(|s| s.slot(f, c)) {
+            Some(slot) => slot,
+            None => faces[f][c],
+        }
+    };
+    let keys = sectors.map_or(mesh.num_vertices(), |s| s.num_slots());
+    let mut vertex_owner = vec![usize::MAX; keys];
     let mut owned_corners = vec![[false; 3]; nf];
-    for (f, face) in faces.iter().enumerate() {
-        for (c, &v) in face.iter().enumerate() {
+    for f in 0..nf {
+        for c in 0..3 {
+            let v = corner_key(f, c);
             if vertex_owner[v] == usize::MAX {
                 vertex_owner[v] = f;
                 owned_corners[f][c] = true;
@@ -377,8 +389,11 @@ fn tessellate_by_topology(
     }
     let edges = mesh.edges();
     let mut owned_edges = vec![[false; 3]; nf];
-    for e in edges {
+    for (ei, e) in edges.iter().enumerate() {
         owned_edges[e.first.0][e.first.1] = true;
+        if let Some((g, lg)) = e.second.filter(|_| mesh.is_crease(ei)) {
+            owned_edges[g][lg] = true;
+        }
     }
     // Blocks: per face, owned corners, then owned edges' samples (along the edge's own
     // direction), then inner samples.
@@ -391,20 +406,26 @@ fn tessellate_by_topology(
             + plan.per_face_inner;
     }
     start.push(total);
-    let mut vertex_id = vec![usize::MAX; mesh.num_vertices()];
+    let mut vertex_id = vec![usize::MAX; keys];
+    // Per edge: the samples' first id for its first face, and for its second on a crease.
     let mut edge_base = vec![usize::MAX; edges.len()];
+    let mut crease_base = vec![usize::MAX; edges.len()];
     for f in 0..nf {
         let mut at = start[f];
         for c in 0..3 {
             if owned_corners[f][c] {
-                vertex_id[faces[f][c]] = at;
+                vertex_id[corner_key(f, c)] = at;
                 at += 1;
             }
         }
         for l in 0..3 {
             if owned_edges[f][l] {
                 let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
-                edge_base[ei] = at;
+                if edges[ei].first == (f, l) {
+                    edge_base[ei] = at;
+                } else {
+                    crease_base[ei] = at;
+                }
                 at += plan.per_edge;
             }
         }
@@ -413,12 +434,17 @@ fn tessellate_by_topology(
     let per_edge = plan.per_edge;
     let slot_id = |f: usize, slot: Slot| -> Result<usize, TessError> {
         Ok(match slot {
-            Slot::Corner(c) => vertex_id[faces[f][c]],
+            Slot::Corner(c) => vertex_id[corner_key(f, c)],
             Slot::Edge(l, k) => {
                 let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
                 // Samples are stored along the edge from `vertices[0]`.
                 let forward = edges[ei].vertices[0] == faces[f][l];
-                edge_base[ei] + if forward { k } else { per_edge - 1 - k }
+                let base = if edges[ei].first == (f, l) || crease_base[ei] == usize::MAX {
+                    edge_base[ei]
+                } else {
+                    crease_base[ei]
+                };
+                base + if forward { k } else { per_edge - 1 - k }
             }
             Slot::Inner(k) => start[f + 1] - plan.per_face_inner + k,
         })
