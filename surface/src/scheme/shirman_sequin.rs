@@ -1,15 +1,22 @@
 //! `shirman-sequin`: Mann's modified Shirman–Séquin split-domain scheme, three quartic patches
 //! per face over the centroid split on the face's cubic edge curves (derivation in
 //! [`crate::shirman_sequin`]), with its C0 fallback ([`crate::fallback`]) for faces it cannot
-//! fit. This file only adapts that module to the [`Scheme`] trait: the nets are the same, byte
-//! for byte (Appendix A and B tests).
+//! fit. This file adapts that module to the [`Scheme`] trait: the nets are the same, byte
+//! for byte (Appendix A and B tests), with one choice of its own: a face whose macro-patch
+//! turns over it (a patch normal at 90° or more from the face normal at a sample of the fold
+//! measure, `surface::folds`) while the fallback patch on the same curves does not gets the
+//! fallback ([`SchemeError::FoldsOverFace`]): a C0 crease instead of a fold. The test costs a
+//! face the Bernstein coefficients of its projected Jacobian (a hundred dot products per
+//! sub-patch, [`crate::fallback::worst_cosine`]); only faces they do not certify are sampled.
 
 use nalgebra::Point3;
 
 use super::{Continuity, FaceInput, Layout, ParameterSpec, Scheme, SchemeOptions, CENTROID_SPLIT};
-use crate::fallback::fallback_patch;
+use crate::fallback::{face_normal, fallback_patch, folds_over};
 use crate::fit::FaceFallbackReason;
-use crate::shirman_sequin::{macro_patch, InteriorParameters, DEFAULT_BETA, DEFAULT_C};
+use crate::shirman_sequin::{
+    macro_patch, InteriorParameters, SchemeError, DEFAULT_BETA, DEFAULT_C,
+};
 
 /// Where the interior parameters come from.
 #[derive(Clone, Copy)]
@@ -128,6 +135,11 @@ impl Scheme for ShirmanSequin<'_> {
             .all(|p| p.iter().all(|c| c.is_finite()))
         {
             return Err(FaceFallbackReason::NonFinite);
+        }
+        if let Some(n) = face_normal(&input.vertices.map(|v| v.p)) {
+            if folds_over(&nets, &n) && !folds_over(&fallback_patch(input.edges), &n) {
+                return Err(FaceFallbackReason::Scheme(SchemeError::FoldsOverFace));
+            }
         }
         for (chunk, net) in out.chunks_exact_mut(15).zip(&nets) {
             chunk.copy_from_slice(net);
