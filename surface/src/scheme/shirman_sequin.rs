@@ -5,7 +5,8 @@
 //! for byte (Appendix A and B tests), with one choice of its own: a face whose macro-patch
 //! turns over it (a patch normal at 90° or more from the face normal at a sample of the fold
 //! measure, `surface::folds`) while the fallback patch on the same curves does not gets the
-//! fallback ([`SchemeError::FoldsOverFace`]): a C0 crease instead of a fold. The test costs a
+//! fallback ([`SchemeError::FoldsOverFace`]): a C0 crease instead of a fold
+//! ([`ShirmanSequin::with_unfold`], [`DEFAULT_UNFOLD`]). The test costs a
 //! face the Bernstein coefficients of its projected Jacobian (a hundred dot products per
 //! sub-patch, [`crate::fallback::worst_cosine`]); only faces they do not certify are sampled.
 
@@ -25,17 +26,23 @@ enum Interior<'a> {
     PerFace(&'a (dyn Fn(usize) -> InteriorParameters + Sync)),
 }
 
+/// Whether a face whose macro-patch turns over it gets the fallback when that does not
+/// (module docs): on. Off, the scheme's nets are exactly [`macro_patch`]'s wherever it
+/// succeeds (the dBHS lumps of the 16 × 8 ring, 64 folded faces, stay as they were).
+pub const DEFAULT_UNFOLD: bool = true;
+
 /// The modified Shirman–Séquin scheme with its interior parameters.
 #[derive(Clone, Copy)]
 pub struct ShirmanSequin<'a> {
     interior: Interior<'a>,
+    unfold: bool,
 }
 
 impl std::fmt::Debug for ShirmanSequin<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self.interior {
-            Interior::Uniform(p) => write!(f, "ShirmanSequin({p:?})"),
-            Interior::PerFace(_) => write!(f, "ShirmanSequin(per face)"),
+            Interior::Uniform(p) => write!(f, "ShirmanSequin({p:?}, unfold {})", self.unfold),
+            Interior::PerFace(_) => write!(f, "ShirmanSequin(per face, unfold {})", self.unfold),
         }
     }
 }
@@ -45,6 +52,7 @@ impl ShirmanSequin<'static> {
     pub fn uniform(params: InteriorParameters) -> Self {
         ShirmanSequin {
             interior: Interior::Uniform(params),
+            unfold: DEFAULT_UNFOLD,
         }
     }
 }
@@ -54,7 +62,14 @@ impl<'a> ShirmanSequin<'a> {
     pub fn per_face(params: &'a (dyn Fn(usize) -> InteriorParameters + Sync)) -> Self {
         ShirmanSequin {
             interior: Interior::PerFace(params),
+            unfold: DEFAULT_UNFOLD,
         }
+    }
+
+    /// The same scheme with the fallback for faces whose patch turns over them on (`true`,
+    /// [`DEFAULT_UNFOLD`]) or off.
+    pub fn with_unfold(self, unfold: bool) -> Self {
+        ShirmanSequin { unfold, ..self }
     }
 
     fn params(&self, f: usize) -> InteriorParameters {
@@ -136,7 +151,7 @@ impl Scheme for ShirmanSequin<'_> {
         {
             return Err(FaceFallbackReason::NonFinite);
         }
-        if let Some(n) = face_normal(&input.vertices.map(|v| v.p)) {
+        if let Some(n) = face_normal(&input.vertices.map(|v| v.p)).filter(|_| self.unfold) {
             if folds_over(&nets, &n) && !folds_over(&fallback_patch(input.edges), &n) {
                 return Err(FaceFallbackReason::Scheme(SchemeError::FoldsOverFace));
             }

@@ -8,8 +8,10 @@ use curves::{method_by_name, MethodOptions, REGISTRY};
 use meshio::RawMesh;
 use nalgebra::{Point3, Rotation3, Vector3};
 use surface::repair::{repair, RepairOptions};
+use surface::scheme::shirman_sequin::ShirmanSequin;
 use surface::{
-    dataset_by_name, fit, measure_g1, FaceFallbackReason, InteriorParameters, Mesh, SchemeError,
+    dataset_by_name, fit, fit_scheme, measure_g1, FaceFallbackReason, InteriorParameters, Mesh,
+    SchemeError,
 };
 
 /// G1 is exact by construction on regular faces; measured angles are rounding noise.
@@ -164,4 +166,11 @@ fn the_ring_on_dbhs_curves_trades_its_folds_for_fallbacks() {
     let r = measure_g1(&data.mesh, &fitted, 9);
     assert!(r.interior_max < G1_TOL && r.exterior_max < G1_TOL, "{r:?}");
     assert!(max_edge_gap(&data.mesh, &fitted) < C0_TOL);
+    // Without the choice, exactly those faces keep their regular patches, and fold.
+    let scheme = ShirmanSequin::uniform(InteriorParameters::default()).with_unfold(false);
+    let kept = fit_scheme(&data.mesh, &scheme, m.as_ref()).unwrap();
+    assert!(kept.face_fallbacks.is_empty());
+    let folded = surface::folds::measure(&data.mesh, &kept).folded;
+    let refused: Vec<usize> = fitted.face_fallbacks.iter().map(|fb| fb.face).collect();
+    assert_eq!(folded, refused);
 }
