@@ -23,6 +23,10 @@
 //!   the tangent is undefined (`n ∥ w`): one degeneracy, not two. And it is the opposite-normal
 //!   degeneracy in disguise: `w ⊥ m̂` for `m = n_a + n_b`, and `n_a · m̂ = |m|/2`, so
 //!   `|w × n_a| ≥ |m|/2`; once `|m|` is checked the tangents exist;
+//! * **tangent clamp**: where the tangent so found makes more than [`MAX_TANGENT_ANGLE`] with the
+//!   chord it is turned, in the curve plane, towards the chord until it makes exactly that angle
+//!   ([`BoundaryProblem::clamped`] says so; derivation and choice of the angle there). The target
+//!   curvature stays the one of the data's tangent;
 //! * unit-chord scaling (techreport §3, "unit problem"): positions `(q − p_a)/|d|` in the frame,
 //!   tangents are directions and stay unit, curvatures multiply by `|d|`. A unit solution
 //!   `(α0, α1)` maps back to `P1 = p_a + α0 |d| t_a / 3`, `P2 = p_b − α1 |d| t_b / 3`.
@@ -41,6 +45,40 @@ pub const DEGENERATE_SINE: f64 = 1e-8;
 /// normalized: a hand-typed `[0.7071, 0.7071]` passes, a vector that is not meant to be a
 /// direction does not.
 pub const UNIT_TANGENT_TOLERANCE: f64 = 1e-4;
+
+/// The largest angle an end tangent may make with the chord: 60°.
+///
+/// # Why a bound, and why 60°
+///
+/// On the unit chord let a cubic have end tangents at angles `θ0, θ1 ≤ θ` to the chord and a
+/// control polygon monotone along the chord ([`UnitProblem::bounded_alpha`]): its inner
+/// control points sit at chord coordinates `x1 = α0 cos θ0 / 3` and `1 − x2 = α1 cos θ1 / 3`
+/// with `x1 + (1 − x2) ≤ 1`, at heights `h1 = x1 tan θ0`, `h2 = (1 − x2) tan θ1`, so
+/// `|h1| + |h2| ≤ tan θ`. The curve's height `y(t) = 3t(1−t)[(1−t) h1 + t h2]` is linear in
+/// `(h1, h2)`, so its largest value is at a vertex of that set: `max_t 3t(1−t)² tan θ =
+/// (4/9) tan θ`. The curve stays within `(4/9)|d| tan θ` of its chord (0.77 `|d|` at 60°).
+/// Without a bound, a vertex normal leaning along the chord by `90° − θ` makes the tangent,
+/// which must be perpendicular to it, climb steeply: as `θ → 90°` the height grows without
+/// bound, and seen from a face on the edge the curve's end tangents swing across the face's
+/// other edges — the face then folds whatever patch is put on it.
+///
+/// The bound must leave smooth data alone: a circle sampled by chords of arc angle `ψ` has
+/// tangents at `ψ/2` to each chord, so `θ = 60°` leaves untouched every circle sampled by three
+/// or more chords per turn (`ψ ≤ 120°`), and with it the coarsest analytic data sets (`octa`,
+/// `sphere` at level 0 and `capsule` at 4 reach 45°, the default `ring` 22.5°, `ring` at 8
+/// 47.6°). Only `ring` at resolutions below 8, whose diagonal edges twist the tube by more than
+/// a third of a turn, exceeds it (76° at 4). `cos 60° = ½` exactly, so the test is exact.
+pub const MAX_TANGENT_ANGLE: f64 = std::f64::consts::FRAC_PI_3;
+
+/// `cos` [`MAX_TANGENT_ANGLE`].
+const MAX_TANGENT_COS: f64 = 0.5;
+
+/// `sin` [`MAX_TANGENT_ANGLE`] (`√3/2`, correctly rounded).
+const MAX_TANGENT_SIN: f64 = 0.866_025_403_784_438_6;
+
+/// The sum `α0 cos θ0 + α1 cos θ1` at and below which a unit-chord cubic's control polygon is
+/// monotone along the chord ([`UnitProblem::bounded_alpha`]).
+pub const MONOTONE_POLYGON: f64 = 3.0;
 
 /// Which end of an edge a degeneracy concerns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -179,6 +217,37 @@ impl UnitProblem {
         ])
     }
 
+    /// `alpha` shortened, if need be, so that the control polygon of [`UnitProblem::curve`] is
+    /// monotone along the chord, and whether it was shortened.
+    ///
+    /// With `c_i = t_i · D` (`D = (1, 0)`; both positive for the problems of
+    /// [`BoundaryProblem`]), the legs of the control polygon have the chord components
+    /// `α0 c0/3`, `1 − (α0 c0 + α1 c1)/3` and `α1 c1/3`, and `f'(t) · D` is the quadratic with
+    /// these Bernstein coefficients (times 3). When `α0 c0 + α1 c1 ≤ 3` (=
+    /// [`MONOTONE_POLYGON`]) every coefficient is `≥ 0` and the end ones positive, so
+    /// `f'(t) · D ≥ 3 l0 l2 / (l0 + l2) > 0` with `l0, l2` the end legs: the curve never runs
+    /// back along its chord, stays within `0 ≤ x ≤ 1`, and within `(4/9) tan θ` of the chord
+    /// for tangents at `θ` ([`MAX_TANGENT_ANGLE`]). Beyond it the
+    /// middle leg runs backwards and, once `u² − uv + v² ≥ 3` (`u² = α0 c0`, `v² = α1 c1`: the
+    /// minimum of the quadratic reaches zero), so does the curve: the overshoot seen from the
+    /// faces on the edge as a loop across them.
+    ///
+    /// A longer `alpha` is scaled by `3/(α0 c0 + α1 c1)`: both lengths by the same factor, so
+    /// the ratio a construction chose is kept. The chord choice `α = (1, 1)` is never touched
+    /// (`c0 + c1 ≤ 2`), nor is any circle arc's `α = 2 tan(ψ/4)/sin(ψ/2)` (`α c ≤ 1` for every
+    /// arc angle `ψ < 180°`). Tangents with `c_i ≤ 0` (not produced by [`BoundaryProblem`])
+    /// leave `alpha` as it is: the bound is about running along the chord.
+    pub fn bounded_alpha(&self, alpha: [f64; 2]) -> ([f64; 2], bool) {
+        let (c0, c1) = (self.t0.x, self.t1.x);
+        let along = alpha[0] * c0 + alpha[1] * c1;
+        if c0 > 0.0 && c1 > 0.0 && along > MONOTONE_POLYGON {
+            let k = MONOTONE_POLYGON / along;
+            ([alpha[0] * k, alpha[1] * k], true)
+        } else {
+            (alpha, false)
+        }
+    }
+
     /// End curvatures `[κ(0), κ(1)]` of [`UnitProblem::curve`] in closed form.
     ///
     /// Derivation (techreport §3, with its `α2` typo in `f''(1)` read as `α1`):
@@ -257,6 +326,12 @@ pub struct BoundaryProblem {
     /// True at an end whose tangent had to be flipped to point along the chord (the normal there
     /// leans past the chord); counted by reports.
     pub flipped: [bool; 2],
+    /// True at an end whose tangent made more than [`MAX_TANGENT_ANGLE`] with the chord and was
+    /// turned back to it (module docs). The tangent is then no longer perpendicular to the
+    /// vertex normal: no G1 surface through the vertex interpolates that normal along this
+    /// edge, and the split-domain construction refuses the faces on it
+    /// (`surface::shirman_sequin`); counted by reports like `flipped`.
+    pub clamped: [bool; 2],
     /// The scaled problem on the unit chord.
     pub unit: UnitProblem,
 }
@@ -317,6 +392,7 @@ impl BoundaryProblem {
         let mut tangents = [Vector3::zeros(); 2];
         let mut curvatures = [0.0; 2];
         let mut flipped = [false; 2];
+        let mut clamped = [false; 2];
         for (i, (v, n, end)) in [(a, na, End::Start), (b, nb, End::End)]
             .into_iter()
             .enumerate()
@@ -339,6 +415,13 @@ impl BoundaryProblem {
             // Meusnier: κ = κn(t) / ⟨w × t, n⟩.
             let denom = w.cross(&t).dot(&n);
             curvatures[i] = v.normal_curvature(&t) / denom;
+            // The clamp (MAX_TANGENT_ANGLE): t lies in the curve plane, t = x cos θ + y sin θ;
+            // beyond the bound it becomes x cos θ_max ± y sin θ_max, on the same side.
+            if t.dot(&x) < MAX_TANGENT_COS {
+                let side = if t.dot(&y) < 0.0 { -1.0 } else { 1.0 };
+                t = x * MAX_TANGENT_COS + y * (side * MAX_TANGENT_SIN);
+                clamped[i] = true;
+            }
             tangents[i] = t;
         }
         let unit = UnitProblem {
@@ -353,6 +436,7 @@ impl BoundaryProblem {
             tangents,
             curvatures,
             flipped,
+            clamped,
             unit,
         })
     }
@@ -481,6 +565,118 @@ mod tests {
         assert_eq!(err(b).kind, Degeneracy::TangentAcrossChord(End::End));
         let e = err(flat([0.0, 0.0, 0.0]));
         assert_eq!(e.to_string(), "edge 7–9: the two vertices coincide");
+    }
+
+    /// The edge from the origin to `(1, 0, 0)` with the normal at `a` turned about `y` so that
+    /// its tangent climbs at `theta` from the chord (`n_a = (−sin θ, 0, cos θ)`, tangent
+    /// `(cos θ, 0, sin θ)`); `n_b = z`, tangent along the chord. Both normals lie in the
+    /// `xz`-plane, which is the curve plane.
+    fn climbing(theta: f64) -> BoundaryProblem {
+        let a = VertexData::new(
+            Point3::origin(),
+            Vector3::new(-theta.sin(), 0.0, theta.cos()),
+            Matrix3::zeros(),
+        );
+        BoundaryProblem::new((0, 1), &a, &flat([1.0, 0.0, 0.0])).expect("valid")
+    }
+
+    #[test]
+    fn a_tangent_beyond_the_bound_is_clamped_to_it() {
+        let p = climbing(75f64.to_radians());
+        assert_eq!(p.clamped, [true, false]);
+        // Turned in the curve plane to exactly 60° from the chord, on the side it climbed.
+        let want = Vector3::new(0.5, 0.0, 3f64.sqrt() / 2.0);
+        assert!(
+            (p.tangents[0] - want).norm() < ROUND_TRIP,
+            "{:?}",
+            p.tangents[0]
+        );
+        assert_eq!(p.tangents[0].dot(&p.frame.x), MAX_TANGENT_COS);
+        assert!((p.unit.t0.x - 0.5).abs() < ROUND_TRIP);
+        // No longer perpendicular to the vertex normal: t · n = cos 60° (−sin 75°) + sin 60° cos 75°
+        // = −sin 15°, the 15° it was turned by …
+        let n = Vector3::new(-(75f64.to_radians()).sin(), 0.0, (75f64.to_radians()).cos());
+        assert!((p.tangents[0].dot(&n) + 15f64.to_radians().sin()).abs() < ROUND_TRIP);
+        // … and the other end, along the chord, is untouched.
+        assert!((p.tangents[1] - Vector3::x()).norm() < ROUND_TRIP);
+        assert_eq!(p.flipped, [false, false]);
+    }
+
+    #[test]
+    fn a_tangent_under_the_bound_is_untouched_bit_for_bit() {
+        let p = climbing(59f64.to_radians());
+        assert_eq!(p.clamped, [false, false]);
+        // Exactly the tangent of the construction without the clamp: w × n normalized, turned
+        // to run along the chord.
+        let n = Vector3::new(-(59f64.to_radians()).sin(), 0.0, (59f64.to_radians()).cos());
+        let natural = n.cross(&p.frame.w);
+        let t = natural / natural.norm();
+        let t = if t.dot(&p.frame.x) < 0.0 { -t } else { t };
+        assert_eq!(p.tangents[0], t);
+        assert!((p.tangents[0].dot(&p.frame.x) - 59f64.to_radians().cos()).abs() < ROUND_TRIP);
+    }
+
+    #[test]
+    fn a_long_alpha_is_shortened_to_a_monotone_polygon() {
+        let s = MAX_TANGENT_SIN;
+        // Tangents at 60° on the same side (an arch): c0 = c1 = ½.
+        let u =
+            UnitProblem::new(Vector2::new(0.5, s), Vector2::new(0.5, -s), 0.0, 0.0).expect("valid");
+        let (alpha, shortened) = u.bounded_alpha([4.0, 8.0]);
+        // α0 c0 + α1 c1 = 6 → both scaled by ½.
+        assert!(shortened);
+        assert!((alpha[0] - 2.0).abs() < ROUND_TRIP && (alpha[1] - 4.0).abs() < ROUND_TRIP);
+        let c = u.curve(alpha);
+        // The middle leg has no length along the chord: the polygon is monotone, just.
+        assert!((c.points[2].x - c.points[1].x).abs() < ROUND_TRIP);
+        // The curve never runs back and stays within (4/9) tan θ of its chord.
+        for k in 0..=1000 {
+            let t = f64::from(k) / 1000.0;
+            let d = c.deriv(t);
+            assert!(d.x > 0.0, "t {t}: {d:?}");
+            assert!(c.eval(t).y.abs() <= 4.0 / 9.0 * 3f64.sqrt());
+        }
+        // Unbounded, the same α runs back along the chord: u² − uv + v² = 6 − 2√2 ≥ 3.
+        let back = u.curve([4.0, 8.0]);
+        assert!((0..=100).any(|k| back.deriv(f64::from(k) / 100.0).x < 0.0));
+    }
+
+    #[test]
+    fn short_and_circular_alphas_are_untouched_bit_for_bit() {
+        let u = UnitProblem::new(Vector2::new(0.8, 0.6), Vector2::new(0.8, -0.6), 0.0, 0.0)
+            .expect("valid");
+        for alpha in [[1.0, 1.0], [0.3, 2.0], [1.7, 1.7], [1e-3, 3.0]] {
+            assert_eq!(u.bounded_alpha(alpha), (alpha, false));
+        }
+        // The circle arc of angle ψ through both ends: tangents at ψ/2, α = 2 tan(ψ/4)/sin(ψ/2).
+        for psi in [0.1f64, 1.0, 2.0, 3.0] {
+            let (sn, cs) = (psi / 2.0).sin_cos();
+            let arc = UnitProblem::new(Vector2::new(cs, sn), Vector2::new(cs, -sn), 0.0, 0.0)
+                .expect("valid");
+            let a = 2.0 * (psi / 4.0).tan() / sn;
+            assert_eq!(arc.bounded_alpha([a, a]), ([a, a], false), "ψ {psi}");
+        }
+    }
+
+    #[test]
+    fn the_height_bound_is_reached_in_the_limit() {
+        // θ0 = θ1 = 60°, α0 c0 → 3 and α1 → 0 (α0 c0 + α1 c1 = 3 − 3ε): the curve's height tends
+        // to (4/9) tan 60°.
+        let s = MAX_TANGENT_SIN;
+        let u =
+            UnitProblem::new(Vector2::new(0.5, s), Vector2::new(0.5, -s), 0.0, 0.0).expect("valid");
+        let eps = 1e-6;
+        let (alpha, shortened) = u.bounded_alpha([6.0 * (1.0 - 2.0 * eps), 6.0 * eps]);
+        assert!(!shortened);
+        let c = u.curve(alpha);
+        let top = (0..=3000)
+            .map(|k| c.eval(f64::from(k) / 3000.0).y)
+            .fold(0.0, f64::max);
+        let bound = 4.0 / 9.0 * 3f64.sqrt();
+        assert!(
+            top <= bound && top > bound * (1.0 - 1e-4),
+            "{top} vs {bound}"
+        );
     }
 
     #[test]

@@ -145,6 +145,31 @@ pub enum SchemeError {
         /// Corner index in the triangle.
         corner: usize,
     },
+    /// The vertex normal at a corner makes 90° or more with the face normal. The patch
+    /// interpolates that normal at the corner (its tangent plane there is spanned by the two
+    /// edge tangents, both perpendicular to it), so it would fold over the face there
+    /// (`surface::folds`): the face is left to the fallback, which need not interpolate it.
+    #[error("the vertex normal at corner {corner} makes 90° or more with the face normal")]
+    NormalAgainstFace {
+        /// Corner index in the triangle.
+        corner: usize,
+    },
+    /// An exterior curve's end tangent is not perpendicular to the vertex normal (its boundary
+    /// problem clamped the tangent towards the chord, `curves::BoundaryProblem::clamped`): no
+    /// G1 surface through the vertex has that normal and that tangent.
+    #[error("edge {edge}: the tangent at corner {corner} leaves the tangent plane (clamped)")]
+    TangentOffPlane {
+        /// Edge index in the triangle.
+        edge: usize,
+        /// Corner index in the triangle.
+        corner: usize,
+    },
+    /// The macro-patch turns over its face (a patch normal at 90° or more from the face normal
+    /// at a sample of the fold measure, `surface::folds`) and the fallback patch on the same
+    /// curves does not: the scheme ([`crate::scheme::shirman_sequin`]) then prefers the
+    /// fallback. Not returned by [`macro_patch`], whose nets are what the construction gives.
+    #[error("the patch turns over its face, and the fallback on the same curves does not")]
+    FoldsOverFace,
     /// The corner cross vector has no component across the edge (`k ≤ 0`): the
     /// Chiyokura–Kimura decomposition fails and G1 cannot be guaranteed.
     #[error("edge {edge}: cross-boundary vector at corner {corner} does not point into the patch")]
@@ -230,11 +255,46 @@ pub fn chiyokura_kimura(
     ])
 }
 
+/// The faces the construction would fold or could not make G1 whatever its parameters, found
+/// before it starts: a vertex normal at 90° or more from the face normal (the patch
+/// interpolates it: [`SchemeError::NormalAgainstFace`]; only for a face with a normal, i.e.
+/// `|(V1 − V0) × (V2 − V0)|` above [`DEGENERATE`] times the two edges' lengths), and an end
+/// tangent off the vertex's tangent plane, `|t̂ · n| >` [`DEGENERATE`] (a clamped tangent:
+/// [`SchemeError::TangentOffPlane`]; unclamped tangents are perpendicular to rounding, 10⁻¹⁶,
+/// and a tangent within 10⁻⁸ of the plane moves the normal by no more than that).
+fn refuse_folding(
+    v: &[Point3<f64>; 3],
+    n: &[Vector3<f64>; 3],
+    edges: &[CubicBez3; 3],
+) -> Result<(), SchemeError> {
+    let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
+    let area = e1.cross(&e2);
+    if area.norm() > DEGENERATE * e1.norm() * e2.norm() {
+        if let Some(corner) = (0..3).find(|&i| n[i].dot(&area) <= 0.0) {
+            return Err(SchemeError::NormalAgainstFace { corner });
+        }
+    }
+    for (edge, c) in edges.iter().enumerate() {
+        let [va, e1, e2, vb] = c.points;
+        let corner_b = (edge + 1) % 3;
+        for (corner, t) in [(edge, e1 - va), (corner_b, vb - e2)] {
+            if t.dot(&n[corner]).abs() > DEGENERATE * t.norm() {
+                return Err(SchemeError::TangentOffPlane { edge, corner });
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Builds the three quartic sub-patches of one data triangle.
 ///
 /// `vertices` are the corners `V_0, V_1, V_2`; `edges[e]` is the exterior cubic from `V_e` to
 /// `V_{e+1}` (the caller orients the shared curve); its end points must be the vertex positions.
 /// Returns the nets of sub-patches `0, 1, 2` (sub-patch `e` over `(V_e, V_{e+1}, S)`).
+///
+/// Refused before anything is built: a face whose vertex normal makes 90° or more with the
+/// face normal ([`SchemeError::NormalAgainstFace`]: the patch interpolates that normal, so it
+/// would fold there) and a face with a clamped end tangent ([`SchemeError::TangentOffPlane`]).
 pub fn macro_patch(
     vertices: [&VertexData; 3],
     edges: &[CubicBez3; 3],
@@ -252,6 +312,7 @@ pub fn macro_patch(
     let prev = |i: usize| (i + 2) % 3;
     let next = |i: usize| (i + 1) % 3;
     let beta = params.beta;
+    refuse_folding(&v, &n, edges)?;
 
     // m = 0: first interior-boundary points.
     let j1: [Point3<f64>; 3] = std::array::from_fn(|i| {

@@ -1,15 +1,23 @@
 //! `shirman-sequin`: Mann's modified Shirman–Séquin split-domain scheme, three quartic patches
 //! per face over the centroid split on the face's cubic edge curves (derivation in
 //! [`crate::shirman_sequin`]), with its C0 fallback ([`crate::fallback`]) for faces it cannot
-//! fit. This file only adapts that module to the [`Scheme`] trait: the nets are the same, byte
-//! for byte (Appendix A and B tests).
+//! fit. This file adapts that module to the [`Scheme`] trait: the nets are the same, byte
+//! for byte (Appendix A and B tests), with one choice of its own: a face whose macro-patch
+//! turns over it (a patch normal at 90° or more from the face normal at a sample of the fold
+//! measure, `surface::folds`) while the fallback patch on the same curves does not gets the
+//! fallback ([`SchemeError::FoldsOverFace`]): a C0 crease instead of a fold
+//! ([`ShirmanSequin::with_unfold`], [`DEFAULT_UNFOLD`]). The test costs a
+//! face the Bernstein coefficients of its projected Jacobian (a hundred dot products per
+//! sub-patch, [`crate::fallback::worst_cosine`]); only faces they do not certify are sampled.
 
 use nalgebra::Point3;
 
 use super::{Continuity, FaceInput, Layout, ParameterSpec, Scheme, SchemeOptions, CENTROID_SPLIT};
-use crate::fallback::fallback_patch;
+use crate::fallback::{face_normal, fallback_patch, folds_over};
 use crate::fit::FaceFallbackReason;
-use crate::shirman_sequin::{macro_patch, InteriorParameters, DEFAULT_BETA, DEFAULT_C};
+use crate::shirman_sequin::{
+    macro_patch, InteriorParameters, SchemeError, DEFAULT_BETA, DEFAULT_C,
+};
 
 /// Where the interior parameters come from.
 #[derive(Clone, Copy)]
@@ -18,17 +26,23 @@ enum Interior<'a> {
     PerFace(&'a (dyn Fn(usize) -> InteriorParameters + Sync)),
 }
 
+/// Whether a face whose macro-patch turns over it gets the fallback when that does not
+/// (module docs): on. Off, the scheme's nets are exactly [`macro_patch`]'s wherever it
+/// succeeds (the dBHS lumps of the 16 × 8 ring, 64 folded faces, stay as they were).
+pub const DEFAULT_UNFOLD: bool = true;
+
 /// The modified Shirman–Séquin scheme with its interior parameters.
 #[derive(Clone, Copy)]
 pub struct ShirmanSequin<'a> {
     interior: Interior<'a>,
+    unfold: bool,
 }
 
 impl std::fmt::Debug for ShirmanSequin<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self.interior {
-            Interior::Uniform(p) => write!(f, "ShirmanSequin({p:?})"),
-            Interior::PerFace(_) => write!(f, "ShirmanSequin(per face)"),
+            Interior::Uniform(p) => write!(f, "ShirmanSequin({p:?}, unfold {})", self.unfold),
+            Interior::PerFace(_) => write!(f, "ShirmanSequin(per face, unfold {})", self.unfold),
         }
     }
 }
@@ -38,6 +52,7 @@ impl ShirmanSequin<'static> {
     pub fn uniform(params: InteriorParameters) -> Self {
         ShirmanSequin {
             interior: Interior::Uniform(params),
+            unfold: DEFAULT_UNFOLD,
         }
     }
 }
@@ -47,7 +62,14 @@ impl<'a> ShirmanSequin<'a> {
     pub fn per_face(params: &'a (dyn Fn(usize) -> InteriorParameters + Sync)) -> Self {
         ShirmanSequin {
             interior: Interior::PerFace(params),
+            unfold: DEFAULT_UNFOLD,
         }
+    }
+
+    /// The same scheme with the fallback for faces whose patch turns over them on (`true`,
+    /// [`DEFAULT_UNFOLD`]) or off.
+    pub fn with_unfold(self, unfold: bool) -> Self {
+        ShirmanSequin { unfold, ..self }
     }
 
     fn params(&self, f: usize) -> InteriorParameters {
@@ -128,6 +150,11 @@ impl Scheme for ShirmanSequin<'_> {
             .all(|p| p.iter().all(|c| c.is_finite()))
         {
             return Err(FaceFallbackReason::NonFinite);
+        }
+        if let Some(n) = face_normal(&input.vertices.map(|v| v.p)).filter(|_| self.unfold) {
+            if folds_over(&nets, &n) && !folds_over(&fallback_patch(input.edges), &n) {
+                return Err(FaceFallbackReason::Scheme(SchemeError::FoldsOverFace));
+            }
         }
         for (chunk, net) in out.chunks_exact_mut(15).zip(&nets) {
             chunk.copy_from_slice(net);

@@ -8,7 +8,11 @@ use curves::{method_by_name, MethodOptions, REGISTRY};
 use meshio::RawMesh;
 use nalgebra::{Point3, Rotation3, Vector3};
 use surface::repair::{repair, RepairOptions};
-use surface::{dataset_by_name, fit, measure_g1, FaceFallbackReason, InteriorParameters, Mesh};
+use surface::scheme::shirman_sequin::ShirmanSequin;
+use surface::{
+    dataset_by_name, fit, fit_scheme, measure_g1, FaceFallbackReason, InteriorParameters, Mesh,
+    SchemeError,
+};
 
 /// G1 is exact by construction on regular faces; measured angles are rounding noise.
 const G1_TOL: f64 = 1e-9;
@@ -138,4 +142,35 @@ fn a_degenerate_edge_gets_the_straight_cubic() {
         .points
         .iter()
         .all(|q| q.iter().all(|x| x.is_finite())));
+}
+
+#[test]
+fn the_ring_on_dbhs_curves_trades_its_folds_for_fallbacks() {
+    // dBHS's short end derivatives on the 16 × 8 ring fold 64 of its 256 regular patches over
+    // their faces (the seeds' "lumps"); the scheme gives those faces the fallback, which does
+    // not fold, and the regular faces stay G1.
+    let data = dataset_by_name("ring", None).unwrap();
+    let m = method_by_name("dbhs", &MethodOptions::default()).unwrap();
+    let fitted = fit(&data.mesh, m.as_ref(), &defaults).unwrap();
+    assert_eq!(fitted.face_fallbacks.len(), 64);
+    for fb in &fitted.face_fallbacks {
+        assert_eq!(
+            fb.reason,
+            FaceFallbackReason::Scheme(SchemeError::FoldsOverFace),
+            "face {}",
+            fb.face
+        );
+    }
+    let folds = surface::folds::measure(&data.mesh, &fitted);
+    assert!(folds.folded.is_empty(), "{:?}", folds.folded);
+    let r = measure_g1(&data.mesh, &fitted, 9);
+    assert!(r.interior_max < G1_TOL && r.exterior_max < G1_TOL, "{r:?}");
+    assert!(max_edge_gap(&data.mesh, &fitted) < C0_TOL);
+    // Without the choice, exactly those faces keep their regular patches, and fold.
+    let scheme = ShirmanSequin::uniform(InteriorParameters::default()).with_unfold(false);
+    let kept = fit_scheme(&data.mesh, &scheme, m.as_ref()).unwrap();
+    assert!(kept.face_fallbacks.is_empty());
+    let folded = surface::folds::measure(&data.mesh, &kept).folded;
+    let refused: Vec<usize> = fitted.face_fallbacks.iter().map(|fb| fb.face).collect();
+    assert_eq!(folded, refused);
 }

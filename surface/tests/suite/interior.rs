@@ -5,7 +5,7 @@
 
 use curves::{method_by_name, MethodOptions};
 use surface::interior::corner_measures;
-use surface::{dataset_by_name, fit, InteriorParameters};
+use surface::{dataset_by_name, fit, FaceFallbackReason, InteriorParameters, SchemeError};
 
 /// The measures are ratios of quantities that scale together with β; what is left is rounding.
 const INDEPENDENT: f64 = 1e-9;
@@ -15,17 +15,34 @@ fn corner_measures_ignore_beta_and_c() {
     for name in ["ring", "capsule"] {
         let data = dataset_by_name(name, None).unwrap();
         let m = method_by_name("optimized", &MethodOptions::default()).unwrap();
+        // Per face, its three corners' measures; `None` for a face the scheme gave the
+        // fallback: at extreme β some regular patches of the capsule turn over their faces
+        // (measured: 32 of 384 at β = (0.15, 0.6, 0.9)), and nothing else may send a face there.
         let measures = |p: InteriorParameters| {
             let f = fit(&data.mesh, m.as_ref(), &|_| p).unwrap();
+            let mask = f.fallback_mask(data.mesh.num_faces());
+            for fb in &f.face_fallbacks {
+                assert_eq!(
+                    fb.reason,
+                    FaceFallbackReason::Scheme(SchemeError::FoldsOverFace),
+                    "{name}"
+                );
+            }
             (0..data.mesh.num_faces())
                 .flat_map(|fi| {
                     let face = data.mesh.faces()[fi];
                     let nets = std::array::from_fn(|e| f.quartic_net(3 * fi + e).unwrap());
-                    corner_measures(&nets, face.map(|i| &data.mesh.vertices()[i].data))
+                    let corners =
+                        corner_measures(&nets, face.map(|i| &data.mesh.vertices()[i].data));
+                    corners.map(|c| (!mask[fi]).then_some(c))
                 })
                 .collect::<Vec<_>>()
         };
         let base = measures(InteriorParameters::default());
+        assert!(
+            base.iter().all(Option::is_some),
+            "{name}: every face regular"
+        );
         for p in [
             InteriorParameters {
                 beta: [0.15, 0.6, 0.9],
@@ -36,7 +53,13 @@ fn corner_measures_ignore_beta_and_c() {
                 c: [0.3, 2.5, 4.0],
             },
         ] {
-            for (a, b) in base.iter().zip(measures(p)) {
+            let other = measures(p);
+            assert!(other.iter().filter(|c| c.is_some()).count() * 10 > other.len() * 9);
+            for (a, b) in base
+                .iter()
+                .zip(other)
+                .filter_map(|(a, b)| a.as_ref().zip(b))
+            {
                 assert!(
                     (a.boundary_curvature - b.boundary_curvature).abs() < INDEPENDENT,
                     "{name}"

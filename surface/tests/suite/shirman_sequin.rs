@@ -9,7 +9,7 @@ use proptest::prelude::*;
 use surface::beztri::index;
 use surface::{
     chiyokura_kimura, dataset_by_name, fit, macro_patch, measure_g1, BezierTriangle, CrossEnd,
-    InteriorParameters, Mesh, QuarticNet,
+    FaceFallbackReason, InteriorParameters, Mesh, QuarticNet, SchemeError,
 };
 
 /// Appendix A's nets are exact thirds and twelfths; the construction reproduces them to
@@ -252,8 +252,8 @@ fn g1_with_perturbed_normals() {
         // dBHS on the perturbed capsule: the rulings of the cylinder are straight, and the
         // perturbation leaves curvatures of order 1e-8 there, which dBHS matches with end
         // derivatives of 10⁶–10⁷ chord lengths. The corner cross vectors then lie within 1e-8 of
-        // the edge and `fit` gives the face the C0 fallback (checked below) instead of building
-        // a cusp.
+        // the edge, or the patch turns over its face, and `fit` gives the face the C0 fallback
+        // (checked below) instead of building a cusp.
         let skip: &[&str] = if *name == "capsule" { &["dbhs"] } else { &[] };
         check_g1(
             &data.mesh,
@@ -266,11 +266,18 @@ fn g1_with_perturbed_normals() {
             let params = random_params(5 + i as u64, data.mesh.num_faces());
             let f = fit(&data.mesh, m.as_ref(), &|face| params[face]).unwrap();
             assert!(!f.face_fallbacks.is_empty());
+            // Most regular patches on those curves also turn over their faces (measured: 176 of
+            // the 384 faces, 192 once the curves' α are bounded by
+            // `curves::UnitProblem::bounded_alpha`), and the scheme gives them the fallback,
+            // which does not.
             for fb in &f.face_fallbacks {
                 assert!(
-                    fb.reason
-                        .to_string()
-                        .contains("does not point into the patch"),
+                    matches!(
+                        fb.reason,
+                        FaceFallbackReason::Scheme(
+                            SchemeError::NoCrossComponent { .. } | SchemeError::FoldsOverFace
+                        )
+                    ),
                     "{}",
                     fb.reason
                 );
@@ -386,4 +393,43 @@ proptest! {
             }
         }
     }
+}
+
+#[test]
+fn a_vertex_normal_at_or_past_the_face_is_refused() {
+    // The flat triangle of Appendix A with the normal at corner 1 turned about y: at 85° it
+    // still fits, at 95° it makes more than 90° with the face normal and the patch, which
+    // interpolates it, would fold there.
+    let turned = |deg: f64| {
+        let n = Rotation3::new(Vector3::y() * deg.to_radians()) * Vector3::z();
+        VertexData::new(Point3::new(1.0, 0.0, 0.0), n, Matrix3::zeros())
+    };
+    let (p, r) = (flat([0.0, 0.0, 0.0]), flat([0.0, 1.0, 0.0]));
+    for (deg, refused) in [(85.0, false), (95.0, true)] {
+        let q = turned(deg);
+        let curves = face_curves([&p, &q, &r], "chord");
+        let built = macro_patch([&p, &q, &r], &curves, &InteriorParameters::default());
+        assert_eq!(
+            built.err() == Some(SchemeError::NormalAgainstFace { corner: 1 }),
+            refused,
+            "{deg}°"
+        );
+    }
+}
+
+#[test]
+fn a_clamped_tangent_is_refused() {
+    // The normal at corner 1 leans 75° along the edge to corner 0 (a rotation about y): the
+    // tangent of edge 0 at corner 1 climbs 75° from the chord and is clamped to 60°, off the
+    // tangent plane.
+    let n = Rotation3::new(Vector3::y() * (-75f64).to_radians()) * Vector3::z();
+    let q = VertexData::new(Point3::new(1.0, 0.0, 0.0), n, Matrix3::zeros());
+    let (p, r) = (flat([0.0, 0.0, 0.0]), flat([0.0, 1.0, 0.0]));
+    let edge0 = BoundaryProblem::new((0, 1), &p, &q).unwrap();
+    assert_eq!(edge0.clamped, [false, true]);
+    let curves = face_curves([&p, &q, &r], "chord");
+    assert_eq!(
+        macro_patch([&p, &q, &r], &curves, &InteriorParameters::default()).err(),
+        Some(SchemeError::TangentOffPlane { edge: 0, corner: 1 })
+    );
 }
