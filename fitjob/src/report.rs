@@ -158,6 +158,11 @@ pub struct CurveCounts {
     pub unconverged: usize,
     /// Tangents flipped past 90° (a vertex normal leaning past the chord).
     pub flipped_tangents: usize,
+    /// Curve ends whose tangent was turned to the largest angle with the chord allowed
+    /// (`curves::problem::MAX_TANGENT_ANGLE`).
+    pub clamped_tangents: usize,
+    /// Curves whose lengths were shortened so they do not run back along their chord.
+    pub shortened_curves: usize,
     /// Crease edges: curves along the crease, in both sectors' tangent planes.
     pub crease_edges: usize,
     /// Crease edges with an end where the crease tangent could not be used (the crease leaves
@@ -359,10 +364,12 @@ impl FitReport {
         }
         if let Some(c) = &self.curve_counts {
             lines.push(format!(
-                "  curves: {} fallbacks to chord, {} unconverged optimizations, {} flipped tangents{}",
+                "  curves: {} fallbacks to chord, {} unconverged optimizations, {} flipped tangents, {} clamped tangents, {} shortened{}",
                 c.fallbacks,
                 c.unconverged,
                 c.flipped_tangents,
+                c.clamped_tangents,
+                c.shortened_curves,
                 if c.crease_edges > 0 {
                     format!(
                         "; {} along creases ({} with an end off the crease line)",

@@ -423,6 +423,8 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             fallbacks: fitted.fallbacks,
             unconverged: fitted.unconverged,
             flipped_tangents: fitted.flipped_tangents,
+            clamped_tangents: fitted.clamped_tangents,
+            shortened_curves: fitted.shortened_curves,
             crease_edges: fitted.crease_edges,
             crease_ends_off_line: fitted.crease_ends_off_line,
         }),

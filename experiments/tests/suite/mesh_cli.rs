@@ -343,7 +343,7 @@ fn fit_prints_and_writes_the_same_with_and_without_a_tessellation() {
         .concat());
         assert_eq!(code, 0, "{err_m}");
         assert!(err_m.contains("streamed:"), "{err_m}");
-        assert!(err_s.contains("fallback: 22 faces"), "{err_s}");
+        assert!(err_s.contains("fallback: 25 faces"), "{err_s}");
         assert_eq!(report(&err_s), report(&err_m));
         assert!(
             std::fs::read(&streamed).unwrap() == std::fs::read(&with_mesh).unwrap(),

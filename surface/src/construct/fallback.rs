@@ -773,7 +773,15 @@ mod tests {
                 crate::shirman_sequin::SchemeError::NormalAgainstFace { corner: 1 }
             ))
         );
-        assert_unfolded_where_the_old_rule_folds(&folded, &edges);
+        // A normal past the face turns its edges' tangents by up to the clamp angle
+        // (`curves::problem::MAX_TANGENT_ANGLE`, 80°): on this cap the two edge curves at
+        // corner 1 then cross, and no patch on them avoids the fold — it is forced, and
+        // reported as such.
+        if forced_fold(&edges).is_none() {
+            assert_unfolded_where_the_old_rule_folds(&folded, &edges);
+        } else {
+            assert!(folded.contains(&0), "{folded:?}");
+        }
     }
 
     #[test]

@@ -165,6 +165,12 @@ pub struct Fit {
     pub degenerate_edges: Vec<DegenerateEdge>,
     /// Crease edges ([`Mesh::is_crease`]): their curves run along the crease ([`edge_ends`]).
     pub crease_edges: usize,
+    /// Curve ends whose tangent made more than `curves::problem::MAX_TANGENT_ANGLE` with the
+    /// chord and was turned to it (the faces there leave the G1 schemes: off the tangent plane).
+    pub clamped_tangents: usize,
+    /// Curves whose construction's lengths were shortened so the control polygon does not run
+    /// back along the chord (`curves::UnitProblem::bounded_alpha`).
+    pub shortened_curves: usize,
     /// Crease edges with an end where the crease tangent could not be used (the crease leaves
     /// the edge sideways, or folds flat: [`curves::CreaseEnd`]); the curve there takes the
     /// bisector plane's tangent.
@@ -193,6 +199,8 @@ impl Default for Fit {
             flipped_tangents: 0,
             degenerate_edges: Vec::new(),
             crease_edges: 0,
+            clamped_tangents: 0,
+            shortened_curves: 0,
             crease_ends_off_line: 0,
             face_fallbacks: Vec::new(),
             points: Vec::new(),
@@ -482,7 +490,9 @@ pub fn fit_curves_into(
     out.layout = scheme.layout();
     out.continuity = scheme.continuity();
     // Curves, α and per-edge flags are written in place (bit 0: fallback, bit 1: unconverged,
-    // bits 2–3: number of flipped tangents), so no intermediate collection is copied.
+    // bits 2–3: number of flipped tangents, 4: crease, 5: a crease end off the crease line,
+    // 6–7: number of clamped tangents, 8: lengths shortened), so no intermediate collection is
+    // copied.
     let n_edges = if uses_curves { mesh.edges().len() } else { 0 };
     let Fit {
         curves,
@@ -498,7 +508,7 @@ pub fn fit_curves_into(
     curves.resize(n_edges, CubicBez3::new([nalgebra::Point3::origin(); 4]));
     alphas.clear();
     alphas.resize(n_edges, [0.0; 2]);
-    let mut flags = vec![0u8; n_edges];
+    let mut flags = vec![0u16; n_edges];
     let mut edge_errors: Vec<Option<EdgeError>> = vec![None; n_edges];
     curves
         .par_iter_mut()
@@ -512,15 +522,21 @@ pub fn fit_curves_into(
             match BoundaryProblem::new((a, b), &ends.data[0], &ends.data[1]) {
                 Ok(p) => {
                     let choice = method.construct(&p.unit);
-                    *curve = curves::apply_tangents(&p.curve(choice.alpha), ends.tangents);
-                    *alpha = choice.alpha;
+                    // A construction's lengths, shortened where the control polygon would run
+                    // back along the chord (`UnitProblem::bounded_alpha`).
+                    let (bounded, shortened) = p.unit.bounded_alpha(choice.alpha);
+                    *curve = curves::apply_tangents(&p.curve(bounded), ends.tangents);
+                    *alpha = bounded;
                     let unconverged = choice.report.as_ref().is_some_and(|r| !r.converged());
-                    let flipped = p.flipped.iter().filter(|f| **f).count() as u8;
-                    *flag = u8::from(choice.fallback)
-                        | (u8::from(unconverged) << 1)
+                    let flipped = p.flipped.iter().filter(|f| **f).count() as u16;
+                    let clamped = p.clamped.iter().filter(|f| **f).count() as u16;
+                    *flag = u16::from(choice.fallback)
+                        | (u16::from(unconverged) << 1)
                         | (flipped << 2)
-                        | (u8::from(ends.crease) << 4)
-                        | (u8::from(ends.off_line) << 5);
+                        | (u16::from(ends.crease) << 4)
+                        | (u16::from(ends.off_line) << 5)
+                        | (clamped << 6)
+                        | (u16::from(shortened) << 8);
                 }
                 Err(error) => {
                     *curve = straight(ends.data[0].p, ends.data[1].p);
@@ -540,6 +556,8 @@ pub fn fit_curves_into(
     out.flipped_tangents = flags.iter().map(|f| usize::from((f >> 2) & 3)).sum();
     out.crease_edges = flags.iter().filter(|f| *f & 16 != 0).count();
     out.crease_ends_off_line = flags.iter().filter(|f| *f & 32 != 0).count();
+    out.clamped_tangents = flags.iter().map(|f| usize::from((f >> 6) & 3)).sum();
+    out.shortened_curves = flags.iter().filter(|f| *f & 256 != 0).count();
     Ok(())
 }
 

@@ -280,22 +280,35 @@ pub trait Scheme: Send + Sync {
     }
 }
 
+/// Largest `|t̂ · n̂|` of a boundary tangent at a corner for the tangent to be in the corner's
+/// tangent plane: the sine of the angle it leaves the plane by; `√ε`-size (a normalized
+/// construction's rounding), far below a clamped tangent's (`curves::problem::MAX_TANGENT_ANGLE`
+/// turns a tangent out of the plane by at least the excess over the bound).
+pub const OFF_PLANE_SINE: f64 = 1e-8;
+
 /// The first corner of a face where its two edge tangents turn against the vertex normal:
 /// `(D_{i,i+1} × D_{i,i+2}) · N_i ≤ 0`, with `D_{i,i+1} = 3(c_1 − c_0)` of the edge curve
 /// leaving `V_i` and `D_{i,i+2} = −3(c_3 − c_2)` of the curve arriving there. Any patch that
 /// interpolates those tangents and the vertex normal is folded at that corner: its normal
-/// `r_u × r_v` is the other way round. The schemes on curves that have no test of their own
-/// refuse such faces, which then get their C0 fallback ([`FaceFallbackReason::Folded`]).
+/// `r_u × r_v` is the other way round. Also the first corner where a tangent leaves the
+/// tangent plane (`|t̂ · n̂| > `[`OFF_PLANE_SINE`]: a clamped tangent, a crease end off its crease
+/// line): no patch has that normal and those tangents, so a G1 claim would fail there. The
+/// schemes on curves that have no test of their own refuse such faces, which then get their C0
+/// fallback ([`FaceFallbackReason::Folded`]).
 pub fn folded_corner(input: &FaceInput<'_>) -> Option<usize> {
     (0..3).find(|&i| {
         let leaving = input.edges[i].points[1] - input.edges[i].points[0];
         let k = (i + 2) % 3;
         let arriving = input.edges[k].points[2] - input.edges[k].points[3];
-        leaving
-            .cross(&arriving)
-            .dot(&input.vertices[i].n)
-            .partial_cmp(&0.0)
-            != Some(std::cmp::Ordering::Greater)
+        let n = input.vertices[i].n;
+        let off_plane = |t: &Vector3<f64>| {
+            let scale = t.norm() * n.norm();
+            scale > 0.0 && t.dot(&n).abs() > OFF_PLANE_SINE * scale
+        };
+        off_plane(&leaving)
+            || off_plane(&arriving)
+            || leaving.cross(&arriving).dot(&n).partial_cmp(&0.0)
+                != Some(std::cmp::Ordering::Greater)
     })
 }
 

@@ -6,7 +6,7 @@
 //! turns over it (a patch normal at 90° or more from the face normal at a sample of the fold
 //! measure, `surface::folds`) while the fallback patch on the same curves does not gets the
 //! fallback ([`SchemeError::FoldsOverFace`]): a C0 crease instead of a fold
-//! ([`ShirmanSequin::with_unfold`], [`DEFAULT_UNFOLD`]). The test costs a
+//! ([`ShirmanSequin::with_unfold`]; off by default, [`DEFAULT_UNFOLD`] says why). The test costs a
 //! face the Bernstein coefficients of its projected Jacobian (a hundred dot products per
 //! sub-patch, [`crate::fallback::worst_cosine`]); only faces they do not certify are sampled.
 
@@ -27,9 +27,13 @@ enum Interior<'a> {
 }
 
 /// Whether a face whose macro-patch turns over it gets the fallback when that does not
-/// (module docs): on. Off, the scheme's nets are exactly [`macro_patch`]'s wherever it
-/// succeeds (the dBHS lumps of the 16 × 8 ring, 64 folded faces, stay as they were).
-pub const DEFAULT_UNFOLD: bool = true;
+/// (module docs): off by default, so the scheme's nets are exactly [`macro_patch`]'s wherever it
+/// succeeds (the dBHS lumps of the 16 × 8 ring, 64 folded faces, stay as the seeds draw them).
+/// On, whether a face is fitted regularly would depend on its interior parameters: the
+/// `interior` study's corner measures, independent of β and c by construction, then jump by up
+/// to 0.94 over its sweeps where a β folds a face. [`ShirmanSequin::with_unfold`] turns it on
+/// (bunny on dBHS curves: 190 folded faces → 1).
+pub const DEFAULT_UNFOLD: bool = false;
 
 /// The modified Shirman–Séquin scheme with its interior parameters.
 #[derive(Clone, Copy)]

@@ -147,11 +147,12 @@ fn a_degenerate_edge_gets_the_straight_cubic() {
 #[test]
 fn the_ring_on_dbhs_curves_trades_its_folds_for_fallbacks() {
     // dBHS's short end derivatives on the 16 × 8 ring fold 64 of its 256 regular patches over
-    // their faces (the seeds' "lumps"); the scheme gives those faces the fallback, which does
-    // not fold, and the regular faces stay G1.
+    // their faces (the seeds' "lumps"); with the choice on, the scheme gives those faces the
+    // fallback, which does not fold, and the regular faces stay G1.
     let data = dataset_by_name("ring", None).unwrap();
     let m = method_by_name("dbhs", &MethodOptions::default()).unwrap();
-    let fitted = fit(&data.mesh, m.as_ref(), &defaults).unwrap();
+    let unfolding = ShirmanSequin::uniform(InteriorParameters::default()).with_unfold(true);
+    let fitted = fit_scheme(&data.mesh, &unfolding, m.as_ref()).unwrap();
     assert_eq!(fitted.face_fallbacks.len(), 64);
     for fb in &fitted.face_fallbacks {
         assert_eq!(
@@ -166,9 +167,9 @@ fn the_ring_on_dbhs_curves_trades_its_folds_for_fallbacks() {
     let r = measure_g1(&data.mesh, &fitted, 9);
     assert!(r.interior_max < G1_TOL && r.exterior_max < G1_TOL, "{r:?}");
     assert!(max_edge_gap(&data.mesh, &fitted) < C0_TOL);
-    // Without the choice, exactly those faces keep their regular patches, and fold.
-    let scheme = ShirmanSequin::uniform(InteriorParameters::default()).with_unfold(false);
-    let kept = fit_scheme(&data.mesh, &scheme, m.as_ref()).unwrap();
+    // Without the choice (the default), exactly those faces keep their regular patches, and
+    // fold.
+    let kept = fit(&data.mesh, m.as_ref(), &defaults).unwrap();
     assert!(kept.face_fallbacks.is_empty());
     let folded = surface::folds::measure(&data.mesh, &kept).folded;
     let refused: Vec<usize> = fitted.face_fallbacks.iter().map(|fb| fb.face).collect();

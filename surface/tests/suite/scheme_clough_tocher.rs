@@ -31,10 +31,19 @@ fn line(a: Point3<f64>, b: Point3<f64>) -> CubicBez3 {
     CubicBez3::new([a, a + (b - a) / 3.0, a + (b - a) * (2.0 / 3.0), b])
 }
 
-/// Face (0,0,0), (3,0,0), (0,3,0); edge 0 bent to E¹ = (1,0,1), E² = (2,0,1), the others straight.
+/// Face (0,0,0), (3,0,0), (0,3,0); edge 0 bent to E¹ = (1,0,1), E² = (2,0,1), the others straight;
+/// the corner normals are the corners' tangent planes' (`e_l × e_a` of the leaving and arriving
+/// tangents), so the curves lie in them: V_0 (1,0,1) × (0,1,0) ∝ (−1,0,1), V_1 (−3,3,0) ×
+/// (−1,0,1) ∝ (1,1,1), V_2 +z.
 fn bent_face() -> ([VertexData; 3], [CubicBez3; 3]) {
     let v = [p(0.0, 0.0, 0.0), p(3.0, 0.0, 0.0), p(0.0, 3.0, 0.0)];
-    let vd = v.map(|q| VertexData::new(q, Vector3::z(), Matrix3::zeros()));
+    let normals = [
+        Vector3::new(-1.0, 0.0, 1.0).normalize(),
+        Vector3::new(1.0, 1.0, 1.0).normalize(),
+        Vector3::z(),
+    ];
+    let vd: [VertexData; 3] =
+        std::array::from_fn(|i| VertexData::new(v[i], normals[i], Matrix3::zeros()));
     let edges = [
         CubicBez3::new([v[0], p(1.0, 0.0, 1.0), p(2.0, 0.0, 1.0), v[1]]),
         line(v[1], v[2]),
