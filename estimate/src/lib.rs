@@ -260,8 +260,13 @@ pub struct EstimateSummary {
 pub fn apply(mesh: &mut Mesh, est: &dyn Estimator, keep_given_normals: bool) -> EstimateSummary {
     let given: Option<Vec<Vector3<f64>>> =
         keep_given_normals.then(|| mesh.vertices().iter().map(|v| v.data.n).collect());
-    if let Some(summary) = apply_per_sector(mesh, est, given.as_deref()) {
-        return summary;
+    if mesh.sectors().is_some() {
+        if let Some(summary) = apply_per_sector(mesh, est, given.as_deref()) {
+            return summary;
+        }
+        // The cut mesh did not validate (not expected): the slots would keep stale data, so
+        // the mesh is estimated and fitted per vertex instead.
+        let _ = mesh.set_sectors(None);
     }
     let e = est.estimate(mesh, given.as_deref());
     for (i, v) in mesh.vertices_mut().iter_mut().enumerate() {

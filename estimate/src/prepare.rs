@@ -289,7 +289,7 @@ pub fn prepare_with(
     drop(work);
     let repair_time_seconds = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
-    let crease_summary = attach_creases(&mut mesh, creases, &crease_edges);
+    let mut crease_summary = attach_creases(&mut mesh, creases, &crease_edges);
     let curvature_given = mesh.vertices().iter().all(|v| v.curvature_known);
     let (estimate, estimated) = match choice {
         EstimateChoice::None => {
@@ -337,6 +337,17 @@ pub fn prepare_with(
             }
         }
     };
+    if mesh.sectors().is_none() && crease_summary.creases > 0 {
+        // The estimation dropped the sectors (`crate::apply`): say so rather than count
+        // creases the fit does not have.
+        crease_summary = CreaseSummary {
+            rule: format!(
+                "{}, dropped: the mesh cut along its creases did not validate",
+                crease_summary.rule
+            ),
+            ..CreaseSummary::default()
+        };
+    }
     Ok(Prepared {
         mesh,
         frame,
