@@ -30,6 +30,31 @@ pub const MAX_DEGREE: usize = 32;
 /// The names of a triangle's vertex fields.
 pub const VERTEX_FIELDS: [&str; 3] = ["vertex1", "vertex2", "vertex3"];
 
+/// The patch edges a `BezierTriangle` record marks as lying on a crease of the fitted mesh
+/// (`"creases": [e, …]`, each 0, 1 or 2 as `surface::patch_g1::PatchEdge`; written by `fit`
+/// where the mesh has creases): as three flags, all false when the field is absent.
+pub fn patch_creases(t: &Tape) -> Result<[bool; 3], FieldError> {
+    let mut out = [false; 3];
+    let Some(at) = t.get(0, "creases") else {
+        return Ok(out);
+    };
+    let items = t
+        .items(at)
+        .ok_or_else(|| FieldError::new("creases", "expected an array of patch edges 0, 1, 2"))?;
+    for (i, it) in items.enumerate() {
+        match t.toks.get(it) {
+            Some(Tok::Int(e)) if (0..3).contains(e) => out[*e as usize] = true,
+            _ => {
+                return Err(FieldError::new(
+                    "creases",
+                    format!("creases[{i}]: expected a patch edge 0, 1 or 2"),
+                ))
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// A field of the record (the top-level object).
 pub fn field(t: &Tape, name: &str) -> Result<usize, FieldError> {
     t.get(0, name)

@@ -391,6 +391,31 @@ pub fn edge_ends(mesh: &Mesh, e: usize) -> EdgeEnds {
     out
 }
 
+/// Which edges of patch `sub` of face `f` (patch edges as `crate::patch_g1::PatchEdge`: 0 from
+/// the sub-triangle's corner 0 to 1, 1 from 1 to 2, 2 from 2 to 0) lie on a crease edge of the
+/// mesh ([`Mesh::is_crease`]): a patch edge lies on face edge `l` when both its ends have
+/// barycentric coordinate `λ_{l+2} = 0`. What a patch record marks for the pipeline's G1
+/// measure, which sees no mesh.
+pub fn patch_crease_edges(mesh: &Mesh, layout: &Layout, f: usize, sub: usize) -> [bool; 3] {
+    let mut out = [false; 3];
+    let Some(corners) = layout.subs.get(sub) else {
+        return out;
+    };
+    if mesh.sectors().is_none() {
+        return out;
+    }
+    for (k, slot) in out.iter_mut().enumerate() {
+        let (a, b) = (corners[k], corners[(k + 1) % 3]);
+        *slot = (0..3).any(|l| {
+            let opposite = (l + 2) % 3;
+            a[opposite] == 0.0
+                && b[opposite] == 0.0
+                && mesh.edge_index(f, l).is_ok_and(|e| mesh.is_crease(e))
+        });
+    }
+    out
+}
+
 /// [`FaceInput::creases`] of face `f`: the crease tangents of its edges, oriented along the
 /// face ([`edge_ends`]).
 fn face_creases(mesh: &Mesh, f: usize) -> [[Option<nalgebra::Vector3<f64>>; 2]; 3] {

@@ -88,6 +88,9 @@ pub struct PatchG1Report {
     pub orientation_mismatches: usize,
     /// Shared boundaries of more than two patches.
     pub non_manifold: usize,
+    /// Shared boundaries a patch marks as a crease (C0 by construction, the data's dihedral
+    /// kept): not measured ([`measure_patches_with_creases`]).
+    pub creases: usize,
     /// Samples skipped for an undefined normal.
     pub undefined: usize,
     /// The largest angle and where (`None` when nothing was measured).
@@ -129,6 +132,17 @@ fn within(a: &[Point3<f64>], b: impl Iterator<Item = Point3<f64>>, tol: f64) -> 
 /// Measures G1 continuity along the boundaries `patches` share (module docs) at `samples`
 /// points per boundary, ends included (at least 2; [`MIN_SAMPLES`] for a meaningful figure).
 pub fn measure_patches(patches: &[BezierTriangle], samples: usize) -> PatchG1Report {
+    measure_patches_with_creases(patches, samples, &|_| false)
+}
+
+/// [`measure_patches`], leaving out the shared boundaries where `crease(patch edge)` holds for
+/// one side at least (a fit's crease edges, which its patch records mark): they are C0 by
+/// construction and counted in [`PatchG1Report::creases`].
+pub fn measure_patches_with_creases(
+    patches: &[BezierTriangle],
+    samples: usize,
+    crease: &dyn Fn(PatchEdge) -> bool,
+) -> PatchG1Report {
     let samples = samples.max(2);
     let size = finite_size(patches.iter().flat_map(|p| p.points().iter()));
     let mut weld = PositionWeld::new(MATCH_RELATIVE * size);
@@ -206,6 +220,10 @@ pub fn measure_patches(patches: &[BezierTriangle], samples: usize) -> PatchG1Rep
             }
             out.shared += 1;
             out.non_manifold += usize::from(rest.len() > 1);
+            if crease((pa, ea)) || rest.iter().any(|&(pe, _)| crease(pe)) {
+                out.creases += 1;
+                continue;
+            }
             let degree = patches[pa].degree();
             let plan = plans
                 .entry(degree)

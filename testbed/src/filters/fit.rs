@@ -7,6 +7,8 @@
 //! and written back in the file's coordinates.
 //!
 //! Records: `{"type":"BezierTriangle","degree":n,"points":[…],"face":f,"subpatch":s,
+//! "creases":[e, …] (only on a patch with an edge on a crease of the mesh: its patch edges
+//! there, which `g1` leaves out),
 //! "scheme":"name"}`; with `segments = Some(N)` (`-s N`) the fit is tessellated here
 //! (`surface::tessellate_fit`) and `Triangle`s are written instead, with `face`, `subpatch`
 //! and `scheme` after the vertices — the shape of the seed's Example 5, where a fitter
@@ -343,6 +345,14 @@ pub fn fit<W: std::io::Write>(
         for (i, net) in fitted.nets().enumerate() {
             let mut m = surface::patch_io::patch_record(&fitted.layout, i, net, &to_world);
             m.insert("scheme".into(), scheme_name.clone());
+            // The patch edges on the mesh's creases, for the pipeline's `g1` (which sees no
+            // mesh): C0 there by construction.
+            let flags =
+                surface::fit::patch_crease_edges(&mesh, &fitted.layout, i / per_face, i % per_face);
+            if flags.iter().any(|&c| c) {
+                let edges: Vec<Value> = (0..3).filter(|&k| flags[k]).map(Value::from).collect();
+                m.insert("creases".into(), Value::Array(edges));
+            }
             at.record += 1;
             out.write(&Value::Object(m), at)?;
         }

@@ -150,10 +150,17 @@ impl G1Summary {
     }
 }
 
-/// Measures `patches`, patch `i` from record `records[i]`, at `samples` points per boundary.
-pub fn measure(records: &[usize], patches: &[BezierTriangle], samples: usize) -> G1Summary {
+/// Measures `patches`, patch `i` from record `records[i]`, at `samples` points per boundary;
+/// `creases[i]` flags the patch edges its record marks as crease edges (left out, counted).
+pub fn measure(
+    records: &[usize],
+    patches: &[BezierTriangle],
+    creases: &[[bool; 3]],
+    samples: usize,
+) -> G1Summary {
+    let crease = |(p, e): patch_g1::PatchEdge| creases.get(p).is_some_and(|c| c[e]);
     G1Summary {
-        report: patch_g1::measure_patches(patches, samples),
+        report: patch_g1::measure_patches_with_creases(patches, samples, &crease),
         records: records.to_vec(),
     }
 }
@@ -172,11 +179,14 @@ pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, Fi
     }
     let mut patches = Vec::new();
     let mut records = Vec::new();
+    let mut creases = Vec::new();
     let mut rec = crate::stream::Record::default();
     while pipe.next_good(&mut rec)? {
         if rec.kind() == "BezierTriangle" {
-            match record::bezier_triangle(&rec.tape) {
-                Ok(p) => {
+            match record::bezier_triangle(&rec.tape)
+                .and_then(|p| Ok((p, record::patch_creases(&rec.tape)?)))
+            {
+                Ok((p, c)) => {
                     if patches.len() == patches.capacity() {
                         // The vector is about to grow: check the patches it will hold.
                         let next = (patches.len() as u128 * 2).max(64);
@@ -186,6 +196,7 @@ pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, Fi
                         )?;
                     }
                     patches.push(p);
+                    creases.push(c);
                     records.push(rec.at.record);
                 }
                 Err(e) => {
@@ -197,7 +208,7 @@ pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, Fi
         pipe.write(&rec)?;
     }
     pipe.finish()?;
-    let summary = measure(&records, &patches, samples);
+    let summary = measure(&records, &patches, &creases, samples);
     let r = &summary.report;
     eprintln!(
         "g1: {} patches, {} shared boundaries ({} measured), {} unshared ({} border, {} mismatched), {} unmeasurable, {} collapsed edges, {} orientation mismatches, {} samples unmeasured (an undefined normal) (boundaries matched within {:.1e}: {:.0e} of the patches' size)",
@@ -214,6 +225,12 @@ pub fn g1(pipe: &mut Pipe, strict: bool, samples: usize) -> Result<G1Summary, Fi
         r.tolerance,
         patch_g1::MATCH_RELATIVE,
     );
+    if r.creases > 0 {
+        eprintln!(
+            "g1: {} shared boundaries on creases (marked by their records: C0 by construction, not measured)",
+            r.creases
+        );
+    }
     if r.non_manifold > 0 {
         eprintln!(
             "g1: {} boundaries shared by more than two patches (each measured against the first)",

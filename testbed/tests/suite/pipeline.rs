@@ -624,3 +624,32 @@ fn a_dash_is_standard_input_and_output() {
         tess
     );
 }
+
+/// `fit` marks the patch edges on the mesh's creases in its records (`"creases"`), and `g1`
+/// leaves those boundaries out: the CAD box (152 crease edges at 90°) is G1 everywhere else,
+/// so `g1 --strict` passes, and says how many crease boundaries it left out.
+#[test]
+fn g1_leaves_out_the_creases_fit_marks() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let box_ply = root.join("data/cad/box.ply");
+    let patches = ok(&["fit", "--data", box_ply.to_str().unwrap()], b"");
+    let records = json_records(&patches);
+    let marked: usize = records
+        .iter()
+        .filter_map(|r| r["creases"].as_array().map(Vec::len))
+        .sum();
+    // Each crease edge has a patch edge on it from each of its two faces.
+    assert_eq!(marked, 2 * 152);
+    let out = testbed(&["g1", "--strict"], &patches);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("152 shared boundaries on creases"), "{err}");
+    // A record whose mark is not a patch edge is named.
+    let bad = String::from_utf8_lossy(&patches).replacen("\"creases\":[", "\"creases\":[7,", 1);
+    let out = testbed(&["g1"], bad.as_bytes());
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("creases[0]"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
