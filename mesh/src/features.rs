@@ -75,10 +75,6 @@ pub struct Features {
     pub kinds: Vec<VertexKind>,
     /// Interior edges whose dihedral angle is undefined (a face of zero area beside them).
     pub undefined: usize,
-    /// Crease edges found from the geometry.
-    pub from_geometry: usize,
-    /// Crease edges the file marks (and the geometry did not find).
-    pub from_file: usize,
     /// Per edge: a crease because the file marks it (the geometry did not find it).
     pub by_file: Vec<bool>,
     /// Connected components (across interior edges).
@@ -118,27 +114,17 @@ pub const TESSELLATED_FLAT_SHARE: f64 = 0.05;
 /// tessellated model ([`TESSELLATED_FLAT_SHARE`]).
 fn tessellated_components(mesh: &Mesh, dihedral: &[Option<f64>]) -> (Vec<usize>, Vec<bool>) {
     let nf = mesh.num_faces();
-    let mut parent: Vec<usize> = (0..nf).collect();
-    fn root(p: &mut [usize], mut x: usize) -> usize {
-        while p[x] != x {
-            p[x] = p[p[x]];
-            x = p[x];
-        }
-        x
-    }
+    let mut sets = crate::disjoint::DisjointSets::new(nf);
     for e in mesh.edges() {
         if let Some((g, _)) = e.second {
-            let (a, b) = (root(&mut parent, e.first.0), root(&mut parent, g));
-            if a != b {
-                parent[a.max(b)] = a.min(b);
-            }
+            sets.union(e.first.0, g);
         }
     }
     let mut label = vec![usize::MAX; nf];
     let mut count = 0;
     let component: Vec<usize> = (0..nf)
         .map(|f| {
-            let r = root(&mut parent, f);
+            let r = sets.find(f);
             if label[r] == usize::MAX {
                 label[r] = count;
                 count += 1;
@@ -211,16 +197,9 @@ fn classify(mesh: &Mesh, crease: &[bool]) -> Vec<VertexKind> {
         .collect()
 }
 
-/// The unit normal of face `f`, `None` for a face of zero (or non-finite) area.
-fn unit_normal(mesh: &Mesh, f: usize) -> Option<Vector3<f64>> {
-    let n = mesh.face_area_normal(f).ok()?;
-    let len = n.norm();
-    (len > 0.0 && len.is_finite()).then(|| n / len)
-}
-
-/// The angle between two unit vectors, `atan2(|a × b|, a · b)`: accurate at 0 and π, where
-/// `acos` of the dot product loses half the digits.
-fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
+/// The angle between two vectors, `atan2(|a × b|, a · b)`: accurate at 0 and π, where `acos`
+/// of the dot product loses half the digits.
+pub fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     a.cross(b).norm().atan2(a.dot(b))
 }
 
@@ -243,7 +222,7 @@ impl Features {
         };
         let normals: Vec<Option<Vector3<f64>>> = (0..mesh.num_faces())
             .into_par_iter()
-            .map(|f| unit_normal(mesh, f))
+            .map(|f| mesh.face_unit_normal(f))
             .collect();
         let dihedral: Vec<Option<f64>> = mesh
             .edges()
@@ -273,8 +252,6 @@ impl Features {
             .enumerate()
             .map(|(e, d)| geometric(e, d))
             .collect();
-        let from_geometry = crease.iter().filter(|&&c| c).count();
-        let mut from_file = 0;
         let mut by_file = vec![false; crease.len()];
         if rule != CreaseRule::None {
             for &[a, b] in file_creases {
@@ -282,7 +259,6 @@ impl Features {
                     if !mesh.edges()[e].is_boundary() && !crease[e] {
                         crease[e] = true;
                         by_file[e] = true;
-                        from_file += 1;
                     }
                 }
             }
@@ -294,8 +270,6 @@ impl Features {
             crease,
             kinds,
             undefined,
-            from_geometry,
-            from_file,
             by_file,
             components: tessellated.len(),
             tessellated_components: tessellated.iter().filter(|&&t| t).count(),
@@ -459,9 +433,9 @@ mod tests {
             assert_eq!(all, fan);
             // Each sector lies in one side of the cube: its faces are coplanar.
             for s in &sectors {
-                let n0 = unit_normal(&m, s[0]).unwrap();
+                let n0 = m.face_unit_normal(s[0]).unwrap();
                 for &g in s {
-                    assert!(angle(&n0, &unit_normal(&m, g).unwrap()) < ANGLE_TOL);
+                    assert!(angle(&n0, &m.face_unit_normal(g).unwrap()) < ANGLE_TOL);
                 }
             }
         }

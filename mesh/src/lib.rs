@@ -23,6 +23,7 @@
 
 pub mod analytic;
 pub mod datasets;
+pub mod disjoint;
 mod edge_groups;
 pub mod features;
 pub mod frame;

@@ -711,6 +711,14 @@ impl Mesh {
         self.sectors.as_ref().is_some_and(|s| s.is_crease(e))
     }
 
+    /// The unit normal of face `f`; `None` for a missing face or one of zero (or non-finite)
+    /// area.
+    pub fn face_unit_normal(&self, f: usize) -> Option<Vector3<f64>> {
+        let n = self.face_area_normal(f).ok()?;
+        let len = n.norm();
+        (len > 0.0 && len.is_finite()).then(|| n / len)
+    }
+
     /// The geometric normal of face `f`: `(p1 − p0) × (p2 − p0)`, twice the area in length.
     pub fn face_area_normal(&self, f: usize) -> Result<Vector3<f64>, MeshError> {
         let [a, b, c] = self.face_data(f)?;

@@ -286,29 +286,8 @@ pub struct Repaired {
     pub report: RepairReport,
 }
 
-/// Union–find with path halving, for components and fans.
-struct Dsu(Vec<usize>);
-
-impl Dsu {
-    fn new(n: usize) -> Self {
-        Dsu((0..n).collect())
-    }
-    fn find(&mut self, mut x: usize) -> usize {
-        while self.0[x] != x {
-            self.0[x] = self.0[self.0[x]];
-            x = self.0[x];
-        }
-        x
-    }
-    fn union(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            // The smaller root wins, so labels are stable (first face of a component).
-            let (lo, hi) = (ra.min(rb), ra.max(rb));
-            self.0[hi] = lo;
-        }
-    }
-}
+/// Union–find for components and fans (the crate's one, [`crate::disjoint`]).
+type Dsu = crate::disjoint::DisjointSets;
 
 /// Rule 3 on faces without a repeated vertex: the faces (indices, possibly repeated) with the
 /// same three vertices as an earlier face.

@@ -32,6 +32,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use rayon::prelude::*;
 
+use crate::disjoint::DisjointSets;
 use crate::mesh::{Mesh, MeshError, Vertex, NO_TWIN};
 use crate::vertex::VertexData;
 
@@ -86,14 +87,6 @@ pub enum SectorError {
     Split(MeshError),
 }
 
-fn find(parent: &mut [usize], mut x: usize) -> usize {
-    while parent[x] != x {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    x
-}
-
 impl Sectors {
     /// The slots of `mesh` cut at the edges flagged in `crease` (one flag per edge, in
     /// `mesh.edges()` order), each slot's data initialized from its vertex.
@@ -106,7 +99,7 @@ impl Sectors {
             });
         }
         let faces = mesh.faces();
-        let mut parent: Vec<usize> = (0..3 * faces.len()).collect();
+        let mut sets = DisjointSets::new(3 * faces.len());
         // The corner of face `f` at vertex `v`.
         let corner_at = |f: usize, v: usize| -> Option<usize> {
             faces[f].iter().position(|&x| x == v).map(|c| 3 * f + c)
@@ -119,18 +112,14 @@ impl Sectors {
             let (f, _) = edge.first;
             for &v in &edge.vertices {
                 if let (Some(a), Some(b)) = (corner_at(f, v), corner_at(g, v)) {
-                    let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-                    if ra != rb {
-                        // The smaller root wins: slots are then numbered by first corner.
-                        parent[ra.max(rb)] = ra.min(rb);
-                    }
+                    sets.union(a, b);
                 }
             }
         }
-        let mut corner_slot = vec![usize::MAX; parent.len()];
+        let mut corner_slot = vec![usize::MAX; 3 * faces.len()];
         let mut slot_vertex = Vec::new();
-        for c in 0..parent.len() {
-            let r = find(&mut parent, c);
+        for c in 0..corner_slot.len() {
+            let r = sets.find(c);
             if corner_slot[r] == usize::MAX {
                 corner_slot[r] = slot_vertex.len();
                 slot_vertex.push(faces[r / 3][r % 3]);

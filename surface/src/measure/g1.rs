@@ -13,6 +13,7 @@
 //! (`fallback_*`), so the regular figures stay what the scheme guarantees; their corner normals
 //! are left out of the interpolation error.
 
+use ::mesh::features::angle;
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 
@@ -127,10 +128,6 @@ impl G1Report {
             self.exterior_at = Some(at);
         }
     }
-}
-
-fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
-    a.cross(b).norm().atan2(a.dot(b))
 }
 
 /// How to get the normal of one patch at one local point: for a Bézier net, the weights of

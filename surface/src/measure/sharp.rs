@@ -83,6 +83,7 @@
 //! in face order. The work is linear in the faces: a fixed number of patch evaluations per edge
 //! and per face, and a union–find with path halving and union by smaller index.
 
+use mesh::features::angle;
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -296,19 +297,12 @@ pub enum SharpError {
     },
 }
 
-/// `atan2(|a × b|, a · b)`: the angle between two vectors, accurate near 0 and π.
-fn angle(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
-    a.cross(b).norm().atan2(a.dot(b))
-}
-
 /// The unit normal of face `f`; `None` for a face of zero area.
 fn data_normal(mesh: &Mesh, f: usize) -> Option<Vector3<f64>> {
     if mesh.is_degenerate_face(f) {
         return None;
     }
-    let n = mesh.face_area_normal(f).ok()?;
-    let len = n.norm();
-    (len > 0.0 && len.is_finite()).then(|| n / len)
+    mesh.face_unit_normal(f)
 }
 
 /// What the edge scan gathers; merged in edge order.
@@ -526,15 +520,6 @@ pub fn measure(mesh: &Mesh, fit: &Fit) -> Result<SharpReport, SharpError> {
     })
 }
 
-/// The root of `x` in the union–find `parent`, halving the path on the way.
-fn find(parent: &mut [usize], mut x: usize) -> usize {
-    while parent[x] != x {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    x
-}
-
 /// A candidate region's plane and whether it is counted.
 #[derive(Clone, Copy, Debug)]
 struct Region {
@@ -559,14 +544,12 @@ fn flat_regions(
         .par_iter()
         .map(|e| dihedral(e).is_some_and(|t| t <= FLAT_DIHEDRAL))
         .collect();
-    let mut parent: Vec<usize> = (0..nf).collect();
+    let mut sets = mesh::disjoint::DisjointSets::new(nf);
     for (e, _) in mesh.edges().iter().zip(&flat_edges).filter(|(_, f)| **f) {
         let Some((g, _)) = e.second else { continue };
-        let (a, b) = (find(&mut parent, e.first.0), find(&mut parent, g));
-        let (lo, hi) = (a.min(b), a.max(b));
-        parent[hi] = lo;
+        sets.union(e.first.0, g);
     }
-    let root: Vec<usize> = (0..nf).map(|f| find(&mut parent, f)).collect();
+    let root: Vec<usize> = (0..nf).map(|f| sets.find(f)).collect();
     let mut size = vec![0usize; nf];
     for &r in &root {
         size[r] += 1;
