@@ -15,7 +15,8 @@ use crate::options::FitOptions;
 use crate::output::{mesh_format_for, refuse_overwriting_input, write_result};
 use crate::report::{FitReport, SubdivisionSummary, Timings};
 
-/// The crease tags of a file's polygons: the creases `rule` finds on the file's mesh (repaired
+/// The crease tags of a file's polygons: the creases `rule` finds on the file's mesh, the ones
+/// the file marks included (repaired
 /// and triangulated as the Bézier schemes see it, `mesh::features::Features::find`), mapped back
 /// to the file's vertices and kept where they are edges of its polygons (a fan diagonal of a
 /// polygon is never one). A mesh the repair cannot make anything of gets no tags (the
@@ -24,7 +25,7 @@ fn raw_creases(raw: &meshio::RawMesh, rule: mesh::features::CreaseRule) -> Vec<[
     let Ok(repaired) = mesh::repair::repair(raw, &mesh::repair::RepairOptions::default()) else {
         return Vec::new();
     };
-    let features = mesh::features::Features::find(&repaired.mesh, rule, &[]);
+    let features = mesh::features::Features::find(&repaired.mesh, rule, &repaired.crease_edges);
     let mut polygon_edges = std::collections::BTreeSet::new();
     for poly in raw.polygons.iter() {
         for i in 0..poly.len() {
