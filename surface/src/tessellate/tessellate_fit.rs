@@ -527,6 +527,31 @@ fn tessellate_by_topology(
             },
         )?;
 
+    // Along a crease each side has its own samples (its own normals), evaluated from its own
+    // patch; their positions agree only to rounding. The copies take the first side's position
+    // bit for bit, so a writer's rounding (single precision) keeps them equal and a reader that
+    // merges coincident vertices closes the surface up again.
+    if sectors.is_some() {
+        for (base, second) in edge_base.iter().zip(&crease_base) {
+            if *second != usize::MAX && *base != usize::MAX {
+                for k in 0..per_edge {
+                    positions[second + k] = positions[base + k];
+                }
+            }
+        }
+        let mut first_copy = vec![usize::MAX; mesh.num_vertices()];
+        for f in 0..nf {
+            for c in 0..3 {
+                let (v, id) = (faces[f][c], vertex_id[corner_key(f, c)]);
+                match first_copy[v] {
+                    usize::MAX => first_copy[v] = id,
+                    first if first != id => positions[id] = positions[first],
+                    _ => {}
+                }
+            }
+        }
+    }
+
     // Triangles, a fixed number per face.
     let per_patch = plan.triangles.len();
     let mut tris = vec![[0usize; 3]; nf * ppf * per_patch];

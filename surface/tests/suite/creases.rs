@@ -141,3 +141,39 @@ fn scans_stay_smooth_unless_a_crease_angle_is_asked_for() {
     assert!(asked.mesh.sectors().is_some());
     assert!(asked.creases.creases > 0, "{:?}", asked.creases);
 }
+
+/// The crease-aware tessellation gives each side of a crease its own vertices (its own normals)
+/// at bit-identical positions, so a file in single precision still closes up when a reader
+/// merges coincident vertices: the CAD gear's tessellation (curved creases round its teeth and
+/// bore), positions rounded to `f32` and merged by equality alone, has every edge on exactly two
+/// triangles. (At 4 segments a patch edge, copies evaluated each from its own patch differed
+/// beyond single precision: the merge left cracks.)
+#[test]
+fn crease_copies_of_a_tessellation_vertex_share_their_position_bit_for_bit() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/cad/gear.ply");
+    let raw = meshio::read_file(&path).unwrap();
+    let mesh = prepare_with(raw, default_estimator(), false, CreaseRule::Auto)
+        .unwrap()
+        .mesh;
+    let f = fit(&mesh, "shirman-sequin", "optimized");
+    let t = surface::tessellate_fit(&mesh, &f, 4).unwrap();
+    let mut ids = std::collections::HashMap::new();
+    let merged: Vec<usize> = t
+        .positions
+        .iter()
+        .map(|p| {
+            let key = [p.x as f32, p.y as f32, p.z as f32].map(f32::to_bits);
+            let next = ids.len();
+            *ids.entry(key).or_insert(next)
+        })
+        .collect();
+    assert!(ids.len() < t.positions.len(), "the creases split vertices");
+    let mut edges = std::collections::HashMap::new();
+    for tri in &t.faces {
+        for k in 0..3 {
+            let (a, b) = (merged[tri[k]], merged[tri[(k + 1) % 3]]);
+            *edges.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    assert!(edges.values().all(|&n| n == 2), "a crack after merging");
+}
