@@ -42,6 +42,7 @@ pub mod hybrid;
 pub mod jet;
 pub mod normals;
 pub mod prepare;
+pub mod principal;
 pub mod quadric;
 pub mod rusinkiewicz;
 pub mod topology;
@@ -53,6 +54,7 @@ pub use prepare::{
     attach_creases, prepare, prepare_owned, prepare_with, CreaseSummary, EstimateChoice,
     PrepareError, Prepared,
 };
+pub use principal::{principal_frame, Principal};
 pub use quadric::{Quadric, QUADRIC};
 pub use rusinkiewicz::{Rusinkiewicz, RUSINKIEWICZ};
 pub use topology::{RingMarks, Topology};

@@ -35,6 +35,10 @@ pub struct Kept {
     pub tessellation: Option<Tessellation>,
     /// The whole G1 measurement (with where its maxima are), when it was made.
     pub g1: Option<G1Report>,
+    /// For each mesh face, the input's face it came from (`None` for a data set).
+    pub face_source: Option<Vec<usize>>,
+    /// For each mesh vertex, the input's vertex it came from (`None` for a data set).
+    pub vertex_source: Option<Vec<usize>>,
 }
 
 /// A finished job: its report, and what [`FitOptions::keep`] asked to keep.
@@ -450,6 +454,8 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             fit: Some(fitted),
             tessellation: kept_tessellation,
             g1: (stream || options.measure_g1).then_some(g1),
+            face_source: loaded.face_source.clone(),
+            vertex_source: loaded.vertex_source.clone(),
         }
     } else {
         Kept::default()
