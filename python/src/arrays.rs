@@ -76,7 +76,9 @@ fn for_each_float_row(
     let mut buf = vec![0.0; width];
     if let Ok(a) = a.cast::<PyArrayDyn<f64>>() {
         let ro = a.try_readonly()?;
-        if let Ok(slice) = ro.as_slice() {
+        // Only a C-contiguous buffer is in row order (`as_slice` also takes a Fortran one).
+        let c_order = a.is_c_contiguous();
+        if let (true, Ok(slice)) = (c_order, ro.as_slice()) {
             for (i, r) in slice.chunks_exact(width.max(1)).enumerate() {
                 if !r.iter().all(|x| x.is_finite()) {
                     return Err(bad(i, r));
