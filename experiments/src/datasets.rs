@@ -86,7 +86,7 @@ pub fn load_subject(
                 Some(r) => format!("--data {data} --resolution {r}"),
                 None => format!("--data {data}"),
             },
-            source,
+            source: Box::new(source),
         }
     })?;
     Ok(Subject {

@@ -45,8 +45,9 @@ pub enum ExperimentError {
     DataOption {
         /// The options as given (`--data NAME`, `--resolution N`).
         given: String,
-        /// The data-set registry's answer.
-        source: surface::DataSetError,
+        /// The data-set registry's answer (boxed: the largest cause, and the error stays small
+        /// for the library's callers).
+        source: Box<surface::DataSetError>,
     },
     /// A data set the experiment builds by itself could not be built (a defect, not a usage
     /// error: the names and resolutions are the experiment's own).
@@ -137,7 +138,7 @@ pub enum ExperimentError {
         /// The file.
         path: PathBuf,
         /// Why.
-        source: experiments::shard::ShardError,
+        source: crate::shard::ShardError,
     },
     /// A task appears in two shard files.
     #[error("{path}: task {index} ({task}) appears in more than one shard", path = .path.display())]
@@ -243,7 +244,7 @@ mod tests {
             surface::dataset_by_name("torus", None).expect_err("`torus` is not a data set");
         let e = ExperimentError::DataOption {
             given: "--data torus".into(),
-            source,
+            source: Box::new(source),
         };
         let text = chain(&e);
         assert!(text.starts_with("--data torus: not a data set"), "{text}");

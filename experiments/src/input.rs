@@ -1,6 +1,6 @@
 //! The `--data` option shared by the experiments that take a mesh: a named analytic data set, or
 //! a mesh file of any supported format, repaired and completed by an estimator
-//! ([`estimate::prepare`]): the fit job's input (`fitjob::input`) as command-line options.
+//! ([`estimate::prepare()`]): the fit job's input (`fitjob::input`) as command-line options.
 
 use crate::error::ExperimentError;
 

@@ -15,21 +15,18 @@ macro_rules! say {
 
 mod convert;
 mod curve;
-mod curve_args;
-mod datasets;
-mod error;
 mod estimation;
 mod fit;
-mod input;
 mod interior;
-mod limits;
 mod output;
 mod realmesh;
 mod ring;
 mod schemes;
 mod solvers;
-mod study;
 mod sweep;
+
+// The library's modules, under the names the experiments use (`crate::error::…`).
+use experiments::{curve_args, datasets, error, input, limits, study};
 
 use std::process::ExitCode;
 

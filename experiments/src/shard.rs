@@ -104,20 +104,26 @@ pub fn read_shard(text: &str, total: usize) -> Result<ShardFile, ShardError> {
             line,
             message: e.to_string(),
         })?;
-        if !v.is_object() {
-            return Err(ShardError::NotJson {
-                line,
-                message: "a JSON value that is not an object".into(),
-            });
-        }
-        let k = v["index"]
-            .as_u64()
-            .and_then(|k| usize::try_from(k).ok())
-            .filter(|k| *k < total)
-            .ok_or(ShardError::BadIndex { line, total })?;
+        let k = task_index(line, &v, total)?;
         results.push((k, v));
     }
     Ok(ShardFile { results })
+}
+
+/// The task index of result `v` (line `line`, 1-based, for messages) of a sweep of `total`
+/// tasks: `v` must be a JSON object whose `index` is below `total`.
+pub fn task_index(line: usize, v: &Value, total: usize) -> Result<usize, ShardError> {
+    if !v.is_object() {
+        return Err(ShardError::NotJson {
+            line,
+            message: "a JSON value that is not an object".into(),
+        });
+    }
+    v["index"]
+        .as_u64()
+        .and_then(|k| usize::try_from(k).ok())
+        .filter(|k| *k < total)
+        .ok_or(ShardError::BadIndex { line, total })
 }
 
 /// What a measure must be.

@@ -43,6 +43,13 @@ pub enum StudyError {
         /// What is wrong and where (line, key).
         message: String,
     },
+    /// A grid given as JSON (`experiments::sweep_tasks`) cannot be read as a sweep grid: the
+    /// grid file's message, without a file or line.
+    #[error("the JSON grid: {message}")]
+    JsonGrid {
+        /// What is wrong and where (the key).
+        message: String,
+    },
     /// `sweep --task ID` names no task of the grid.
     #[error("--task {id}: no task of this grid has that id ({total} tasks; `sweep --list-tasks` lists them with the same grid options)")]
     UnknownTask {
@@ -104,18 +111,20 @@ pub enum StudyError {
         /// The task's id.
         task: String,
         /// Which measure and why.
-        source: experiments::shard::ShardError,
+        source: crate::shard::ShardError,
     },
 }
 
 impl StudyError {
     /// True for a usage error (exit status 2: an option's value refused before any work),
-    /// false for a runtime error (exit status 1: input, a grid file, a corpus, missing data).
+    /// false for a runtime error (exit status 1: input, a grid file, a corpus, missing data). A JSON
+    /// grid is the arguments of a library call, so a bad one is a usage error.
     pub fn is_usage(&self) -> bool {
         matches!(
             self,
             StudyError::Duplicate { .. }
                 | StudyError::BadValue { .. }
+                | StudyError::JsonGrid { .. }
                 | StudyError::UnknownTask { .. }
                 | StudyError::TooManyTasks { .. }
         )

@@ -24,8 +24,9 @@
 //! every measure's type and range), that every task is present exactly once, and writes the
 //! report a whole run writes: `results.jsonl` (pandas: `read_json(path, lines=True)`),
 //! `report.json` and `report.md`.
-
-mod grid;
+//!
+//! The grid, the manifest and the task function are the library's (`experiments::sweep_tasks`):
+//! another front end gives the grid as JSON and runs the very tasks this command runs.
 
 use std::fmt::Write as _;
 use std::io::{BufRead, Read as _};
@@ -35,10 +36,8 @@ use std::time::Instant;
 
 use clap::builder::PossibleValuesParser;
 use clap::{Arg, ArgAction, ArgMatches, Command};
-use curves::MethodOptions;
 use serde_json::{json, Value};
 use solver::SolverKind;
-use surface::compare_with_truth;
 use surface::scheme::{parameters_of, ParameterSpec, REGISTRY};
 
 use crate::curve_args::InteriorOption;
@@ -46,7 +45,8 @@ use crate::error::ExperimentError;
 use crate::output::{ensure_dir, pretty_json, write_result, Staged};
 use crate::study::StudyError;
 use experiments::shard::{check_line, ShardError, MAX_LINE_BYTES};
-use grid::{Axes, Grid, Task, MANIFEST};
+use experiments::sweep_tasks::grid::{self, Axes, Grid, Task, MANIFEST};
+use experiments::sweep_tasks::{check_schemes, find_task, join_results, run_grid_task};
 
 /// A shard `i/n`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -224,143 +224,6 @@ fn grid_of(args: &SweepArgs) -> Result<Grid, ExperimentError> {
     Ok(Grid::new(axes)?)
 }
 
-/// The scheme options of a task: its parameters' values, the others at their defaults.
-fn scheme_options(t: &Task) -> surface::SchemeOptions {
-    let mut o = surface::SchemeOptions::default();
-    for (p, v) in &t.parameters {
-        o.set(p, *v);
-    }
-    o
-}
-
-/// Runs one task: its identity ([`Task::identity`]) followed by its measures, checked as
-/// `merge` checks them (a measure that is not finite is an error naming the task, never a
-/// `null` passed off as a number).
-fn run_task(t: &Task, grid: &Grid) -> Result<Value, ExperimentError> {
-    let start = Instant::now();
-    let subject = crate::datasets::load_subject(&t.data, t.resolution, &grid.estimate)?;
-    let mesh = &subject.mesh;
-    let faces = mesh.num_faces() as u128;
-    // The fit and its tessellation (at most six patches a face), estimated before either is
-    // made.
-    if let Some(s) = t.segments {
-        crate::limits::check_memory(
-            &format!("sweep task {}", t.id),
-            faces
-                .saturating_mul(crate::limits::FIT_BYTES_PER_FACE as u128)
-                .saturating_add(crate::limits::tessellation_bytes(
-                    faces.saturating_mul(6),
-                    s,
-                )),
-        )?;
-    }
-    let mut v = t.identity();
-    v["faces"] = json!(mesh.num_faces());
-    if t.subdivision {
-        let (tess, to_limit) = crate::schemes::subdivision_surface(
-            mesh,
-            &t.scheme,
-            crate::schemes::SUBDIVISION_LEVELS,
-        )
-        .map_err(|source| ExperimentError::Subdivision {
-            subject: t.id.clone(),
-            source,
-        })?;
-        let fit_time = start.elapsed().as_secs_f64();
-        let errors = subject
-            .truth
-            .as_deref()
-            .map(|truth| compare_with_truth(&tess, truth));
-        v["g1_defect_radians"] = Value::Null;
-        v["levels"] = json!(crate::schemes::SUBDIVISION_LEVELS);
-        v["data_to_limit_max"] = json!(to_limit);
-        v["errors"] = serde_json::to_value(errors).unwrap_or(Value::Null);
-        v["curve_measures"] = Value::Null;
-        v["fit_time_seconds"] = json!(fit_time);
-    } else {
-        let options = MethodOptions {
-            solver: t.solver.unwrap_or(SolverKind::ExactPenalty),
-            ..MethodOptions::default()
-        };
-        let curves = t.curves.clone();
-        // The fit and its G1 by the fit job, as every front end gets them.
-        let crate::input::KeptFit {
-            fit: f,
-            g1,
-            seconds: fit_time,
-            ..
-        } = crate::input::fit_kept(fitjob::FitOptions {
-            input: fitjob::InputOptions {
-                source: fitjob::Source::Prepared {
-                    label: t.id.clone(),
-                    mesh: Box::new(mesh.clone()),
-                    frame: subject.frame,
-                },
-                ..fitjob::InputOptions::default()
-            },
-            scheme: t.scheme.clone(),
-            scheme_options: scheme_options(t),
-            curves: curves
-                .clone()
-                .unwrap_or_else(|| fitjob::FitOptions::default().curves),
-            method_options: options,
-            interior: t.interior,
-            ..fitjob::FitOptions::default()
-        })?;
-        let segments = t.segments.unwrap_or(grid::DEFAULT_SEGMENTS);
-        let tess = surface::tessellate_fit(mesh, &f, segments).map_err(|source| {
-            ExperimentError::Tessellate {
-                subject: t.id.clone(),
-                source,
-            }
-        })?;
-        let errors = subject
-            .truth
-            .as_deref()
-            .map(|truth| compare_with_truth(&tess, truth));
-        v["g1_defect_radians"] = json!(g1.max_angle());
-        v["interpolation_position_error"] = json!(g1.position_error);
-        v["interpolation_normal_error_radians"] = json!(g1.normal_error);
-        v["errors"] = serde_json::to_value(errors).unwrap_or(Value::Null);
-        v["curve_measures"] = match curves {
-            None => Value::Null,
-            Some(_) => match surface::curve_stats::edge_problems(mesh) {
-                Ok(problems) => {
-                    let cs = surface::curve_stats::curve_stats(&problems, &f);
-                    json!({
-                        "end_curvature_error_max": cs.end_curvature_error_max,
-                        "shortest_alpha": cs.shortest_alpha,
-                        "curvature_variation_max": cs.curvature_variation_max,
-                        "fallbacks_to_chord": cs.fallbacks,
-                        "unconverged_optimizations": cs.unconverged,
-                    })
-                }
-                // A data set's edges are never degenerate: that is a defect, reported.
-                Err(source) if !t.file => {
-                    return Err(ExperimentError::EdgeProblems {
-                        subject: t.id.clone(),
-                        source,
-                    })
-                }
-                // A user's mesh may have a degenerate edge (the fit gave it a straight cubic);
-                // the measures of the other edges would not be comparable: a stated null.
-                Err(e) => {
-                    v["curve_measures_note"] =
-                        json!(format!("not measured: a degenerate edge ({e})"));
-                    Value::Null
-                }
-            },
-        };
-        v["fit_time_seconds"] = json!(fit_time);
-    }
-    v["task_time_seconds"] = json!(start.elapsed().as_secs_f64());
-    check_line(t.index + 1, &v, &t.identity()).map_err(|source| StudyError::BadResult {
-        task: t.id.clone(),
-        source,
-    })?;
-    Ok(v)
-}
-
 /// Runs the sweep: the manifest, one task, one shard, or the whole grid.
 pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     let grid = grid_of(args)?;
@@ -373,21 +236,9 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     }
     // A bad scheme parameter is refused before any task runs (the grid checked the ranges;
     // the schemes build).
-    for s in &grid.schemes {
-        if !grid::is_subdivision(s) {
-            surface::scheme_by_name(s, &surface::SchemeOptions::default())?;
-        }
-    }
+    check_schemes(&grid)?;
     let mine: Vec<&Task> = match (&args.task, args.shard) {
-        (Some(id), _) => {
-            vec![all
-                .iter()
-                .find(|t| t.id == *id)
-                .ok_or_else(|| StudyError::UnknownTask {
-                    id: id.clone(),
-                    total: all.len(),
-                })?]
-        }
+        (Some(id), _) => vec![find_task(&all, id)?],
         (None, shard) => all.iter().filter(|t| in_shard(shard, t.index)).collect(),
     };
     let partial = args.task.is_some() || args.shard.is_some();
@@ -402,7 +253,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     let bar = progress::Progress::bar("sweep", mine.len() as u64);
     for t in &mine {
         bar.stage(&t.id);
-        results.push(run_task(t, &grid)?);
+        results.push(run_grid_task(t, &grid)?);
         bar.inc(1);
     }
     bar.finish();
@@ -578,33 +429,12 @@ pub fn merge(args: &MergeArgs) -> Result<ExitCode, ExperimentError> {
         })
         .collect();
     paths.sort();
-    let mut results: Vec<Option<Value>> = vec![None; total];
-    for p in &paths {
-        for (k, r) in read_checked(p, &tasks)? {
-            if results[k].is_some() {
-                return Err(ExperimentError::ShardTaskRepeated {
-                    path: p.clone(),
-                    index: k,
-                    task: r["task"].clone(),
-                });
-            }
-            results[k] = Some(r);
-        }
-    }
-    let missing: Vec<String> = results
-        .iter()
-        .enumerate()
-        .filter(|(_, r)| r.is_none())
-        .map(|(k, _)| tasks[k]["task"].as_str().unwrap_or("?").to_string())
-        .collect();
-    if !missing.is_empty() {
-        return Err(ExperimentError::ShardTasksMissing {
-            missing,
-            total,
-            files: paths.len(),
-        });
-    }
-    let results: Vec<Value> = results.into_iter().flatten().collect();
+    let results = join_results(
+        &tasks,
+        paths
+            .iter()
+            .map(|p| read_checked(p, &tasks).map(|lines| (p.clone(), lines))),
+    )?;
     let lines = json_lines(&results)?;
     let staged = Staged::begin_keeping(&dir, |n| is_partial(n) || n == MANIFEST)?;
     write_report(staged.path(), &manifest["options"], results, &lines)?;

@@ -86,7 +86,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     let data = surface::dataset_by_name("ring", Some(args.resolution)).map_err(|source| {
         ExperimentError::DataOption {
             given: format!("--resolution {}", args.resolution),
-            source,
+            source: Box::new(source),
         }
     })?;
     let mesh = &data.mesh;

@@ -10,3 +10,4 @@ mod schemes_cli;
 mod shell_docs;
 mod studies_cli;
 mod sweep_cli;
+mod sweep_lib;

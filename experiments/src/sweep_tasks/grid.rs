@@ -8,7 +8,8 @@
 //! An axis a task does not read collapses for it: a scheme without edge curves runs once
 //! (curves `none`), a construction without a solver once (solver `null`), a subdivision scheme
 //! once per mesh. The lists come from the command line (comma-separated or the option
-//! repeated) or a TOML file (`--grid FILE.toml`, one key an axis, a value or an array); an
+//! repeated), a TOML file (`--grid FILE.toml`, one key an axis, a value or an array) or a JSON
+//! object of the same keys and values (the library's callers, [`axes_from_json`]); an
 //! axis given on the command line replaces the file's. No list may hold an item twice, and an
 //! axis no task of the grid reads (a `--solver` list without `optimized`, `--beta` without a
 //! scheme that reads β) is refused: the options record what was run, exactly.
@@ -120,7 +121,7 @@ pub struct Grid {
 pub struct Task {
     /// Its position in the grid's order.
     pub index: usize,
-    /// Its id ([`task_id`]).
+    /// Its id (`data[@resolution]/[scheme/][name=value/…]curves[/solver][/s=N]`).
     pub id: String,
     /// The data set's name or the mesh file's path, as given.
     pub data: String,
@@ -643,98 +644,200 @@ pub fn read_grid_file(path: &Path) -> Result<Axes, StudyError> {
     parse_grid(&text).map_err(err)
 }
 
+/// One item of a grid key's value, a grid file's or a JSON grid's: what the axes read of it.
+#[derive(Clone, Copy)]
+enum Item<'a> {
+    /// A string.
+    Str(&'a str),
+    /// An integer (TOML's are `i64`, JSON's `i64` or `u64`).
+    Int(i128),
+    /// A floating-point number.
+    Float(f64),
+    /// Anything else (a boolean, a date, an array in an array, an inline table, JSON's null).
+    Other,
+}
+
+/// A grid key's value as given: a table, one value, or an array of values.
+enum Given<'a> {
+    /// A table (a TOML `[key]`, a JSON object): never an axis.
+    Table,
+    /// One value, not in an array.
+    One(Item<'a>),
+    /// An array of values.
+    Array(Vec<Item<'a>>),
+}
+
+/// Sets axis `key` of `axes` from its value as `given`: the one reading of a grid's keys, for
+/// grid files ([`parse_grid`]) and JSON grids ([`axes_from_json`]) alike. `at` puts where the
+/// key is (a grid file's line) before a message.
+fn set_axis(
+    axes: &mut Axes,
+    key: &str,
+    given: Given<'_>,
+    at: impl Fn(String) -> String,
+) -> Result<(), String> {
+    let params = surface::scheme::parameters_of(surface::scheme::REGISTRY);
+    let (values, one): (Vec<Item<'_>>, Option<&str>) = match given {
+        Given::Table => {
+            return Err(at(
+                "expected a value or an array of values, not a table".into()
+            ))
+        }
+        Given::One(v @ Item::Str(s)) => (vec![v], Some(s)),
+        Given::One(v) => (vec![v], None),
+        Given::Array(a) => (a, None),
+    };
+    let strings = || -> Result<Vec<String>, String> {
+        values
+            .iter()
+            .map(|v| match v {
+                Item::Str(s) => Ok(s.to_string()),
+                _ => Err(at("expected strings".into())),
+            })
+            .collect()
+    };
+    let counts = || -> Result<Vec<usize>, String> {
+        values
+            .iter()
+            .map(|v| match v {
+                Item::Int(i) => usize::try_from(*i).ok(),
+                _ => None,
+            })
+            .map(|c| c.ok_or_else(|| at("expected non-negative integers".into())))
+            .collect()
+    };
+    let one = |what: &str| -> Result<String, String> {
+        one.map(str::to_string)
+            .ok_or_else(|| at(format!("expected one string ({what})")))
+    };
+    match key {
+        "data" => axes.data = Some(strings()?),
+        "resolution" => axes.resolution = Some(counts()?),
+        "scheme" => axes.scheme = Some(strings()?),
+        "curves" => axes.curves = Some(strings()?),
+        "solver" => axes.solver = Some(strings()?),
+        "segments" => axes.segments = Some(counts()?),
+        "interior" => {
+            axes.interior = Some(
+                one("default, thin-plate or membrane")?
+                    .parse()
+                    .map_err(&at)?,
+            )
+        }
+        "estimate" => axes.estimate = Some(one("an estimator's name")?),
+        _ => {
+            let Some((p, _)) = params.iter().find(|(p, _)| p.name == key || p.key() == key) else {
+                let mut known = vec![
+                    "data",
+                    "resolution",
+                    "scheme",
+                    "curves",
+                    "solver",
+                    "segments",
+                    "interior",
+                    "estimate",
+                ];
+                known.extend(params.iter().map(|(p, _)| p.name));
+                return Err(at(format!("not a grid key; known: {}", known.join(", "))));
+            };
+            // Both spellings of one parameter (`phong-alpha`, `phong_alpha`) are one axis.
+            if axes.parameters.iter().any(|(q, _)| q.name == p.name) {
+                return Err(at(format!(
+                    "`{}` is given twice (a grid names each parameter once, as `{}` or `{}`)",
+                    p.name,
+                    p.name,
+                    p.key()
+                )));
+            }
+            let numbers: Vec<f64> = values
+                .iter()
+                .map(|v| match v {
+                    Item::Float(x) => Ok(*x),
+                    Item::Int(i) => Ok(*i as f64),
+                    _ => Err(at("expected numbers".into())),
+                })
+                .collect::<Result<_, _>>()?;
+            axes.parameters.push((*p, numbers));
+        }
+    }
+    Ok(())
+}
+
+/// A TOML value as a grid item.
+fn toml_item(v: &toml_edit::Value) -> Item<'_> {
+    match v {
+        toml_edit::Value::String(s) => Item::Str(s.value()),
+        toml_edit::Value::Integer(i) => Item::Int(i128::from(*i.value())),
+        toml_edit::Value::Float(x) => Item::Float(*x.value()),
+        _ => Item::Other,
+    }
+}
+
+/// A JSON value as a grid item (`4` is an integer, `4.0` a float, as in TOML).
+fn json_item(v: &Value) -> Item<'_> {
+    match v {
+        Value::String(s) => Item::Str(s),
+        Value::Number(n) => match (n.as_i64(), n.as_u64(), n.as_f64()) {
+            (Some(i), _, _) => Item::Int(i128::from(i)),
+            (None, Some(u), _) => Item::Int(i128::from(u)),
+            (None, None, Some(x)) => Item::Float(x),
+            (None, None, None) => Item::Other,
+        },
+        _ => Item::Other,
+    }
+}
+
 /// A grid file's text read as [`Axes`] (the message names the line and key on failure).
 pub fn parse_grid(text: &str) -> Result<Axes, String> {
     let doc: toml_edit::Document<String> = text
         .parse()
         .map_err(|e: toml_edit::TomlError| format!("not TOML: {}", e.to_string().trim_end()))?;
     let mut axes = Axes::default();
-    let params = surface::scheme::parameters_of(surface::scheme::REGISTRY);
     for (key, item) in doc.iter() {
         let line = item
             .span()
             .or_else(|| doc.key(key).and_then(|k| k.span()))
             .map_or(0, |s| line_of(text, s.start));
-        let at = |m: String| format!("line {line}: `{key}`: {m}");
-        let values: Vec<&toml_edit::Value> = match item {
-            toml_edit::Item::Value(toml_edit::Value::Array(a)) => a.iter().collect(),
-            toml_edit::Item::Value(v) => vec![v],
-            _ => {
-                return Err(at(
-                    "expected a value or an array of values, not a table".into()
-                ))
+        let given = match item {
+            toml_edit::Item::Value(toml_edit::Value::Array(a)) => {
+                Given::Array(a.iter().map(toml_item).collect())
             }
+            toml_edit::Item::Value(v) => Given::One(toml_item(v)),
+            _ => Given::Table,
         };
-        let strings = || -> Result<Vec<String>, String> {
-            values
-                .iter()
-                .map(|v| {
-                    v.as_str()
-                        .map(str::to_string)
-                        .ok_or_else(|| at("expected strings".into()))
-                })
-                .collect()
+        set_axis(&mut axes, key, given, |m| {
+            format!("line {line}: `{key}`: {m}")
+        })?;
+    }
+    Ok(axes)
+}
+
+/// A grid given as a JSON object read as [`Axes`]: the keys and values of a grid file
+/// ([`parse_grid`]; `{"data": ["octa"], "beta": [0.2, 0.5], "segments": 4}`), read by the same
+/// code, so a bad key or value gets the grid file's message (without a line: `` `betta`: not a
+/// grid key; known: … ``).
+pub fn axes_from_json(v: &Value) -> Result<Axes, String> {
+    let Some(object) = v.as_object() else {
+        let kind = match v {
+            Value::Null => "null",
+            Value::Bool(_) => "a boolean",
+            Value::Number(_) => "a number",
+            Value::String(_) => "a string",
+            Value::Array(_) => "an array",
+            Value::Object(_) => "an object",
         };
-        let counts = || -> Result<Vec<usize>, String> {
-            values
-                .iter()
-                .map(|v| {
-                    v.as_integer()
-                        .and_then(|i| usize::try_from(i).ok())
-                        .ok_or_else(|| at("expected non-negative integers".into()))
-                })
-                .collect()
+        return Err(format!(
+            "expected a JSON object of axes (the keys of a grid file), not {kind}"
+        ));
+    };
+    let mut axes = Axes::default();
+    for (key, value) in object {
+        let given = match value {
+            Value::Object(_) => Given::Table,
+            Value::Array(a) => Given::Array(a.iter().map(json_item).collect()),
+            v => Given::One(json_item(v)),
         };
-        let one = |what: &str| -> Result<String, String> {
-            match (values.as_slice(), item) {
-                ([v], toml_edit::Item::Value(toml_edit::Value::String(_))) => {
-                    Ok(v.as_str().unwrap_or_default().to_string())
-                }
-                _ => Err(at(format!("expected one string ({what})"))),
-            }
-        };
-        match key {
-            "data" => axes.data = Some(strings()?),
-            "resolution" => axes.resolution = Some(counts()?),
-            "scheme" => axes.scheme = Some(strings()?),
-            "curves" => axes.curves = Some(strings()?),
-            "solver" => axes.solver = Some(strings()?),
-            "segments" => axes.segments = Some(counts()?),
-            "interior" => {
-                axes.interior = Some(
-                    one("default, thin-plate or membrane")?
-                        .parse()
-                        .map_err(at)?,
-                )
-            }
-            "estimate" => axes.estimate = Some(one("an estimator's name")?),
-            _ => {
-                let Some((p, _)) = params.iter().find(|(p, _)| p.name == key || p.key() == key)
-                else {
-                    let mut known = vec![
-                        "data",
-                        "resolution",
-                        "scheme",
-                        "curves",
-                        "solver",
-                        "segments",
-                        "interior",
-                        "estimate",
-                    ];
-                    known.extend(params.iter().map(|(p, _)| p.name));
-                    return Err(at(format!("not a grid key; known: {}", known.join(", "))));
-                };
-                let numbers: Vec<f64> = values
-                    .iter()
-                    .map(|v| {
-                        v.as_float()
-                            .or_else(|| v.as_integer().map(|i| i as f64))
-                            .ok_or_else(|| at("expected numbers".into()))
-                    })
-                    .collect::<Result<_, _>>()?;
-                axes.parameters.push((*p, numbers));
-            }
-        }
+        set_axis(&mut axes, key, given, |m| format!("`{key}`: {m}"))?;
     }
     Ok(axes)
 }
@@ -858,6 +961,64 @@ mod tests {
             ..Axes::default()
         });
         assert!(e.contains("not a scheme; known:"), "{e}");
+    }
+
+    #[test]
+    fn json_grids_are_read_as_grid_files_are() {
+        let file = parse_grid(
+            "data = [\"octa\", \"sphere\"]\nscheme = \"shirman-sequin\"\nbeta = [0.2, 0.5]\nc = 1\nsegments = [2, 4]\ninterior = \"default\"\n",
+        )
+        .unwrap();
+        let json = axes_from_json(&json!({
+            "data": ["octa", "sphere"],
+            "scheme": "shirman-sequin",
+            "beta": [0.2, 0.5],
+            "c": 1,
+            "segments": [2, 4],
+            "interior": "default",
+        }))
+        .unwrap();
+        let (file, json) = (Grid::new(file).unwrap(), Grid::new(json).unwrap());
+        assert_eq!(file, json);
+        // 2 data × 2 β × 3 constructions (optimized with 3 solvers: 5) × 2 segments.
+        assert_eq!(json.count(), 2 * 2 * 5 * 2);
+        // Every refusal of a grid file, with its message after the line.
+        for (toml, v) in [
+            ("betta = 0.2", json!({"betta": 0.2})),
+            ("segments = [\"four\"]", json!({"segments": ["four"]})),
+            ("segments = 4.0", json!({"segments": 4.0})),
+            ("resolution = [-3]", json!({"resolution": [-3]})),
+            ("beta = \"x\"", json!({"beta": "x"})),
+            ("data = [[\"octa\"]]", json!({"data": [["octa"]]})),
+            ("data = true", json!({"data": true})),
+            ("interior = [\"default\"]", json!({"interior": ["default"]})),
+            ("interior = \"bogus\"", json!({"interior": "bogus"})),
+            ("estimate = 3", json!({"estimate": 3})),
+            ("[beta]\nx = 1", json!({"beta": {"x": 1}})),
+            (
+                "phong-alpha = 0.5\nphong_alpha = 0.6",
+                json!({"phong-alpha": 0.5, "phong_alpha": 0.6}),
+            ),
+        ] {
+            let from_file = parse_grid(toml).unwrap_err();
+            let from_json = axes_from_json(&v).unwrap_err();
+            let (_, message) = from_file.split_once(": ").unwrap();
+            assert_eq!(message, from_json, "{toml}");
+            assert!(from_file.starts_with("line "), "{from_file}");
+        }
+        let e = axes_from_json(&json!({"phong_alpha": 0.5, "phong-alpha": 0.6})).unwrap_err();
+        assert!(
+            e.starts_with("`phong-alpha`: `phong-alpha` is given twice"),
+            "{e}"
+        );
+        let e = axes_from_json(&json!(["octa"])).unwrap_err();
+        assert_eq!(
+            e,
+            "expected a JSON object of axes (the keys of a grid file), not an array"
+        );
+        // JSON's unsigned integers beyond TOML's reach are counts too.
+        let big = axes_from_json(&json!({"segments": u64::MAX})).unwrap();
+        assert_eq!(big.segments, Some(vec![usize::try_from(u64::MAX).unwrap()]));
     }
 
     #[test]
