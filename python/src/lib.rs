@@ -11,7 +11,8 @@
 //! * [`estimation`] — `estimate`;
 //! * [`fit`] — `fit` and `Fit`;
 //! * [`curve`] — `curve`, `curves`;
-//! * [`registry`] — `schemes`, `curve_methods`, `solvers`, `estimators`.
+//! * [`registry`] — `schemes`, `curve_methods`, `solvers`, `estimators`;
+//! * [`sweep`] — the sweep's manifest, task function and merge, for Dask or Ray.
 
 // The job's error (`fitjob::JobError`) crosses each `detach` closure once and becomes a Python
 // exception at once: boxing it there would only add an allocation.
@@ -27,6 +28,7 @@ pub mod fit;
 pub mod input;
 pub mod meshes;
 pub mod registry;
+pub mod sweep;
 
 /// The native module.
 #[pymodule]
@@ -52,5 +54,8 @@ fn _triwb(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(registry::curve_methods, m)?)?;
     m.add_function(wrap_pyfunction!(registry::solvers, m)?)?;
     m.add_function(wrap_pyfunction!(registry::estimators, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_manifest, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_task, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_merge, m)?)?;
     Ok(())
 }
