@@ -167,17 +167,33 @@ pub fn index_rows<const W: usize>(
         ($t:ty) => {
             if let Ok(a) = a.cast::<PyArrayDyn<$t>>() {
                 let ro = a.try_readonly()?;
+                let bad = |i: usize, x: $t| {
+                    usage(format!(
+                        "{name} row {i} has index {x}, outside 0..{bound} (V has {bound} rows)"
+                    ))
+                };
+                // A C-contiguous buffer (numpy's default) is read as one slice.
+                if let (true, Ok(slice)) = (a.is_c_contiguous(), ro.as_slice()) {
+                    let mut out = Vec::with_capacity(slice.len() / W.max(1));
+                    for (i, r) in slice.chunks_exact(W.max(1)).enumerate() {
+                        let mut row = [0usize; W];
+                        for (k, x) in r.iter().enumerate() {
+                            row[k] = usize::try_from(*x)
+                                .ok()
+                                .filter(|v| *v < bound)
+                                .ok_or_else(|| bad(i, *x))?;
+                        }
+                        out.push(row);
+                    }
+                    return Ok(out);
+                }
                 let view = ro.as_array();
                 let mut out = Vec::with_capacity(view.shape()[0]);
                 for (i, r) in view.outer_iter().enumerate() {
                     let mut row = [0usize; W];
                     for (k, x) in r.iter().enumerate() {
                         let v = usize::try_from(*x).ok().filter(|v| *v < bound);
-                        row[k] = v.ok_or_else(|| {
-                            usage(format!(
-                                "{name} row {i} has index {x}, outside 0..{bound} (V has {bound} rows)"
-                            ))
-                        })?;
+                        row[k] = v.ok_or_else(|| bad(i, *x))?;
                     }
                     out.push(row);
                 }

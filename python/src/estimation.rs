@@ -21,9 +21,9 @@ use crate::input::{crease_rule, raw_from_arrays};
 /// `H`; `missing` counts input vertices the repair dropped (unreferenced or degenerate), whose
 /// rows are NaN; `crease_vertices` counts vertices on creases, where the fit uses one estimate
 /// per sector and these rows hold the estimate over all the vertex's faces; `notes` lists what
-/// the repair and the estimator did.
+/// the repair and the estimator did. `threads`: as `fit`'s.
 #[pyfunction]
-#[pyo3(signature = (V, F, method="hybrid", normals=None, *, crease_angle=None, no_creases=false))]
+#[pyo3(signature = (V, F, method="hybrid", normals=None, *, crease_angle=None, no_creases=false, threads=None))]
 #[allow(non_snake_case)]
 pub fn estimate<'py>(
     py: Python<'py>,
@@ -33,6 +33,7 @@ pub fn estimate<'py>(
     normals: Option<&Bound<'py, PyAny>>,
     crease_angle: Option<f64>,
     no_creases: bool,
+    threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let raw = raw_from_arrays(V, F, normals, None, None)?;
     let n = raw.positions.len();
@@ -45,8 +46,7 @@ pub fn estimate<'py>(
         replace_normals: false,
         creases: crease_rule(crease_angle, no_creases)?,
     };
-    let loaded = py
-        .detach(move || fitjob::input::load_owned(options))
+    let loaded = crate::threads::run(py, threads, move || fitjob::input::load_owned(options))?
         .map_err(job_error)?;
     let mut mesh = loaded.mesh;
     loaded.frame.mesh_to_world(&mut mesh);

@@ -36,6 +36,10 @@ pub struct Fit {
     /// The job's progress lines (what the command line prints before its summary).
     #[pyo3(get)]
     log: Vec<String>,
+    /// Wall seconds of the library job alone (`fitjob::run`, timed inside the call): what the
+    /// Python call adds is its wall time less this.
+    #[pyo3(get)]
+    job_seconds: f64,
     nets: OnceLock<Py<PyAny>>,
     report: OnceLock<Py<PyAny>>,
 }
@@ -159,14 +163,16 @@ fn is_name(obj: &Bound<'_, PyAny>) -> bool {
 /// `replace_normals`, `crease_angle` / `no_creases`, `g1_samples`, and the scheme's own
 /// parameters as keyword arguments (`beta=0.3, c=1.0`, `phong_alpha=0.75`). `patches_out` and
 /// `mesh_out` write the patches and a tessellation at `segments` (as `--output` and
-/// `--mesh-output`), `up` the data's up axis for glTF. The work runs without the GIL.
+/// `--mesh-output`), `up` the data's up axis for glTF. The work runs without the GIL, on the
+/// process's shared thread pool, or with `threads=n` on a pool of its own (`threads=1` for
+/// fits run side by side from several Python threads).
 #[pyfunction]
 #[pyo3(signature = (V, F=None, *, normals=None, shape=None, creases=None, resolution=None,
     scheme="shirman-sequin", curves="chord", solver="exact-penalty", dbhs_pick=None,
     interior="default", estimate="hybrid", replace_normals=false, crease_angle=None,
     no_creases=false, g1_samples=fitjob::options::DEFAULT_G1_SAMPLES,
     segments=fitjob::options::DEFAULT_TESS, patches_out=None, mesh_out=None, up="z",
-    label=None, **params))]
+    label=None, threads=None, **params))]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn fit(
     py: Python<'_>,
@@ -191,6 +197,7 @@ pub fn fit(
     mesh_out: Option<PathBuf>,
     up: &str,
     label: Option<String>,
+    threads: Option<usize>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Fit> {
     let source = if is_name(V) {
@@ -240,16 +247,21 @@ pub fn fit(
             params,
         },
     )?;
-    run_job(py, options)
+    run_job(py, options, threads)
 }
 
 /// Runs the job without the GIL and keeps what it gives.
-pub fn run_job(py: Python<'_>, options: fitjob::FitOptions) -> PyResult<Fit> {
-    let (outcome, log) = py.detach(move || {
+pub fn run_job(
+    py: Python<'_>,
+    options: fitjob::FitOptions,
+    threads: Option<usize>,
+) -> PyResult<Fit> {
+    let (outcome, log, job_seconds) = crate::threads::run(py, threads, move || {
         let mut log = Vec::new();
+        let t = std::time::Instant::now();
         let outcome = fitjob::run(options, &mut |line| log.push(line.to_string()));
-        (outcome, log)
-    });
+        (outcome, log, t.elapsed().as_secs_f64())
+    })?;
     let outcome = outcome.map_err(job_error)?;
     let report_json = outcome
         .report
@@ -265,6 +277,7 @@ pub fn run_job(py: Python<'_>, options: fitjob::FitOptions) -> PyResult<Fit> {
         face_source: kept.face_source,
         vertex_source: kept.vertex_source,
         log,
+        job_seconds,
         nets: OnceLock::new(),
         report: OnceLock::new(),
     })
@@ -369,10 +382,18 @@ impl Fit {
         }
         let (_, fit) = self.kept()?;
         let np = fit.layout.points_per_patch();
-        let mut flat = Vec::with_capacity(3 * fit.points.len());
-        for p in &fit.points {
-            flat.extend_from_slice(&self.world(p));
-        }
+        // The one copy: each point moved to world coordinates straight into the buffer numpy
+        // takes over (memory-bound: the fresh pages' faults are most of it, and a parallel
+        // copy measured slower, the two threads' faults serialized in the kernel).
+        let frame = self.frame;
+        let flat = py.detach(|| {
+            let mut flat = Vec::with_capacity(3 * fit.points.len());
+            flat.extend(fit.points.iter().flat_map(|p| {
+                let q = frame.to_world(p);
+                [q.x, q.y, q.z]
+            }));
+            flat
+        });
         let a = arrays::shaped(py, flat, &[fit.num_patches(), np, 3])?.unbind();
         Ok(self.nets.get_or_init(|| a).clone_ref(py))
     }

@@ -20,6 +20,11 @@
 
 use pyo3::prelude::*;
 
+/// mimalloc, for its per-thread heaps: the nets of a fit (a hundred megabytes at 10⁵ faces) are
+/// written out 1.7× faster than with the system allocator (docs/python.md, "Speed").
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 pub mod arrays;
 pub mod curve;
 pub mod errors;
@@ -29,6 +34,7 @@ pub mod input;
 pub mod meshes;
 pub mod registry;
 pub mod sweep;
+pub mod threads;
 
 /// The native module.
 #[pymodule]

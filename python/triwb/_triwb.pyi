@@ -101,6 +101,7 @@ class Fit:
     @property
     def fallback_faces(self) -> list[dict[str, Any]]: ...
     log: list[str]
+    job_seconds: float
     def tessellate(self, segments: int = 4) -> Tessellation: ...
     def g1(self, samples: Optional[int] = None) -> dict[str, Any]: ...
     def to_mesh(
@@ -135,6 +136,7 @@ def estimate(
     *,
     crease_angle: Optional[float] = None,
     no_creases: bool = False,
+    threads: Optional[int] = None,
 ) -> Estimate: ...
 def fit(
     V: Union[ArrayLike, PathOrName],
@@ -159,6 +161,7 @@ def fit(
     mesh_out: Optional[PathOrName] = None,
     up: Literal["z", "y"] = "z",
     label: Optional[str] = None,
+    threads: Optional[int] = None,
     **params: float,
 ) -> Fit: ...
 def curve(
