@@ -24,7 +24,7 @@ use crate::input::{crease_rule, raw_from_arrays};
 /// the repair and the estimator did. `threads`: as `fit`'s.
 #[pyfunction]
 #[pyo3(signature = (V, F, method="hybrid", normals=None, *, crease_angle=None, no_creases=false, threads=None))]
-#[allow(non_snake_case)]
+#[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn estimate<'py>(
     py: Python<'py>,
     V: &Bound<'py, PyAny>,
