@@ -15,11 +15,22 @@ use serde_json::{json, Value};
 use crate::arrays;
 use crate::errors::{failed, usage};
 
-/// The construction `method` with `solver` and `dbhs_pick`.
-fn method(name: &str, solver: &str, dbhs_pick: Option<&str>) -> PyResult<Box<dyn CurveMethod>> {
+/// The construction `method` with `solver` and `dbhs_pick`; `history`: the solver reports
+/// keep the cost at every iteration (as the command line's `curve` asks, for its plots).
+fn method(
+    name: &str,
+    solver: &str,
+    dbhs_pick: Option<&str>,
+    history: bool,
+) -> PyResult<Box<dyn CurveMethod>> {
+    let defaults = MethodOptions::default();
     let mut options = MethodOptions {
         solver: solver::SolverKind::from_str(solver).map_err(|e| usage(e.to_string()))?,
-        ..MethodOptions::default()
+        solve_options: solver::SolveOptions {
+            record_history: history,
+            ..defaults.solve_options
+        },
+        ..defaults
     };
     if let Some(p) = dbhs_pick {
         options.dbhs_pick = ::curves::DbhsPick::from_str(p).map_err(usage)?;
@@ -50,7 +61,8 @@ fn to_python(py: Python<'_>, v: &Value) -> PyResult<Py<PyAny>> {
 /// `optimized`, the pick among dBHS solutions): a dict with `alpha` (the end-derivative
 /// lengths), `points` (the four Bézier points), `kappa` (the end curvatures achieved),
 /// `curvature_variation` (`∫ (dκ/ds)² ds`), and what the construction adds (dBHS's
-/// `solutions`, `optimized`'s solver `report`), the record the command line's `curve` writes.
+/// `solutions`, `optimized`'s solver `report` with its cost history), the record the command
+/// line's `curve` writes.
 #[pyfunction]
 #[pyo3(signature = (t0, t1, k0, k1, method="optimized", *, solver="exact-penalty", dbhs_pick=None))]
 #[allow(clippy::too_many_arguments)]
@@ -64,7 +76,7 @@ pub fn curve(
     solver: &str,
     dbhs_pick: Option<&str>,
 ) -> PyResult<Py<PyAny>> {
-    let m = self::method(method, solver, dbhs_pick)?;
+    let m = self::method(method, solver, dbhs_pick, true)?;
     let problem = UnitProblem::new(Vector2::from(t0), Vector2::from(t1), k0, k1)
         .map_err(|e| usage(e.to_string()))?;
     let input = json!({"t0": t0, "t1": t1, "k0": k0, "k1": k1});
@@ -77,7 +89,8 @@ pub fn curve(
 /// `points` (n × 4 × 2), `kappa` (n × 2), `curvature_variation` (n; NaN where unbounded, at a
 /// cusp), `fallback` (n, bool: the construction fell back to the chord choice), `converged`
 /// (n, bool; True for constructions without a solver), `iterations` (n), and `reports` (the
-/// solver reports, a list of dicts, or None for constructions without one). The work runs
+/// solver reports without their cost histories, a list of dicts, or None for constructions
+/// without one). The work runs
 /// without the GIL.
 #[pyfunction]
 #[pyo3(signature = (problems, method="optimized", *, solver="exact-penalty", dbhs_pick=None))]
@@ -88,7 +101,7 @@ pub fn curves<'py>(
     solver: &str,
     dbhs_pick: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let m = self::method(method, solver, dbhs_pick)?;
+    let m = self::method(method, solver, dbhs_pick, false)?;
     let mut list = Vec::new();
     let mut bad = None;
     let rows = {
