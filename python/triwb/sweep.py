@@ -29,6 +29,7 @@ Ray: the same task function, ``ray.remote`` around it::
 
 import io
 import json
+import uuid
 
 from . import _triwb
 
@@ -70,7 +71,9 @@ def run(grid, client=None, *, retries=0):
     """Runs every task of ``grid`` and returns the table (:func:`frame`).
 
     With a ``dask.distributed.Client``, one Dask task per sweep task (keys
-    ``triwb-sweep-<index>``), gathered and merged; without one, the tasks run here in order.
+    ``triwb-sweep-<run>-<index>``, ``<run>`` new for every call, so a cluster never answers
+    with another run's results held under the same key), gathered and merged; without one,
+    the tasks run here in order.
     A failing task raises its error (``triwb.WorkbenchError`` or ``triwb.UsageError``, with
     the command line's message) once the others are done or cancelled.
     """
@@ -79,11 +82,12 @@ def run(grid, client=None, *, retries=0):
     if client is None:
         results = [run_task(grid, i) for i in ids]
     else:
+        run_id = uuid.uuid4().hex[:12]
         futures = client.map(
             run_task,
             [grid] * len(ids),
             ids,
-            key=[f"triwb-sweep-{t['index']}" for t in all_tasks],
+            key=[f"triwb-sweep-{run_id}-{t['index']}" for t in all_tasks],
             pure=False,
             retries=retries,
         )
