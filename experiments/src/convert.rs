@@ -6,8 +6,9 @@
 //! workbench's own sign convention). `.ply` and `.glb` output carry the normals and, when the
 //! curvature is known, the curvature in libigl's, trimesh's and MeshLab's convention (`H > 0`
 //! on a sphere with outward normals: `meshio::convention`): PLY `quality` (K),
-//! `gaussian_curvature`, `mean_curvature`, `k1`, `k2`; glTF `_GAUSSIAN_CURVATURE`,
-//! `_MEAN_CURVATURE` (`--up` says which axis is up; glTF is y up). `.obj`, `.off` carry the
+//! `gaussian_curvature`, `mean_curvature`, `k1`, `k2` and the principal directions `pd1x …
+//! pd2z`; glTF `_GAUSSIAN_CURVATURE`, `_MEAN_CURVATURE`, `_PRINCIPAL_CURVATURE_1/2`,
+//! `_PRINCIPAL_DIRECTION_1/2` (`--up` says which axis is up; glTF is y up). `.obj`, `.off` carry the
 //! normals; `.stl` carries positions and facets only (the format has no more).
 
 use std::path::PathBuf;
@@ -36,12 +37,18 @@ pub struct ConvertArgs {
 }
 
 /// The PLY vertex properties the curvature is written as (`meshio::ply`).
-const CURVATURE_PROPERTY_NAMES: [&str; 5] = [
+const CURVATURE_PROPERTY_NAMES: [&str; 11] = [
     "quality",
     "gaussian_curvature",
     "mean_curvature",
     "k1",
     "k2",
+    "pd1x",
+    "pd1y",
+    "pd1z",
+    "pd2x",
+    "pd2y",
+    "pd2z",
 ];
 
 /// Runs the conversion.
@@ -64,13 +71,21 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
                 (a * b, 0.5 * (a + b))
             })
             .unzip();
+        let directions = mesh
+            .vertices()
+            .iter()
+            .map(|v| {
+                let p = estimate::principal_frame(&v.data.shape, &v.data.n);
+                [p.d1, p.d2]
+            })
+            .collect();
         // Properties of the input under the names the curvature is written as give way to it.
         for name in CURVATURE_PROPERTY_NAMES {
             if raw.properties.remove(name).is_some() {
                 say!("  the input's vertex property `{name}` is replaced by the curvature");
             }
         }
-        raw.curvature = Some(meshio::Curvature::from_internal(k, h));
+        raw.curvature = Some(meshio::Curvature::from_internal(k, h).with_directions(directions));
     }
     let mut options = args.mesh_options.write_options();
     if args.ascii {

@@ -51,8 +51,9 @@ pub struct FitArgs {
     /// .stl, .glb, .m): positions, normals, vertex colours by Gaussian curvature (the testbed's
     /// KColor; sRGB in PLY, OBJ and OFF, linear in glTF); PLY and glTF also the curvature, in
     /// libigl's, trimesh's and MeshLab's convention (H > 0 on a sphere with outward normals):
-    /// PLY `quality` (K), `gaussian_curvature`, `mean_curvature`, `k1`, `k2`; glTF
-    /// `_GAUSSIAN_CURVATURE`, `_MEAN_CURVATURE`.
+    /// PLY `quality` (K), `gaussian_curvature`, `mean_curvature`, `k1`, `k2` and the principal
+    /// directions `pd1x` … `pd2z`; glTF `_GAUSSIAN_CURVATURE`, `_MEAN_CURVATURE`,
+    /// `_PRINCIPAL_CURVATURE_1/2`, `_PRINCIPAL_DIRECTION_1/2`.
     #[arg(long)]
     mesh_output: Option<PathBuf>,
     /// How the mesh file is written.

@@ -143,7 +143,7 @@ impl MeshOutputOptions {
 /// Gaussian curvature (the testbed's KColor: diverging map saturating at the 95th percentile
 /// of `|K|`, so a few spikes do not wash the picture out; the range is recorded with the
 /// colours), and where `format` stores curvature ([`meshio::MeshFormat::writes_curvature`]),
-/// the Gaussian and mean curvature in the exported convention (`H > 0` on a sphere with
+/// the Gaussian and mean curvature and the principal directions in the exported convention (`H > 0` on a sphere with
 /// outward normals; [`meshio::Curvature::from_internal`]). A format that stores no curvature
 /// is not given any, so nothing it does not store can stop it.
 pub fn tessellation_mesh(
@@ -166,12 +166,25 @@ pub fn tessellation_mesh(
         max: limit,
     });
     if format.writes_curvature() {
-        raw.curvature = Some(meshio::Curvature::from_internal(
-            tess.gaussian.clone(),
-            tess.mean.clone(),
-        ));
+        raw.curvature = Some(
+            meshio::Curvature::from_internal(tess.gaussian.clone(), tess.mean.clone())
+                .with_directions(principal_directions(tess)),
+        );
     }
     raw
+}
+
+/// The unit principal directions `[d1, d2]` (of `κ1 ≥ κ2`, the exported convention) at every
+/// tessellation vertex, from its exact shape tensor and normal (`estimate::principal_frame`).
+pub fn principal_directions(tess: &surface::Tessellation) -> Vec<[nalgebra::Vector3<f64>; 2]> {
+    tess.shapes
+        .iter()
+        .zip(&tess.normals)
+        .map(|(s, n)| {
+            let p = estimate::principal_frame(s, n);
+            [p.d1, p.d2]
+        })
+        .collect()
 }
 
 /// The colour limit of [`tessellation_mesh`]: the 95th percentile of the finite `|K|` (by the

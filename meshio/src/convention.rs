@@ -38,6 +38,11 @@ pub struct Curvature {
     pub gaussian: Vec<f64>,
     /// Mean curvature `H = (κ1 + κ2)/2`, positive on a sphere with outward normals.
     pub mean: Vec<f64>,
+    /// The unit principal directions `[d1, d2]` of `κ1 ≥ κ2` at each vertex, when known
+    /// (`d2 = n × d1`; at an umbilic any orthonormal pair). Written by PLY as `pd1x pd1y pd1z
+    /// pd2x pd2y pd2z` (libigl's `PD1`, `PD2`) and by glTF as `_PRINCIPAL_DIRECTION_1`,
+    /// `_PRINCIPAL_DIRECTION_2`.
+    pub directions: Option<Vec<[nalgebra::Vector3<f64>; 2]>>,
 }
 
 impl Curvature {
@@ -47,7 +52,26 @@ impl Curvature {
         for h in &mut mean {
             *h = -*h;
         }
-        Curvature { gaussian, mean }
+        Curvature {
+            gaussian,
+            mean,
+            directions: None,
+        }
+    }
+
+    /// From values already in the exported convention, without directions.
+    pub fn from_exported(gaussian: Vec<f64>, mean: Vec<f64>) -> Self {
+        Curvature {
+            gaussian,
+            mean,
+            directions: None,
+        }
+    }
+
+    /// These values with the principal directions `directions` (one pair per vertex).
+    pub fn with_directions(mut self, directions: Vec<[nalgebra::Vector3<f64>; 2]>) -> Self {
+        self.directions = Some(directions);
+        self
     }
 
     /// Number of vertices.
@@ -210,6 +234,7 @@ mod tests {
             let c = Curvature {
                 gaussian: vec![a * b],
                 mean: vec![0.5 * (a + b)],
+                directions: None,
             };
             let [k1, k2] = c.principal(0).unwrap_or([f64::NAN; 2]);
             assert!(k1 >= k2);

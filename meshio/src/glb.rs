@@ -82,6 +82,16 @@ pub const GAUSSIAN_ATTRIBUTE: &str = "_GAUSSIAN_CURVATURE";
 /// The attribute name of the mean curvature (exported convention: `H > 0` on a sphere).
 pub const MEAN_ATTRIBUTE: &str = "_MEAN_CURVATURE";
 
+/// The attribute names of the principal curvatures `κ1 ≥ κ2` (scalars) and their unit
+/// directions (`VEC3`, turned to glTF's up axis like the normals), written when the mesh's
+/// curvature has directions.
+pub const PRINCIPAL_ATTRIBUTES: [&str; 4] = [
+    "_PRINCIPAL_CURVATURE_1",
+    "_PRINCIPAL_CURVATURE_2",
+    "_PRINCIPAL_DIRECTION_1",
+    "_PRINCIPAL_DIRECTION_2",
+];
+
 /// The mesh a `.glb` is read into may take at most this many times the file's bytes. A mesh
 /// used once takes about 3 times its bytes in a [`RawMesh`] (`f64` positions from `f32`,
 /// `usize` indices and offsets from `u32`); a scene that instances a mesh from many nodes
@@ -160,6 +170,10 @@ fn extras(mesh: &RawMesh, up: UpAxis) -> serde_json::Value {
             json!({
                 GAUSSIAN_ATTRIBUTE: "Gaussian curvature K = k1 k2",
                 MEAN_ATTRIBUTE: "mean curvature H = (k1 + k2)/2, > 0 on a sphere with outward normals",
+                PRINCIPAL_ATTRIBUTES[0]: "principal curvature k1 >= k2 (written with the directions)",
+                PRINCIPAL_ATTRIBUTES[1]: "principal curvature k2",
+                PRINCIPAL_ATTRIBUTES[2]: "unit principal direction of k1",
+                PRINCIPAL_ATTRIBUTES[3]: "unit principal direction of k2 = normal x d1",
             }),
         );
     }
@@ -301,6 +315,49 @@ fn write_glb(mesh: &RawMesh, up: UpAxis) -> Result<Vec<u8>, WriteError> {
                 }),
             );
             attributes.insert(name.into(), json!(a));
+        }
+        if let Some(ds) = &c.directions {
+            let [k1, k2] = [0, 1].map(|j| {
+                (0..n)
+                    .map(|i| c.principal(i).map_or(f64::NAN, |k| k[j]))
+                    .collect::<Vec<f64>>()
+            });
+            check_f32_values(NAME, "principal curvature k1", &k1)?;
+            check_f32_values(NAME, "principal curvature k2", &k2)?;
+            for (name, values) in [
+                (PRINCIPAL_ATTRIBUTES[0], &k1),
+                (PRINCIPAL_ATTRIBUTES[1], &k2),
+            ] {
+                let start = bin.len();
+                push_f32s(&mut bin, values.iter().map(|&x| x as f32));
+                let a = add(
+                    start,
+                    bin.len(),
+                    ARRAY_BUFFER,
+                    json!({ "componentType": FLOAT, "count": n, "type": "SCALAR" }),
+                );
+                attributes.insert(name.into(), json!(a));
+            }
+            for (j, name) in [(0, PRINCIPAL_ATTRIBUTES[2]), (1, PRINCIPAL_ATTRIBUTES[3])] {
+                let start = bin.len();
+                for d in ds {
+                    let v = up.to_gltf([d[j].x, d[j].y, d[j].z]);
+                    if !v.iter().all(|x| x.is_finite()) {
+                        return Err(WriteError::invalid(
+                            NAME,
+                            "a principal direction is not finite",
+                        ));
+                    }
+                    push_f32s(&mut bin, v.map(|x| x as f32));
+                }
+                let a = add(
+                    start,
+                    bin.len(),
+                    ARRAY_BUFFER,
+                    json!({ "componentType": FLOAT, "count": n, "type": "VEC3" }),
+                );
+                attributes.insert(name.into(), json!(a));
+            }
         }
     }
     let start = bin.len();

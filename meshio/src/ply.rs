@@ -645,7 +645,30 @@ fn take_curvature(mesh: &mut RawMesh) {
     if props.get("quality") == Some(&gaussian) {
         props.remove("quality");
     }
-    mesh.curvature = Some(crate::convention::Curvature { gaussian, mean });
+    let directions = if DIRECTION_NAMES.iter().all(|n| props.contains_key(*n)) {
+        let cols: Vec<Vec<f64>> = DIRECTION_NAMES
+            .iter()
+            .map(|n| props.remove(*n).unwrap_or_default())
+            .collect();
+        Some(
+            (0..gaussian.len())
+                .map(|i| {
+                    let at = |k: usize| cols[k].get(i).copied().unwrap_or(f64::NAN);
+                    [
+                        nalgebra::Vector3::new(at(0), at(1), at(2)),
+                        nalgebra::Vector3::new(at(3), at(4), at(5)),
+                    ]
+                })
+                .collect(),
+        )
+    } else {
+        None
+    };
+    mesh.curvature = Some(crate::convention::Curvature {
+        gaussian,
+        mean,
+        directions,
+    });
 }
 
 fn read_faces(
@@ -855,7 +878,16 @@ const CURVATURE_NAMES: &[&str] = &[
     "mean_curvature",
     "k1",
     "k2",
+    "pd1x",
+    "pd1y",
+    "pd1z",
+    "pd2x",
+    "pd2y",
+    "pd2z",
 ];
+
+/// The principal directions' properties, `d1` then `d2` (libigl's `PD1`, `PD2`).
+const DIRECTION_NAMES: [&str; 6] = ["pd1x", "pd1y", "pd1z", "pd2x", "pd2y", "pd2z"];
 
 /// How the colours are stored, for the header comment.
 const COLOUR_NOTE: &str = "float 0-1 (float, not uchar: libigl 2.6's reader aborts on byte colours beside float properties)";
@@ -881,6 +913,13 @@ fn float_columns(mesh: &RawMesh) -> Result<Vec<(String, Vec<f64>)>, WriteError> 
         cols.push(("quality".into(), k.1.clone()));
         for (name, vs) in [k, h, k1, k2] {
             cols.push((name.into(), vs));
+        }
+        if let Some(ds) = &c.directions {
+            for (k, name) in DIRECTION_NAMES.iter().enumerate() {
+                let vs: Vec<f64> = ds.iter().map(|d| d[k / 3][k % 3]).collect();
+                crate::util::check_f32_values(NAME, "principal direction", &vs)?;
+                cols.push((name.to_string(), vs));
+            }
         }
     }
     for (k, vs) in &mesh.properties {

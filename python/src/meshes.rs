@@ -188,7 +188,7 @@ pub fn write_mesh(
         (Some(k), Some(h)) => {
             let gaussian = arrays::floats(k, "K", n)?;
             let mean = arrays::floats(h, "H", n)?;
-            raw.curvature = Some(meshio::Curvature { gaussian, mean });
+            raw.curvature = Some(meshio::Curvature::from_exported(gaussian, mean));
         }
         (None, None) => {}
         _ => {

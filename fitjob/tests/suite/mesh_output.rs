@@ -147,3 +147,44 @@ fn up_reaches_the_gltf_writer() {
         assert!((p - q).norm() < F32_ROUNDING, "{p} vs {q}");
     }
 }
+
+/// The principal frame written with a tessellation of the sphere data set: unit directions in
+/// the tangent plane, orthogonal, `d2 = n × d1`, and `k1 ≥ k2` with `k1 k2 = K` (to the
+/// `f32` the file stores). The sphere's fit is not exactly umbilic, so the directions are the
+/// patches' own (the estimate of `estimate::principal_frame` on each vertex's shape tensor).
+#[test]
+fn a_ply_tessellation_carries_the_principal_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sphere.ply");
+    fitjob::run(
+        FitOptions {
+            input: InputOptions {
+                source: Source::DataSet {
+                    name: "sphere".into(),
+                    resolution: None,
+                },
+                ..InputOptions::default()
+            },
+            mesh_out: Some(out.clone()),
+            ..FitOptions::default()
+        },
+        &mut |_| {},
+    )
+    .unwrap();
+    let raw = meshio::read_file(&out).unwrap();
+    let c = raw.curvature.expect("curvature");
+    let ds = c.directions.as_ref().expect("principal directions");
+    let ns = raw.normals.expect("normals");
+    assert_eq!(ds.len(), ns.len());
+    for (i, ([d1, d2], n)) in ds.iter().zip(&ns).enumerate() {
+        let n = n.normalize();
+        assert!((d1.norm() - 1.0).abs() < F32_ROUNDING, "vertex {i}");
+        assert!(
+            d1.dot(&n).abs() < F32_ROUNDING && d1.dot(d2).abs() < F32_ROUNDING,
+            "vertex {i}"
+        );
+        assert!((n.cross(d1) - d2).norm() < 4.0 * F32_ROUNDING, "vertex {i}");
+        let [k1, k2] = c.principal(i).unwrap();
+        assert!(k1 >= k2 && k1 > 0.0, "vertex {i}: H > 0 on the sphere");
+    }
+}

@@ -346,3 +346,71 @@ fn hostile_glb_files_are_refused_with_the_place_and_the_reason() {
     assert!(refusal(&glb(&json, &bin)).contains("index 7 of triangle 0 is out of range"));
     assert!(refusal(&glb(&serde_json::json!([1, 2]), &[])).contains("JSON chunk"));
 }
+
+/// The cube's curvature with principal directions: a cylinder about z (κ1 = 2 along the
+/// circle, κ2 = 0 along z), d1 = (0, 1, 0) and d2 = (0, 0, 1) at every vertex.
+fn cube_with_directions() -> RawMesh {
+    let mut m = coloured_cube();
+    let d = [nalgebra::Vector3::y(), nalgebra::Vector3::z()];
+    m.curvature =
+        Some(Curvature::from_exported(vec![0.0; 8], vec![1.0; 8]).with_directions(vec![d; 8]));
+    m
+}
+
+#[test]
+fn ply_writes_and_reads_the_principal_directions_as_libigls_pd1_pd2() {
+    let m = cube_with_directions();
+    let bytes = format("ply").write(&m, &WriteOptions::new()).unwrap();
+    let h = header(&bytes);
+    for name in ["pd1x", "pd1y", "pd1z", "pd2x", "pd2y", "pd2z"] {
+        assert!(
+            h.contains(&format!("property float {name}\n")),
+            "{name}: {h}"
+        );
+    }
+    let back = format("ply").read(&bytes).unwrap();
+    assert!(back.properties.is_empty(), "{:?}", back.properties.keys());
+    let c = back.curvature.expect("curvature read back");
+    assert_eq!(c.principal(0), Some([2.0, 0.0]));
+    assert_eq!(c.directions, m.curvature.unwrap().directions);
+}
+
+#[test]
+fn gltf_writes_principal_curvatures_and_directions_turned_to_y_up() {
+    let bytes = format("glb")
+        .write(&cube_with_directions(), &WriteOptions::new())
+        .unwrap();
+    let doc = gltf_json(&bytes);
+    let attrs = &doc["meshes"][0]["primitives"][0]["attributes"];
+    for name in meshio::glb::PRINCIPAL_ATTRIBUTES {
+        assert!(attrs[name].is_u64(), "{name}: {attrs}");
+        assert!(
+            doc["asset"]["extras"]["curvature_attributes"][name].is_string(),
+            "{name}"
+        );
+    }
+    let d1 = attrs["_PRINCIPAL_DIRECTION_1"].as_u64().unwrap() as usize;
+    assert_eq!(doc["accessors"][d1]["type"], "VEC3");
+    // The data's z is glTF's y (and the data's y glTF's −z): d2 = z becomes (0, 1, 0).
+    let bin = glb_bin(&bytes);
+    let at = |acc: usize| {
+        let view = doc["accessors"][acc]["bufferView"].as_u64().unwrap() as usize;
+        let off = doc["bufferViews"][view]["byteOffset"].as_u64().unwrap() as usize;
+        (0..3)
+            .map(|k| f32::from_le_bytes(bin[off + 4 * k..off + 4 * k + 4].try_into().unwrap()))
+            .collect::<Vec<f32>>()
+    };
+    let d2 = attrs["_PRINCIPAL_DIRECTION_2"].as_u64().unwrap() as usize;
+    assert_eq!(at(d2), vec![0.0, 1.0, 0.0]);
+    let k1 = attrs["_PRINCIPAL_CURVATURE_1"].as_u64().unwrap() as usize;
+    assert_eq!(at(k1)[0], 2.0);
+    // Our reader takes K and H back (the directions are the writer's extra, not read).
+    let back = format("glb").read(&bytes).unwrap();
+    assert_eq!(back.curvature.unwrap().principal(0), Some([2.0, 0.0]));
+}
+
+/// The binary chunk of a `.glb` (after the JSON chunk and its 8-byte header).
+fn glb_bin(bytes: &[u8]) -> &[u8] {
+    let n = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    &bytes[20 + n + 8..]
+}
