@@ -46,7 +46,9 @@ use crate::output::{ensure_dir, pretty_json, write_result, Staged};
 use crate::study::StudyError;
 use experiments::shard::{check_line, ShardError, MAX_LINE_BYTES};
 use experiments::sweep_tasks::grid::{self, Axes, Grid, Task, MANIFEST};
-use experiments::sweep_tasks::{check_schemes, find_task, join_results, run_grid_task};
+use experiments::sweep_tasks::{check_schemes, find_task, join_results, run_grid_task_keeping};
+
+mod curvature;
 
 /// A shard `i/n`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -249,11 +251,18 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         check_manifest(&out_dir, &manifest)?;
     }
     let mut results = Vec::with_capacity(mine.len());
+    // The curvature along paths of the data-set tasks, for a whole run's plots (sampled as each
+    // task finishes; its surface is not kept).
+    let mut paths = Vec::new();
     let started = Instant::now();
     let bar = progress::Progress::bar("sweep", mine.len() as u64);
     for t in &mine {
         bar.stage(&t.id);
-        results.push(run_grid_task(t, &grid)?);
+        let (line, surface) = run_grid_task_keeping(t, &grid)?;
+        if !partial {
+            paths.extend(curvature::task_paths(t, &surface));
+        }
+        results.push(line);
         bar.inc(1);
     }
     bar.finish();
@@ -289,6 +298,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
             manifest_text.as_bytes(),
         )?;
         write_report(staged.path(), &grid.json(), results, &lines)?;
+        curvature::write(staged.path(), &paths)?;
         staged.commit()?;
         say!(
             "sweep: {} tasks in {:.2} s → {}",

@@ -18,6 +18,7 @@
 //! machine refused).
 
 pub mod grid;
+pub mod paths;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -213,6 +214,23 @@ fn scheme_options(t: &Task) -> surface::SchemeOptions {
 /// `merge` checks them (a measure that is not finite is an error naming the task, never a
 /// `null` passed off as a number).
 pub fn run_grid_task(t: &Task, grid: &Grid) -> Result<Value, ExperimentError> {
+    run_grid_task_keeping(t, grid).map(|(v, _)| v)
+}
+
+/// The surface a task measured: its tessellation (in world coordinates) and the true surface
+/// of its data set, if any; what the sweep's curvature plots ([`paths`]) read.
+pub struct TaskSurface {
+    /// The tessellation the task's errors were measured on.
+    pub tessellation: surface::Tessellation,
+    /// The data set's true surface (`None` for a mesh file).
+    pub truth: Option<std::sync::Arc<dyn surface::AnalyticSurface>>,
+}
+
+/// [`run_grid_task`], also giving back the surface it measured.
+pub fn run_grid_task_keeping(
+    t: &Task,
+    grid: &Grid,
+) -> Result<(Value, TaskSurface), ExperimentError> {
     let start = Instant::now();
     let subject = crate::datasets::load_subject(&t.data, t.resolution, &grid.estimate)?;
     let mesh = &subject.mesh;
@@ -232,6 +250,7 @@ pub fn run_grid_task(t: &Task, grid: &Grid) -> Result<Value, ExperimentError> {
     }
     let mut v = t.identity();
     v["faces"] = json!(mesh.num_faces());
+    let tessellation: surface::Tessellation;
     if t.subdivision {
         let (tess, to_limit) = crate::subdivision::subdivision_surface(
             mesh,
@@ -253,6 +272,7 @@ pub fn run_grid_task(t: &Task, grid: &Grid) -> Result<Value, ExperimentError> {
         v["errors"] = serde_json::to_value(errors).unwrap_or(Value::Null);
         v["curve_measures"] = Value::Null;
         v["fit_time_seconds"] = json!(fit_time);
+        tessellation = tess;
     } else {
         let options = MethodOptions {
             solver: t.solver.unwrap_or(SolverKind::ExactPenalty),
@@ -328,11 +348,16 @@ pub fn run_grid_task(t: &Task, grid: &Grid) -> Result<Value, ExperimentError> {
             },
         };
         v["fit_time_seconds"] = json!(fit_time);
+        tessellation = tess;
     }
     v["task_time_seconds"] = json!(start.elapsed().as_secs_f64());
     check_line(t.index + 1, &v, &t.identity()).map_err(|source| StudyError::BadResult {
         task: t.id.clone(),
         source,
     })?;
-    Ok(v)
+    let surface = TaskSurface {
+        tessellation,
+        truth: subject.truth.clone(),
+    };
+    Ok((v, surface))
 }

@@ -421,3 +421,41 @@ fn a_link_to_a_directory_is_an_output_directory() {
         .file_type()
         .is_symlink());
 }
+
+/// A whole run plots K and H along the data sets' paths, every task against the truth; a mesh
+/// file and the octahedron have no paths, and a sharded run draws nothing (its lines hold no
+/// surfaces).
+#[test]
+fn a_whole_run_plots_the_curvature_along_paths() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let grid = ["--data", "ring,octa", "--curves", "chord,dbhs"];
+    let (code, err) = run(&[&["sweep", "-o", out][..], &grid].concat());
+    assert_eq!(code, 0, "{err}");
+    let md = std::fs::read_to_string(dir.path().join("curvature.md")).unwrap();
+    assert!(md.contains("![ring](curvature-ring.png)"), "{md}");
+    assert!(!md.contains("octa"), "{md}");
+    for ext in ["png", "svg"] {
+        let f = dir.path().join(format!("curvature-ring.{ext}"));
+        assert!(
+            std::fs::metadata(&f).unwrap().len() > 10_000,
+            "{}",
+            f.display()
+        );
+    }
+    let svg = std::fs::read_to_string(dir.path().join("curvature-ring.svg")).unwrap();
+    for label in [
+        "true surface",
+        "chord",
+        "dbhs",
+        "K along the outer equator",
+        "H along the meridian",
+    ] {
+        assert!(svg.contains(label), "{label}");
+    }
+    let shards = tempfile::tempdir().unwrap();
+    let s = shards.path().to_str().unwrap();
+    let (code, err) = run(&[&["sweep", "--shard", "0/1", "-o", s][..], &grid].concat());
+    assert_eq!(code, 0, "{err}");
+    assert!(!shards.path().join("curvature.md").exists());
+}
