@@ -20,6 +20,9 @@ use crate::output::write_result;
 /// named in `curvature.md` as left out).
 pub const MAX_SERIES: usize = 12;
 
+/// Which column of a task's samples a chart draws.
+type Column = fn(&PathSamples) -> &Vec<f64>;
+
 /// One task's samples along its data set's paths.
 pub struct TaskPaths {
     /// The task's id.
@@ -97,7 +100,7 @@ pub fn write(out: &Path, tasks: &[TaskPaths]) -> Result<(), ExperimentError> {
         let shown = &mine[..mine.len().min(MAX_SERIES)];
         let mut charts = Vec::new();
         for (k, (name, x_label, first)) in mine[0].paths.iter().enumerate() {
-            let columns: [(&str, &Vec<f64>, fn(&PathSamples) -> &Vec<f64>); 2] = [
+            let columns: [(&str, &Vec<f64>, Column); 2] = [
                 ("K", &first.k_true, |s| &s.k),
                 ("H", &first.h_true, |s| &s.h),
             ];
