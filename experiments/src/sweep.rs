@@ -465,6 +465,14 @@ fn or_dash(v: &Value, fmt: impl Fn(f64) -> String) -> String {
 
 /// Writes `results.jsonl` (`lines`), `report.json` (the grid's `options` and every result) and
 /// `report.md` (one table row a task) into `out`.
+/// A ratio summary of `surface::measure::ends` as `median (share above)`, `—` where absent.
+fn ends(v: &Value) -> String {
+    match (v["median"].as_f64(), v["above_reference"].as_f64()) {
+        (Some(m), Some(a)) => format!("{m:.3} ({:.0} %)", 100.0 * a),
+        _ => "—".into(),
+    }
+}
+
 fn write_report(
     out: &Path,
     options: &Value,
@@ -482,11 +490,11 @@ fn write_report(
     );
     // The same text for a whole run and for its tasks and shards merged (the merged report
     // equals the whole one): the grid below says what ran, `scripts/results.sh` the command.
-    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` over the grid given below (or its tasks and shards joined by `merge`; `scripts/results.sh` has the commands of the committed sweeps). Every task of the grid below (by default every data set at its default resolution × every curve construction × every solver of `optimized`, with the modified Shirman–Séquin scheme at β = 1/3, c = 1), tessellated at the task's segments per patch edge (default 4), measured against the true surface (— for a mesh file, which has none); a subdivision scheme (`--scheme loop|loop-warren|catmull-clark`) is measured at the limit of three levels with curvature estimated on that mesh, its data-to-limit distance in `report.json`. One line a task in `results.jsonl`. Grid: `{options}`.\n");
-    let _ = writeln!(md, "| task | faces | position max | normal RMS (°) | K RMS | H RMS | G1 (rad) | κ error max | shortest α | fallbacks | fit (ms) |");
+    let _ = writeln!(md, "Written by `cargo run --release -p experiments -- sweep` over the grid given below (or its tasks and shards joined by `merge`; `scripts/results.sh` has the commands of the committed sweeps). Every task of the grid below (by default every data set at its default resolution × every curve construction × every solver of `optimized`, with the modified Shirman–Séquin scheme at β = 1/3, c = 1), tessellated at the task's segments per patch edge (default 4), measured against the true surface (— for a mesh file, which has none); a subdivision scheme (`--scheme loop|loop-warren|catmull-clark`) is measured at the limit of three levels with curvature estimated on that mesh, its data-to-limit distance in `report.json`. One line a task in `results.jsonl`. *ends/middle* is the seeds' finding that boundary curves gather their curvature near their ends (`surface::measure::ends`): the mean |curvature| over the two end fifths of each edge against the middle (0.3–0.7), for the curve itself, for the surface's normal curvature along the edge, and for the true surface along the same directions; each cell is the median over the edges and, in brackets, the share of edges above the truth's ratio (above 1 for the curve and the truth). Grid: `{options}`.\n");
+    let _ = writeln!(md, "| task | faces | position max | normal RMS (°) | K RMS | H RMS | G1 (rad) | κ error max | shortest α | fallbacks | ends/middle: curve | surface | truth | fit (ms) |");
     let _ = writeln!(
         md,
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for r in &results {
         let e = &r["errors"];
@@ -499,7 +507,7 @@ fn write_report(
         let f = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
         let _ = writeln!(
             md,
-            "| {} | {} | {:.3e} | {:.3} | {:.4} | {:.4} | {} | {} | {} | {} | {:.2} |",
+            "| {} | {} | {:.3e} | {:.3} | {:.4} | {:.4} | {} | {} | {} | {} | {} | {} | {} | {:.2} |",
             r["task"].as_str().unwrap_or("?"),
             r["faces"],
             f(&e["position_max"]),
@@ -510,6 +518,9 @@ fn write_report(
             or_dash(&c["end_curvature_error_max"], |x| format!("{x:.4}")),
             or_dash(&c["shortest_alpha"], |x| format!("{x:.4}")),
             fallbacks,
+            ends(&r["ends"]["curves"]),
+            ends(&r["ends"]["surface"]),
+            ends(&r["ends"]["truth"]),
             f(&r["fit_time_seconds"]) * 1e3
         );
     }

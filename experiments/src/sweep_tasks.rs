@@ -347,6 +347,11 @@ pub fn run_grid_task_keeping(
                 }
             },
         };
+        // The seeds' finding on boundary curves (curvature gathered at their ends), measured
+        // on the curves and on the surface along them, against the truth's own ratio.
+        v["ends"] =
+            serde_json::to_value(surface::ends::measure(mesh, &f, subject.truth.as_deref()))
+                .unwrap_or(Value::Null);
         v["fit_time_seconds"] = json!(fit_time);
         tessellation = tess;
     }

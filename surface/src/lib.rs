@@ -55,7 +55,7 @@ pub mod tessellate;
 pub use construct::{fallback, shirman_sequin};
 pub use fit::{fairing, stream};
 pub use io::patch_io;
-pub use measure::{curve_stats, folds, g1, interior, metrics, patch_g1, sharp};
+pub use measure::{curve_stats, ends, folds, g1, interior, metrics, patch_g1, sharp};
 pub use patch::{beztri, side_vertex};
 pub use tessellate::{tessellate_fit, weld};
 

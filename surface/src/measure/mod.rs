@@ -3,6 +3,7 @@
 //! folds, and sharp features (kinks on smooth data, creases kept, flat regions kept flat).
 
 pub mod curve_stats;
+pub mod ends;
 pub mod folds;
 pub mod g1;
 pub mod interior;
