@@ -148,6 +148,101 @@ fn error_cells(errors: Option<&surface::SurfaceErrors>) -> String {
     }
 }
 
+/// The measures the schemes are ranked by: the record key (a path of `/`-separated keys), how
+/// the report names it, lower is better for all.
+const RANKED: [(&str, &str); 5] = [
+    ("errors/gaussian_rms", "K RMS"),
+    ("errors/mean_rms", "H RMS"),
+    ("errors/normal_rms_degrees", "normal RMS (°)"),
+    ("errors/position_max", "position max"),
+    ("g1_exterior_radians", "G1 across edges (rad)"),
+];
+
+/// A record's number at `path` (`errors/gaussian_rms`).
+fn at(r: &Value, path: &str) -> Option<f64> {
+    path.split('/').try_fold(r, |v, k| v.get(k))?.as_f64()
+}
+
+/// The data set's ranking per measure and what the numbers say, in words: the best and worst
+/// scheme of each measure, which schemes are G1 to rounding and which break G1 by how much,
+/// and whether the seeds' end-curvature finding shows (`surface::ends`).
+fn ranking(records: &[&Value]) -> String {
+    let mut md = String::from("\n**Ranking per measure** (best first; subdivision schemes have no G1 figure):\n\n| measure | ranking |\n|---|---|\n");
+    let mut words = Vec::new();
+    for (key, label) in RANKED {
+        let mut v: Vec<(&str, f64)> = records
+            .iter()
+            .filter_map(|r| Some((r["scheme"].as_str()?, at(r, key)?)))
+            .filter(|(_, x)| x.is_finite())
+            .collect();
+        if v.is_empty() {
+            continue;
+        }
+        v.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let list: Vec<String> = v.iter().map(|(s, x)| format!("{s} ({x:.3e})")).collect();
+        md.push_str(&format!("| {label} | {} |\n", list.join(" < ")));
+        if key.starts_with("errors/") && v.len() > 1 {
+            let (best, worst) = (v[0], v[v.len() - 1]);
+            words.push(format!(
+                "{label}: {} is best ({:.3e}), {} worst ({:.3e}, {:.1}× the best)",
+                best.0,
+                best.1,
+                worst.0,
+                worst.1,
+                if best.1 > 0.0 {
+                    worst.1 / best.1
+                } else {
+                    f64::INFINITY
+                }
+            ));
+        }
+    }
+    let g1: Vec<&str> = records
+        .iter()
+        .filter(|r| {
+            at(r, "g1_exterior_radians").is_some_and(|x| x < G1_CLAIM)
+                && at(r, "g1_interior_radians").is_some_and(|x| x < G1_CLAIM)
+        })
+        .filter_map(|r| r["scheme"].as_str())
+        .collect();
+    let broken: Vec<String> = records
+        .iter()
+        .filter_map(|r| {
+            let x = at(r, "g1_exterior_radians")?.max(at(r, "g1_interior_radians")?);
+            (x >= G1_CLAIM)
+                .then(|| format!("{} ({x:.1e} rad)", r["scheme"].as_str().unwrap_or("?")))
+        })
+        .collect();
+    words.push(format!(
+        "G1 to rounding (below {G1_CLAIM:e} rad, where reflection lines run on across patch boundaries): {}; normals jump across boundaries (the lines break there, the shaded pictures show creases) for {}",
+        if g1.is_empty() { "none".into() } else { g1.join(", ") },
+        if broken.is_empty() { "none".into() } else { broken.join(", ") }
+    ));
+    let ends: Vec<String> = records
+        .iter()
+        .filter_map(|r| {
+            let c = at(r, "ends/surface/median")?;
+            let t = at(r, "ends/truth/median");
+            Some(format!(
+                "{} {c:.3}{}",
+                r["scheme"].as_str().unwrap_or("?"),
+                t.map(|t| format!(" (truth {t:.3})")).unwrap_or_default()
+            ))
+        })
+        .collect();
+    if !ends.is_empty() {
+        words.push(format!(
+            "Surface curvature at the ends of the edges against their middle (median ratio; above the truth's where curvature gathers at the ends, the seeds' finding): {}",
+            ends.join(", ")
+        ));
+    }
+    md.push('\n');
+    for w in words {
+        md.push_str(&format!("- {w}.\n"));
+    }
+    md
+}
+
 /// Runs the study.
 pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
     let start = Instant::now();
@@ -264,6 +359,7 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
                 "segments_per_patch_edge": s,
                 "triangles": tess.faces.len(),
                 "errors": serde_json::to_value(errors).unwrap_or(Value::Null),
+                "ends": serde_json::to_value(surface::ends::measure(mesh, &f, truth)).unwrap_or(Value::Null),
                 "fit_time_seconds": fit_ms / 1e3,
             }));
             tessellations.push((entry.name, tess));
@@ -375,6 +471,36 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
             &out.join(&file),
         )?;
         let _ = writeln!(md, "\n![{name}]({file})");
+        // Curvature along the data set's paths, every scheme against the truth.
+        let sampled: Vec<(String, Vec<crate::sweep::curvature::Sampled>)> = tessellations
+            .iter()
+            .map(|(scheme, t)| {
+                (
+                    scheme.to_string(),
+                    crate::sweep::curvature::sample_paths(name, t, truth),
+                )
+            })
+            .filter(|(_, p)| !p.is_empty())
+            .collect();
+        if !sampled.is_empty() {
+            let stem = format!("curvature-{}", file.trim_end_matches(".png"));
+            let rows: Vec<(String, &[crate::sweep::curvature::Sampled])> = sampled
+                .iter()
+                .map(|(l, p)| (l.clone(), p.as_slice()))
+                .collect();
+            let stems = crate::sweep::curvature::figure(
+                &out,
+                &stem,
+                &format!("{name}: curvature along paths, every scheme against the true surface"),
+                &rows,
+            )?;
+            let _ = writeln!(md, "\n{}\n", crate::sweep::curvature::description());
+            for s in stems {
+                let _ = writeln!(md, "![{name}: curvature along paths]({s}.png)\n");
+            }
+        }
+        let mine: Vec<&Value> = records.iter().filter(|r| r["dataset"] == name).collect();
+        md.push_str(&ranking(&mine));
     }
     let report = json!({
         "experiment": "schemes",

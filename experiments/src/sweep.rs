@@ -48,7 +48,7 @@ use experiments::shard::{check_line, ShardError, MAX_LINE_BYTES};
 use experiments::sweep_tasks::grid::{self, Axes, Grid, Task, MANIFEST};
 use experiments::sweep_tasks::{check_schemes, find_task, join_results, run_grid_task_keeping};
 
-mod curvature;
+pub(crate) mod curvature;
 
 /// A shard `i/n`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

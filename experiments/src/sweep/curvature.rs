@@ -16,9 +16,15 @@ use render::{LineChart, Series};
 use crate::error::ExperimentError;
 use crate::output::write_result;
 
-/// Most tasks drawn in one figure: beyond a dozen series a legend is not read (the rest are
-/// named in `curvature.md` as left out).
-pub const MAX_SERIES: usize = 12;
+/// Series per figure besides the truth: the chart palette's six colours (Okabe–Ito) less the
+/// truth's, so no two series of a figure share a colour; more rows go to further figures.
+pub const SERIES_PER_FIGURE: usize = 5;
+
+/// Most figures per data set: 40 tasks drawn; the rest are named in the report as left out.
+pub const MAX_FIGURES: usize = 8;
+
+/// Most rows drawn for one data set.
+pub const MAX_SERIES: usize = SERIES_PER_FIGURE * MAX_FIGURES;
 
 /// Which column of a task's samples a chart draws.
 type Column = fn(&PathSamples) -> &Vec<f64>;
@@ -30,27 +36,22 @@ pub struct TaskPaths {
     /// Its data set and resolution, the figure it goes in (`ring`, `sphere@3`).
     group: String,
     /// Per path: its name, abscissa label and samples.
-    paths: Vec<(&'static str, &'static str, PathSamples)>,
+    paths: Vec<Sampled>,
 }
 
 /// The samples of task `t` on its surface; `None` for a task without paths (a mesh file, the
 /// octahedron).
 pub fn task_paths(t: &Task, surface: &TaskSurface) -> Option<TaskPaths> {
-    let paths = paths_of(&t.data);
-    if t.file || paths.is_empty() {
+    if t.file || paths_of(&t.data).is_empty() {
         return None;
     }
-    let truth = surface.truth.as_deref();
     Some(TaskPaths {
         id: t.id.clone(),
         group: match t.resolution {
             Some(r) => format!("{}@{r}", t.data),
             None => t.data.clone(),
         },
-        paths: paths
-            .iter()
-            .map(|p| (p.name, p.x_label, sample(&surface.tessellation, truth, p)))
-            .collect(),
+        paths: sample_paths(&t.data, &surface.tessellation, surface.truth.as_deref()),
     })
 }
 
@@ -93,13 +94,86 @@ pub fn write(out: &Path, tasks: &[TaskPaths]) -> Result<(), ExperimentError> {
     let mut md = String::from("# Sweep: curvature along paths\n\n");
     let _ = writeln!(
         md,
-        "Written with `report.md` by a whole `sweep` run. K and H (H > 0 on a sphere with outward normals) of each task's tessellation along curves of its data set's surface (the ring's outer equator and its meridian u = 0, the sphere's and the capsule's meridian y = 0) against the true surface at the same points (the first series). Each chart's y axis spans the true range widened by its span on either side; samples beyond are drawn at the edge and counted in the chart's title. A sample is the tessellation vertex nearest the curve's plane in each of {BINS} bins of the abscissa, within {MAX_OFFSET} of the plane.\n"
+        "Written with `report.md` by a whole `sweep` run. {}\n",
+        description()
     );
     for group in groups {
         let mine: Vec<&TaskPaths> = tasks.iter().filter(|t| t.group == group).collect();
-        let shown = &mine[..mine.len().min(MAX_SERIES)];
+        let prefix = format!("{}/", group.split('@').next().unwrap_or(group));
+        let rows: Vec<(String, &[Sampled])> = mine
+            .iter()
+            .map(|t| {
+                let label = t.id.strip_prefix(&prefix).unwrap_or(&t.id).to_string();
+                (label, t.paths.as_slice())
+            })
+            .collect();
+        let stem = format!("curvature-{}", group.replace('@', "-"));
+        let stems = figure(
+            out,
+            &stem,
+            &format!("{group}: curvature along paths, every task against the true surface"),
+            &rows,
+        )?;
+        let _ = writeln!(md, "## {group}\n");
+        for s in stems {
+            let _ = writeln!(md, "![{group}]({s}.png)\n");
+        }
+        if mine.len() > MAX_SERIES {
+            let left: Vec<&str> = mine[MAX_SERIES..].iter().map(|t| t.id.as_str()).collect();
+            let _ = writeln!(
+                md,
+                "Left out of the figure (more than {MAX_SERIES} tasks): {}.\n",
+                left.join(", ")
+            );
+        }
+    }
+    write_result(Some(&out.join("curvature.md")), md.as_bytes())?;
+    Ok(())
+}
+
+/// What the figures show, for the reports that include them.
+pub fn description() -> String {
+    format!("K and H (H > 0 on a sphere with outward normals) of each tessellation along curves of its data set's surface (the ring's outer equator and its meridian u = 0, the sphere's and the capsule's meridian y = 0) against the true surface at the same points (the first series). A sample is the tessellation vertex nearest the curve's plane in each of {BINS} bins of the abscissa, within {MAX_OFFSET} of the plane. Each chart's y axis spans the true range widened by its span on either side; samples beyond are drawn at the edge and counted in the chart's title (\"clipped\"). A figure draws at most five series besides the truth, so that no two share a colour.")
+}
+
+/// One path's name, abscissa label and samples.
+pub type Sampled = (&'static str, &'static str, PathSamples);
+
+/// The samples of `tess` along the paths of data set `data` (empty for one without paths).
+pub fn sample_paths(
+    data: &str,
+    tess: &surface::Tessellation,
+    truth: Option<&dyn surface::AnalyticSurface>,
+) -> Vec<Sampled> {
+    paths_of(data)
+        .iter()
+        .map(|p| (p.name, p.x_label, sample(tess, truth, p)))
+        .collect()
+}
+
+/// The figures of `rows` in `out`: per path a K and an H chart, the truth (from the first row)
+/// then each row as a series, [`SERIES_PER_FIGURE`] rows a figure (`stem.png`, or `stem-1.png`,
+/// `stem-2.png`, … when there are more), at most [`MAX_FIGURES`]. Returns the stems written.
+pub fn figure(
+    out: &Path,
+    stem: &str,
+    title: &str,
+    rows: &[(String, &[Sampled])],
+) -> Result<Vec<String>, ExperimentError> {
+    let Some((_, first_paths)) = rows.first() else {
+        return Ok(Vec::new());
+    };
+    let chunks: Vec<&[(String, &[Sampled])]> =
+        rows.chunks(SERIES_PER_FIGURE).take(MAX_FIGURES).collect();
+    let mut stems = Vec::new();
+    for (c, shown) in chunks.iter().enumerate() {
+        let name_of = if chunks.len() == 1 {
+            stem.to_string()
+        } else {
+            format!("{stem}-{}", c + 1)
+        };
         let mut charts = Vec::new();
-        for (k, (name, x_label, first)) in mine[0].paths.iter().enumerate() {
+        for (k, (name, x_label, first)) in first_paths.iter().enumerate() {
             let columns: [(&str, &Vec<f64>, Column); 2] = [
                 ("K", &first.k_true, |s| &s.k),
                 ("H", &first.h_true, |s| &s.h),
@@ -111,20 +185,18 @@ pub fn write(out: &Path, tasks: &[TaskPaths]) -> Result<(), ExperimentError> {
                     label: "true surface".into(),
                     points: points(&first.x, truth, w),
                 }];
-                let prefix = format!("{}/", group.split('@').next().unwrap_or(group));
-                for t in shown {
-                    let s = &t.paths[k].2;
+                for (label, paths) in shown.iter() {
+                    let Some((_, _, s)) = paths.get(k) else {
+                        continue;
+                    };
                     clipped += of(s).iter().filter(|v| **v < w.0 || **v > w.1).count();
                     series.push(Series {
-                        label: t.id.strip_prefix(&prefix).unwrap_or(&t.id).to_string(),
+                        label: label.clone(),
                         points: points(&s.x, of(s), w),
                     });
                 }
                 let note = if clipped > 0 {
-                    format!(
-                        " ({clipped} samples beyond [{:.2}, {:.2}] drawn at its edge)",
-                        w.0, w.1
-                    )
+                    format!(" ({clipped} clipped)")
                 } else {
                     String::new()
                 };
@@ -137,24 +209,19 @@ pub fn write(out: &Path, tasks: &[TaskPaths]) -> Result<(), ExperimentError> {
                 });
             }
         }
-        let stem = format!("curvature-{}", group.replace('@', "-"));
+        let part = if chunks.len() > 1 {
+            format!(" ({} of {})", c + 1, chunks.len())
+        } else {
+            String::new()
+        };
         render::write_line_charts(
             &charts,
             2,
-            &format!("{group}: curvature along paths, every task against the true surface"),
-            &out.join(format!("{stem}.png")),
-            &out.join(format!("{stem}.svg")),
+            &format!("{title}{part}"),
+            &out.join(format!("{name_of}.png")),
+            &out.join(format!("{name_of}.svg")),
         )?;
-        let _ = writeln!(md, "## {group}\n\n![{group}]({stem}.png)\n");
-        if mine.len() > shown.len() {
-            let left: Vec<&str> = mine[shown.len()..].iter().map(|t| t.id.as_str()).collect();
-            let _ = writeln!(
-                md,
-                "Left out of the figure (more than {MAX_SERIES} tasks): {}.\n",
-                left.join(", ")
-            );
-        }
+        stems.push(name_of);
     }
-    write_result(Some(&out.join("curvature.md")), md.as_bytes())?;
-    Ok(())
+    Ok(stems)
 }
