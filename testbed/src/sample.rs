@@ -15,6 +15,33 @@ pub struct CurvatureFields {
     pub kg: bool,
     /// Mean curvature `km`.
     pub km: bool,
+    /// Principal curvatures `k1 ≥ k2` and their unit directions `d1`, `d2` (`tess --kp`).
+    pub kp: bool,
+}
+
+/// The principal curvatures and directions at one sample, in the pipeline's sign (that of
+/// `km`: `k1 + k2 = 2 km`, the unit sphere with outward normals has `k1 = k2 = −1`), `k1 ≥ k2`,
+/// `d2 = n × d1`. From the patch's exact shape tensor: `estimate::principal_frame` gives them
+/// in the exported sign (`κ′1 ≥ κ′2`, directions `d′1`, `d′2`), whose negation reverses the
+/// order: `k1 = −κ′2` along `d′2`, `k2 = −κ′1` along `d′1`, and `n × d′2 = −d′1` keeps the
+/// frame right-handed.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Principal {
+    /// `[k1, k2]`, `k1 ≥ k2`.
+    pub k: [f64; 2],
+    /// `[d1, d2]`, unit.
+    pub d: [Vector3<f64>; 2],
+}
+
+impl Principal {
+    /// The principal frame of shape tensor `s` at normal `n` (the pipeline's sign).
+    pub fn of(s: &nalgebra::Matrix3<f64>, n: &Vector3<f64>) -> Self {
+        let p = estimate::principal_frame(s, n);
+        Principal {
+            k: [-p.k2, -p.k1],
+            d: [p.d2, -p.d1],
+        }
+    }
 }
 
 /// One tessellated vertex.
@@ -80,8 +107,9 @@ pub fn carried_fields(patch: &Tape, out: &mut Vec<std::ops::Range<usize>>) {
 /// tokens, their strings not at all): `tess`'s records.
 pub(crate) struct TriangleTapes {
     tape: Tape,
-    /// Spans of `type`, `Triangle`, `vertex1..3`, `pos`, `norm`, `kg`, `km`.
-    names: [Span; 9],
+    /// Spans of `type`, `Triangle`, `vertex1..3`, `pos`, `norm`, `kg`, `km`, `k1`, `k2`, `d1`,
+    /// `d2`.
+    names: [Span; 13],
     /// Token ranges (key and value) of the carried fields.
     carried: Vec<std::ops::Range<usize>>,
 }
@@ -91,7 +119,7 @@ impl TriangleTapes {
     pub(crate) fn new() -> Self {
         TriangleTapes {
             tape: Tape::default(),
-            names: [Span { start: 0, len: 0 }; 9],
+            names: [Span { start: 0, len: 0 }; 13],
             carried: Vec::new(),
         }
     }
@@ -101,7 +129,8 @@ impl TriangleTapes {
         self.tape.clear();
         self.tape.text.extend_from_slice(&patch.text);
         for (k, n) in [
-            "type", "Triangle", "vertex1", "vertex2", "vertex3", "pos", "norm", "kg", "km",
+            "type", "Triangle", "vertex1", "vertex2", "vertex3", "pos", "norm", "kg", "km", "k1",
+            "k2", "d1", "d2",
         ]
         .iter()
         .enumerate()
@@ -111,11 +140,12 @@ impl TriangleTapes {
         carried_fields(patch, &mut self.carried);
     }
 
-    /// The tape of one triangle.
+    /// The tape of one triangle (`principal`: its vertices' frames, written when `fields.kp`).
     pub(crate) fn build(
         &mut self,
         patch: &Tape,
         tri: &[Sample; 3],
+        principal: Option<[Principal; 3]>,
         fields: CurvatureFields,
     ) -> &Tape {
         let n = self.names;
@@ -144,6 +174,19 @@ impl TriangleTapes {
                 toks.push(Tok::Key(n[8]));
                 toks.push(Tok::Float(smp.km));
                 count += 1;
+            }
+            if let (true, Some(p)) = (fields.kp, principal) {
+                let p = p[vi];
+                toks.push(Tok::Key(n[9]));
+                toks.push(Tok::Float(p.k[0]));
+                toks.push(Tok::Key(n[10]));
+                toks.push(Tok::Float(p.k[1]));
+                for (key, d) in [(n[11], p.d[0]), (n[12], p.d[1])] {
+                    toks.push(Tok::Key(key));
+                    toks.push(Tok::Arr { items: 3, len: 3 });
+                    toks.extend(d.iter().map(|&x| Tok::Float(x)));
+                }
+                count += 4;
             }
             toks[obj] = Tok::Obj {
                 fields: count,

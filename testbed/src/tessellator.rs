@@ -19,7 +19,7 @@ use nalgebra::{Point3, Vector3};
 use surface::beztri::{Derivatives, SampleWeights};
 use surface::BezierTriangle;
 
-use crate::sample::{CurvatureFields, Sample};
+use crate::sample::{CurvatureFields, Principal, Sample};
 
 /// One patch's tessellation with shared vertices: its samples, and its triangles as indices
 /// into them (counter-clockwise, in the order of `surface::tessellate`).
@@ -29,6 +29,9 @@ pub struct IndexedPatch {
     pub samples: Vec<Sample>,
     /// The triangles: indices into `samples`.
     pub triangles: Vec<[u32; 3]>,
+    /// Each sample's principal curvatures and directions, when the tessellator was asked for
+    /// them ([`PatchTessellator::with_principal`]); empty otherwise.
+    pub principal: Vec<Principal>,
 }
 
 /// A value of a tessellated patch that is not finite ([`IndexedPatch::first_non_finite`]).
@@ -54,6 +57,16 @@ impl IndexedPatch {
         self.triangles[k].map(|i| self.samples[i as usize])
     }
 
+    /// Triangle `k`'s principal frames, when they were computed.
+    pub fn triangle_principal(&self, k: usize) -> Option<[Principal; 3]> {
+        let t = self.triangles.get(k)?;
+        Some([
+            *self.principal.get(t[0] as usize)?,
+            *self.principal.get(t[1] as usize)?,
+            *self.principal.get(t[2] as usize)?,
+        ])
+    }
+
     /// The first value that is not finite among the positions, the normals and the curvatures
     /// `fields` asks for (`None`: every value written is finite).
     pub fn first_non_finite(&self, fields: CurvatureFields) -> Option<NonFinite> {
@@ -71,6 +84,14 @@ impl IndexedPatch {
                 .or_else(|| s.norm.iter().find_map(|&x| bad("norm", x)))
                 .or_else(|| fields.kg.then(|| bad("kg", s.kg)).flatten())
                 .or_else(|| fields.km.then(|| bad("km", s.km)).flatten())
+                .or_else(|| {
+                    let p = self.principal.get(i).filter(|_| fields.kp)?;
+                    p.k.iter().find_map(|&k| bad("kp", k)).or_else(|| {
+                        p.d.iter()
+                            .flat_map(|d| d.iter())
+                            .find_map(|&x| bad("kp", x))
+                    })
+                })
         })
     }
 }
@@ -159,6 +180,14 @@ impl UnitFrame {
     /// A unit-frame point in the world, `c + σ q`.
     pub fn to_world(&self, q: &Point3<f64>) -> Point3<f64> {
         Point3::from(self.center + q.coords.map(|x| scale_pow2(x, self.exponent)))
+    }
+
+    /// A unit-frame principal frame in the world: curvatures `k_q/σ`, directions unchanged.
+    pub fn principal_to_world(&self, p: &Principal) -> Principal {
+        Principal {
+            k: p.k.map(|k| scale_pow2(k, -self.exponent)),
+            d: p.d,
+        }
     }
 
     /// A unit-frame sample in the world: position `c + σ q`, normal unchanged, `K_q/σ²`,
@@ -326,6 +355,8 @@ enum Evaluator {
 #[derive(Debug)]
 pub struct PatchTessellator {
     s: usize,
+    /// Compute each sample's principal frame too ([`PatchTessellator::with_principal`]).
+    principal: bool,
     evaluators: HashMap<usize, Evaluator>,
     indexed: IndexedPatch,
     counts: TessCounts,
@@ -344,10 +375,19 @@ impl PatchTessellator {
         }
         Ok(PatchTessellator {
             s,
+            principal: false,
             evaluators: HashMap::new(),
             indexed: IndexedPatch::default(),
             counts: TessCounts::default(),
         })
+    }
+
+    /// This tessellator, computing each sample's principal curvatures and directions as well
+    /// (into [`IndexedPatch::principal`]) when `on` (`tess --kp`): one 2 × 2 eigenproblem a
+    /// sample, skipped otherwise.
+    pub fn with_principal(mut self, on: bool) -> Self {
+        self.principal = on;
+        self
     }
 
     /// What has been counted so far.
@@ -383,6 +423,7 @@ impl PatchTessellator {
     ) -> Result<Outcome, surface::TessError> {
         out.samples.clear();
         out.triangles.clear();
+        out.principal.clear();
         self.counts.patches += 1;
         let Some(frame) = UnitFrame::of(patch.points()) else {
             self.counts.degenerate += 1;
@@ -400,6 +441,7 @@ impl PatchTessellator {
             }
         });
         let mut regular = true;
+        let principal = self.principal;
         let mut push = |d: Option<Derivatives>| {
             let Some((d, c)) = d.and_then(|d| surface::beztri::curvature_of(&d).map(|c| (d, c)))
             else {
@@ -411,6 +453,9 @@ impl PatchTessellator {
                 kg: c.gaussian,
                 km: c.mean,
             });
+            if principal {
+                out.principal.push(Principal::of(&c.shape, &c.normal));
+            }
             true
         };
         match evaluator {
@@ -459,6 +504,9 @@ impl PatchTessellator {
         for smp in &mut out.samples {
             *smp = frame.sample_to_world(smp);
         }
+        for p in &mut out.principal {
+            *p = frame.principal_to_world(p);
+        }
         // Sample indices fit u32 for any s whose samples fit in memory (and `tess` allows at
         // most MAX_SEGMENTS).
         let at = |i: usize, j: usize| local(i, j) as u32;
@@ -484,7 +532,7 @@ impl PatchTessellator {
         frame: &UnitFrame,
         out: &mut IndexedPatch,
     ) -> Result<Outcome, surface::TessError> {
-        let counts = general(unit, frame, self.s, out)?;
+        let counts = general(unit, frame, self.s, self.principal, out)?;
         self.counts.general += 1;
         self.counts.singular_samples += counts.singular_samples;
         self.counts.collapsed_triangles += counts.collapsed_triangles;
@@ -509,11 +557,21 @@ fn general(
     unit: &BezierTriangle,
     frame: &UnitFrame,
     s: usize,
+    principal: bool,
     out: &mut IndexedPatch,
 ) -> Result<TessCounts, surface::TessError> {
     out.samples.clear();
     out.triangles.clear();
+    out.principal.clear();
     let t = surface::tessellate(std::slice::from_ref(unit), s)?;
+    if principal {
+        out.principal.extend(
+            t.shapes
+                .iter()
+                .zip(&t.normals)
+                .map(|(sh, n)| frame.principal_to_world(&Principal::of(sh, n))),
+        );
+    }
     out.samples.extend((0..t.positions.len()).map(|i| {
         frame.sample_to_world(&Sample {
             pos: t.positions[i],
@@ -541,7 +599,7 @@ pub fn tessellate_patch(
 ) -> Result<Vec<[Sample; 3]>, surface::TessError> {
     let mut indexed = IndexedPatch::default();
     if let Some(frame) = UnitFrame::of(patch.points()) {
-        general(&unit_patch(patch, &frame)?, &frame, s, &mut indexed)?;
+        general(&unit_patch(patch, &frame)?, &frame, s, false, &mut indexed)?;
     } else if s == 0 {
         return Err(surface::TessError::ZeroDensity);
     }

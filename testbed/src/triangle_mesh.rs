@@ -219,21 +219,22 @@ impl TriangleMesh {
 #[derive(Debug)]
 pub struct MeshTapes {
     tape: Tape,
-    /// Spans of `type`, `TriangleMesh`, `pos`, `norm`, `kg`, `km`, `triangles`.
-    names: [Span; 7],
+    /// Spans of `type`, `TriangleMesh`, `pos`, `norm`, `kg`, `km`, `triangles`, `k1`, `k2`,
+    /// `d1`, `d2`.
+    names: [Span; 11],
 }
 
 impl Default for MeshTapes {
     fn default() -> Self {
         MeshTapes {
             tape: Tape::default(),
-            names: [Span { start: 0, len: 0 }; 7],
+            names: [Span { start: 0, len: 0 }; 11],
         }
     }
 }
 
 impl MeshTapes {
-    /// The record of `mesh`: the vertex columns (`kg`, `km` as `fields` asks), the
+    /// The record of `mesh`: the vertex columns (`kg`, `km`, `k1 k2 d1 d2` as `fields` asks), the
     /// triangles, then the token ranges `carried` of `patch` (key and value each) in order.
     pub fn build(
         &mut self,
@@ -244,9 +245,11 @@ impl MeshTapes {
     ) -> &Tape {
         self.tape.clear();
         self.tape.text.extend_from_slice(&patch.text);
-        for (k, n) in ["type", KIND, "pos", "norm", "kg", "km", TRIANGLES]
-            .iter()
-            .enumerate()
+        for (k, n) in [
+            "type", KIND, "pos", "norm", "kg", "km", TRIANGLES, "k1", "k2", "d1", "d2",
+        ]
+        .iter()
+        .enumerate()
         {
             self.names[k] = self.tape.push_text(n.as_bytes());
         }
@@ -283,6 +286,14 @@ impl MeshTapes {
         if fields.km {
             column1(toks, n[5], &mut smp.iter().map(|s| s.km));
             count += 1;
+        }
+        if fields.kp && mesh.principal.len() == smp.len() {
+            let p = &mesh.principal;
+            column1(toks, n[7], &mut p.iter().map(|p| p.k[0]));
+            column1(toks, n[8], &mut p.iter().map(|p| p.k[1]));
+            column3(toks, n[9], &mut p.iter().map(|p| p.d[0].into()));
+            column3(toks, n[10], &mut p.iter().map(|p| p.d[1].into()));
+            count += 4;
         }
         let m = mesh.triangles.len() as u32;
         toks.push(Tok::Key(n[6]));
@@ -394,6 +405,7 @@ mod tests {
         let mesh = IndexedPatch {
             samples: vec![sample(0.0), sample(1.0), sample(0.5)],
             triangles: vec![[0, 1, 2]],
+            principal: Vec::new(),
         };
         let mut carried = Vec::new();
         crate::sample::carried_fields(&patch, &mut carried);
@@ -403,6 +415,7 @@ mod tests {
         let fields = CurvatureFields {
             kg: true,
             km: false,
+            kp: false,
         };
         let t = b.build(&patch, &mesh, fields, &carried).clone();
         let v = t.to_value();

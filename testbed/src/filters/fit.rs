@@ -144,6 +144,7 @@ impl Filter for Fit {
             fields: CurvatureFields {
                 kg: args.kg,
                 km: args.km,
+                kp: false,
             },
             mesh: args.mesh,
         };

@@ -35,6 +35,11 @@ pub struct TessArgs {
     /// Write mean curvature `km` at the vertices.
     #[arg(long)]
     pub km: bool,
+    /// Write the principal curvatures `k1 ≥ k2` (the sign of `km`: k1 + k2 = 2 km) and their
+    /// unit directions `d1`, `d2` (d2 = norm × d1) at the vertices, from the patches' exact
+    /// second derivatives.
+    #[arg(long)]
+    pub kp: bool,
     /// Write one TriangleMesh record per patch (its vertices once, its triangles as
     /// indices) instead of s² Triangle records.
     #[arg(long)]
@@ -68,6 +73,7 @@ impl Filter for Tess {
         let fields = CurvatureFields {
             kg: args.kg,
             km: args.km,
+            kp: args.kp,
         };
         check_segments(Self::NAME, args.s)?;
         stream.filter(Self::NAME, &mut |p| tess(p, args.s, fields, records))
@@ -104,7 +110,7 @@ pub fn check_segments(filter: &str, s: usize) -> Result<(), FilterError> {
     Ok(())
 }
 
-/// `tess -s N [--kg] [--km] [--mesh]`: BezierTriangles to Triangles, or to one TriangleMesh
+/// `tess -s N [--kg] [--km] [--kp] [--mesh]`: BezierTriangles to Triangles, or to one TriangleMesh
 /// each (module docs for what is carried); what was counted (patches, degenerate ones,
 /// singular samples, collapsed triangles), also reported on standard error.
 pub fn tess(
@@ -114,7 +120,7 @@ pub fn tess(
     records: TessRecords,
 ) -> Result<TessCounts, FilterError> {
     check_segments("tess", s)?;
-    let mut tessellator = PatchTessellator::new(s)?;
+    let mut tessellator = PatchTessellator::new(s)?.with_principal(fields.kp);
     let mut degrees_checked = Vec::new();
     let mut rec = Record::default();
     let mut indexed = IndexedPatch::default();
@@ -146,6 +152,7 @@ pub fn tess(
             let what = match bad.field {
                 "kg" => "Gaussian curvature",
                 "km" => "mean curvature",
+                "kp" => "principal curvature or direction",
                 "norm" => "normal",
                 _ => "position",
             };
@@ -179,7 +186,12 @@ pub fn tess(
                 // list of triangles with their vertices is held beside them.
                 tapes.start(&rec.tape);
                 for k in 0..indexed.triangles.len() {
-                    let t = tapes.build(&rec.tape, &indexed.triangle(k), fields);
+                    let t = tapes.build(
+                        &rec.tape,
+                        &indexed.triangle(k),
+                        indexed.triangle_principal(k),
+                        fields,
+                    );
                     match pipe.writer.write_tape(t, rec.at) {
                         Err(e) if e.is_record_error() => pipe.bad(e)?,
                         other => other?,

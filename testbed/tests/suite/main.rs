@@ -6,6 +6,7 @@ mod examples;
 mod library;
 mod numerics;
 mod pipeline;
+mod principal;
 mod registry;
 mod shell_docs;
 mod stream_bounds;

@@ -540,7 +540,11 @@ fn damaged_streams_with_mesh_records_never_panic_in_any_filter() {
         .collect();
     let note = b"{\"type\":\"Note\",\"x\":[1,2]}\n";
     let mut seed = rng::SplitMix64::new(0x5851_f42d_4c95_7f2d);
-    let fields = CurvatureFields { kg: true, km: true };
+    let fields = CurvatureFields {
+        kg: true,
+        km: true,
+        kp: false,
+    };
     for format in ["json", "dstruct", "binary"] {
         let tris = ok(
             &["tess", "-s", "1", "--kg", "--km", "--format", format],
