@@ -14,6 +14,7 @@
 //! the terminal summary.
 
 mod figures;
+mod principal;
 mod render;
 mod report;
 mod surfaces;
@@ -118,6 +119,41 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     let out = staged.path().to_path_buf();
     let t = Instant::now();
     let pictures = render::render_all(&out, &surfaces::surfaces_view(&surfaces))?;
+    // The principal directions of the true ring, the optimized fit and a fit of the sphere.
+    let sphere =
+        surface::dataset_by_name("sphere", None).map_err(|source| ExperimentError::DataOption {
+            given: "--data sphere".into(),
+            source: Box::new(source),
+        })?;
+    let sphere_fit = crate::input::fit_kept(fitjob::FitOptions {
+        input: fitjob::InputOptions {
+            source: fitjob::Source::DataSet {
+                name: "sphere".into(),
+                resolution: None,
+            },
+            ..fitjob::InputOptions::default()
+        },
+        scheme: args.scheme.scheme.clone(),
+        scheme_options: args.scheme.options.clone(),
+        curves: "optimized".into(),
+        method_options: args.curve.method_options(),
+        ..fitjob::FitOptions::default()
+    })?;
+    let sphere_tess = surface::tessellate_fit(&sphere.mesh, &sphere_fit.fit, args.segments)
+        .map_err(|source| ExperimentError::Tessellate {
+            subject: "sphere".into(),
+            source,
+        })?;
+    let mut glyphs: Vec<(String, &surface::Tessellation)> = surfaces
+        .iter()
+        .filter(|s| s.name == "true" || s.name == "optimized")
+        .map(|s| (s.label.clone(), &s.tess))
+        .collect();
+    glyphs.push((
+        "sphere, Shirman–Séquin, optimized curves (umbilic)".into(),
+        &sphere_tess,
+    ));
+    let principal_picture = principal::write(&out, &glyphs)?;
     stage("render", t);
 
     let t = Instant::now();
@@ -136,7 +172,10 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     let report = report::report_json(args, mesh, &surfaces, &fits, figure2, pictures, times);
     let text = pretty_json(&report, "the ring report")?;
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
-    let md = report::markdown(args, &report, &surfaces, &fits);
+    let mut md = report::markdown(args, &report, &surfaces, &fits);
+    md.push_str(&format!(
+        "\n## Principal directions\n\nShort glyphs on the shaded surfaces along each sample's principal directions (red: κ1, the larger principal curvature; blue: κ2; from the tessellations' exact shape tensors). On the true ring they follow the meridians and the parallels; the sphere is umbilic, so its fit's glyphs point wherever its small departures from the sphere send them.\n\n![principal directions]({principal_picture})\n"
+    ));
     write_result(Some(&out.join("report.md")), md.as_bytes())?;
     print!(
         "{}",
