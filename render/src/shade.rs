@@ -61,9 +61,11 @@ pub const FRAME_FILL: f64 = 0.9;
 pub const FRAME_FOV_DEGREES: f64 = 30.0;
 
 /// Least distance from [`Camera::framing`]'s eye to the box centre, in box half-diagonals:
-/// the eye stays outside the box's bounding sphere even for a box that the field of view
-/// alone would let it enter (a segment seen end on, a point).
-const MIN_FRAME_DISTANCE: f64 = 2.0;
+/// every point of the box is then at least a quarter half-diagonal in front of the eye, even
+/// for a box that the field of view alone would let the eye come nearer to (a segment seen end
+/// on, a point). Not more: in a wide picture the field of view puts an edge-on disk at 1.3
+/// half-diagonals.
+const MIN_FRAME_DISTANCE: f64 = 1.25;
 
 impl Camera {
     /// A camera looking at the box `[lo, hi]` from azimuth and elevation (degrees, about the z
@@ -644,7 +646,9 @@ impl Probe {
                 let e1 = perpendicular(&axis, to_eye, up);
                 Probe::Reflection {
                     e1,
-                    e2: axis.cross(&e1),
+                    // Camera coordinates (x right, y up, z away from the eye) are left-handed:
+                    // the world's `a × e₁` is `e₁ × a` here.
+                    e2: e1.cross(&axis),
                     per_radian: f64::from(stripes) / std::f64::consts::TAU,
                     half_width: width * 0.5,
                 }
