@@ -314,16 +314,23 @@ fn isophotes_on_a_sphere_are_concentric_rings_at_the_predicted_radii() {
     }
 }
 
-/// A roof `x = −k |y|` (ridge along z), `|y|, |z| ≤ 1`, with flat facets and their own normals
-/// (`smooth: None`), or the smooth bend `x = −k √(y² + ε²)` with its analytic normals.
-fn roof(k: f64, smooth: Option<f64>) -> RenderMesh {
+/// A roof `x = −k |y| − c y²` (ridge along z; `c` bends the two sides so that stripes run
+/// across them), `|y|, |z| ≤ 1`, the two sides meeting at a crease (`smooth: None`), or the
+/// smooth bend `x = −k √(y² + ε²) − c y²`, with their analytic normals.
+fn roof(k: f64, c: f64, smooth: Option<f64>) -> RenderMesh {
     let strip = |lo: f64, hi: f64| {
         grid(200, 4, move |u, v| {
             let y = lo + (hi - lo) * u;
             let (x, slope) = match smooth {
-                Some(e) => (-k * (y * y + e * e).sqrt(), -k * y / (y * y + e * e).sqrt()),
-                // The strip's own facet: its slope from its side of the ridge, also at y = 0.
-                None => (-k * y.abs(), -k * (lo + hi).signum()),
+                Some(e) => (
+                    -k * (y * y + e * e).sqrt() - c * y * y,
+                    -k * y / (y * y + e * e).sqrt() - 2.0 * c * y,
+                ),
+                // The strip's own side: its slope from its side of the ridge, also at y = 0.
+                None => (
+                    -k * y.abs() - c * y * y,
+                    -k * (lo + hi).signum() - 2.0 * c * y,
+                ),
             };
             // The surface x = g(y) has the normal ∇(x − g(y)) = (1, −g′(y), 0).
             (
@@ -375,8 +382,8 @@ fn a_crease_breaks_the_reflection_lines_and_a_smooth_bend_does_not() {
     };
     let o = options(w, h, shading);
     let cam = side_camera(d);
-    let crease = roof(slope, None);
-    let bend = roof(slope, Some(0.2));
+    let crease = roof(slope, 0.25, None);
+    let bend = roof(slope, 0.25, Some(0.2));
     for (name, m) in [("crease", &crease), ("bend", &bend)] {
         let img = render(m, &cam, &o).unwrap();
         std::fs::write(format!("/tmp/interro-roof-{name}.png"), png(&img)).ok();
@@ -393,13 +400,16 @@ fn a_crease_breaks_the_reflection_lines_and_a_smooth_bend_does_not() {
         smooth_worst = smooth_worst.max(jb);
         // The ridge projects on the middle column: the jump is between columns w/2 − 1, w/2.
         assert_eq!(xc, w / 2, "row {y}: the break is on the ridge");
-        // The two pixels either side are half a pixel off the ridge: on a flat facet s moves
-        // by the view ray's turn, about 2/focal radians a pixel (well under 1%).
+        // The two pixels either side are half a pixel off the ridge: on top of the ridge's
+        // jump, s moves by a pixel's worth of the sides' own turn, the step between
+        // neighbouring pixels beside the ridge (and the 200-strip tessellation's 10⁻³).
+        let step = |x: u32| (fc.at(x, y) - fc.at(x - 1, y)).abs();
+        let drift = step(xc - 1).max(step(xc + 1));
         assert!(
-            (jc - predicted).abs() < 0.01 * predicted,
-            "row {y}: jump {jc} vs {predicted}"
+            (jc - predicted).abs() <= drift + 1e-3,
+            "row {y}: jump {jc} vs {predicted}, drift {drift}"
         );
-        eprintln!("row {y}: crease jump {jc:.4} (predicted {predicted:.4}), bend {jb:.4}");
+        eprintln!("row {y}: crease jump {jc:.4} (predicted {predicted:.4}, drift {drift:.4}), bend {jb:.4}");
     }
     // The bend turns the normal through the same 20° over about 120 pixels: its largest step
     // is a small fraction of the crease's single jump.
