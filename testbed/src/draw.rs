@@ -10,7 +10,7 @@
 use std::io::Write;
 
 use nalgebra::Point3;
-use render::{Camera, Image, RenderMesh, RenderOptions};
+use render::{Camera, Image, RenderMesh, RenderOptions, Shading};
 
 use crate::error::FilterError;
 use crate::options::pair;
@@ -251,6 +251,16 @@ pub fn blank_reason(name: &str, triangles: usize, seen: &Seen, blank: bool) -> O
 /// ([`blank_reason`]), and a size whose drawing would not fit in memory is refused before the
 /// stream is read ([`check_picture_memory`]).
 pub fn picture(name: &'static str, stream: &StreamOptions, view: &View) -> Result<(), FilterError> {
+    picture_with(name, stream, view, Shading::Lit)
+}
+
+/// [`picture`] with a shading mode (`render --mode`; ignored by a wire frame).
+pub fn picture_with(
+    name: &'static str,
+    stream: &StreamOptions,
+    view: &View,
+    shading: Shading,
+) -> Result<(), FilterError> {
     check_side(view)?;
     check_picture_memory(view)?;
     let mut seen = Seen::default();
@@ -258,7 +268,7 @@ pub fn picture(name: &'static str, stream: &StreamOptions, view: &View) -> Resul
     if let Some(why) = blank_reason(name, mesh.faces.len(), &seen, false) {
         return Err(FilterError::Blank(why));
     }
-    let image = draw_mesh(&mesh, view)?;
+    let image = draw_mesh_with(&mesh, view, shading)?;
     // Both pictures are drawn on white (`render`'s default background, `wire_frame`'s).
     let blank = image.rgb.iter().all(|&b| b == u8::MAX);
     if let Some(why) = blank_reason(name, mesh.faces.len(), &seen, blank) {
@@ -297,20 +307,40 @@ fn check_side(view: &View) -> Result<(), FilterError> {
 
 /// Draws a render mesh (unwelded triangles).
 pub fn draw_mesh(mesh: &RenderMesh, view: &View) -> Result<Image, FilterError> {
+    draw_mesh_with(mesh, view, Shading::Lit)
+}
+
+/// Draws a render mesh with a shading mode (ignored by a wire frame). The camera frames the
+/// mesh's bounding box for the picture's aspect (`render::Camera::framing_aspect`: the box
+/// inside the middle 90% of the width and of the height). A mode the renderer refuses (the
+/// highlight lights seen end on: `--direction` along `--view`) is a usage error.
+pub fn draw_mesh_with(
+    mesh: &RenderMesh,
+    view: &View,
+    shading: Shading,
+) -> Result<Image, FilterError> {
     check_side(view)?;
     check_picture_memory(view)?;
     let (w, h) = view.size;
     let options = RenderOptions {
         width: w,
         height: h,
+        shading,
         ..RenderOptions::default()
     };
     let (lo, hi) = bounds(mesh);
-    let camera = Camera::framing(lo, hi, view.view.0, view.view.1);
+    let aspect = f64::from(w) / f64::from(h);
+    let camera = Camera::framing_aspect(lo, hi, view.view.0, view.view.1, aspect);
     if view.wire {
         return Ok(render::wire_frame(mesh, &camera, w, h));
     }
-    Ok(render::render(mesh, &camera, &options)?)
+    match render::render(mesh, &camera, &options) {
+        Err(render::RenderError::Shading { mode, message }) => Err(FilterError::Usage(format!(
+            "--mode {mode}: {message} (--view {},{})",
+            view.view.0, view.view.1
+        ))),
+        other => Ok(other?),
+    }
 }
 
 /// Encodes an image as PNG (`render::write_png`).

@@ -7,6 +7,7 @@ mod library;
 mod numerics;
 mod pipeline;
 mod registry;
+mod render_modes;
 mod shell_docs;
 mod stream_bounds;
 mod support;
