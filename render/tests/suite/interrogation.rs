@@ -2,6 +2,7 @@
 //! a cylinder and rings on a sphere predicted in closed form, the stripe break of a crease
 //! against a smooth bend, and every vertex of a disk, a tall cylinder and a sphere inside the
 //! framed picture with its margin.
+#![allow(clippy::expect_used, clippy::unwrap_used)] // tests: a failed step should stop loudly
 
 use std::f64::consts::{PI, TAU};
 
@@ -483,7 +484,7 @@ fn framing_fits_every_vertex_with_its_margin() {
         let img = render(m, &cam, &options(400, 300, Shading::Lit)).unwrap();
         for x in 0..400 {
             for y in 0..300 {
-                let border = x < 20 || x >= 380 || y < 15 || y >= 285;
+                let border = !(20..380).contains(&x) || !(15..285).contains(&y);
                 if border {
                     assert_eq!(pixel(&img, x, y), [255; 3], "{name}: drawn at ({x}, {y})");
                 }
