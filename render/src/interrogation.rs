@@ -53,9 +53,11 @@
 //!   that of parallel lines, `√(dist_h((A₀ − P)·T)² + ((A₀ − P)·M)²)` with `dist_h` the
 //!   distance to the nearest multiple of `h`. The highlight parameter does not change when
 //!   `N` is reversed. [`crate::shade::render`] puts the lights in the plane facing the viewer
-//!   (`M` towards the eye) two bounding radii `ρ` in front of the object's centre, `A₀` on the
-//!   line from the centre to the eye, `h = 2ρ / lines`: `lines` lines across the object's
-//!   bounding diameter on a plate facing the viewer.
+//!   (`M` towards the eye) touching the object's bounding sphere (centre `C`, radius `ρ`) on
+//!   the viewer's side, `A₀ = C + ρM`, `h = 2ρ / lines`: `lines` lines across the object's
+//!   bounding diameter on a plate facing the viewer. A normal tilted by `γ` from `M` meets the
+//!   plane about `ρ tan γ` from its foot, so the lines crowd towards the silhouette; the
+//!   nearest plane outside the sphere crowds them least (at `2ρ` they came twice as dense).
 
 use nalgebra::Vector3;
 

@@ -684,7 +684,7 @@ impl Probe {
                 let spacing = 2.0 * radius / f64::from(lines);
                 Probe::Highlight {
                     lights: LightLines {
-                        a0: centre + to_eye * (2.0 * radius),
+                        a0: centre + to_eye * radius,
                         e,
                         m: to_eye,
                         t: to_eye.cross(&e),

@@ -498,3 +498,58 @@ fn png(img: &Image) -> Vec<u8> {
     render::write_png(img, &mut out).expect("encodes");
     out
 }
+
+#[test]
+fn highlight_lines_on_a_plate_facing_the_lights_are_evenly_spaced() {
+    // The plate z = 0, |x|, |y| ≤ 1, seen from (0, 0, d): its normal is the lights' plane
+    // normal M, so every normal line meets the lights' plane straight in front of its point
+    // and the light index is t = x / h (up to sign) with h = 2ρ / lines, ρ = √2 the bounding
+    // radius: dark where |t − round t| < width / 2.
+    let (d, lines, width) = (4.0, 8u32, 0.5);
+    let (w, h) = (400u32, 400u32);
+    let plate = grid(64, 64, |u, v| {
+        (Point3::new(2.0 * u - 1.0, 2.0 * v - 1.0, 0.0), Vector3::z())
+    });
+    let cam = Camera {
+        eye: Point3::new(0.0, 0.0, d),
+        target: Point3::origin(),
+        up: Vector3::y(),
+        fov_y_degrees: 30.0,
+    };
+    let shading = Shading::Highlight {
+        lines,
+        direction: None,
+        width,
+    };
+    let img = render(&plate, &cam, &options(w, h, shading)).unwrap();
+    std::fs::write("/tmp/interro-plate-highlight.png", png(&img)).ok();
+    let spacing = 2.0 * 2f64.sqrt() / f64::from(lines);
+    let predicted = borders_between(-1.0 / spacing, 1.0 / spacing, width);
+    assert_eq!(predicted, 12);
+    let row = transitions((0..w).map(|x| stripe(&img, x, h / 2)));
+    let column = transitions((0..h).map(|y| stripe(&img, w / 2 + 3, y)));
+    assert_eq!((row, column), (predicted, 0));
+    // Where the borders are: x = (k ± width/2) h on the plate, focal · x / d pixels off the
+    // centre.
+    let mut found = Vec::new();
+    for x in 1..w {
+        let (a, b) = (stripe(&img, x - 1, h / 2), stripe(&img, x, h / 2));
+        if a.is_some() && b.is_some() && a != b {
+            found.push(f64::from(x) - f64::from(w) / 2.0);
+        }
+    }
+    let mut expect = Vec::new();
+    for k in -3i32..=3 {
+        for b in [f64::from(k) - width / 2.0, f64::from(k) + width / 2.0] {
+            if (b * spacing).abs() < 1.0 {
+                expect.push(focal(h) * b * spacing / d);
+            }
+        }
+    }
+    expect.sort_by(f64::total_cmp);
+    eprintln!("highlight borders: found {found:?}\n expected {expect:.2?}");
+    for (f, e) in found.iter().zip(&expect) {
+        // A border found between two pixel centres: half a pixel.
+        assert!((f - e).abs() <= 0.5 + 1e-9, "{f} vs {e}");
+    }
+}
