@@ -100,6 +100,65 @@ impl Camera {
         elevation: f64,
         aspect: f64,
     ) -> Camera {
+        let corners = (0..8).map(|k| {
+            Point3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            )
+        });
+        Camera::fit(lo, hi, corners, azimuth, elevation, aspect)
+    }
+
+    /// [`Camera::framing_aspect`] fitted to `points` themselves rather than to the corners of
+    /// their bounding box (same centre, the box's; same bounds on the distance, over the
+    /// points): the tightest distance at which every point lies in the middle [`FRAME_FILL`]
+    /// of the width and the height, so the object fills that much of one of them. A mesh is
+    /// inside the convex hull of its vertices, so its vertices suffice. Points that are not
+    /// finite are left out; none left frames the unit box at the origin.
+    pub fn framing_points(
+        points: &[Point3<f64>],
+        azimuth: f64,
+        elevation: f64,
+        aspect: f64,
+    ) -> Camera {
+        let finite = || {
+            points
+                .iter()
+                .copied()
+                .filter(|p| p.iter().all(|x| x.is_finite()))
+        };
+        let (mut lo, mut hi) = (
+            Point3::from(Vector3::repeat(f64::INFINITY)),
+            Point3::from(Vector3::repeat(f64::NEG_INFINITY)),
+        );
+        for p in finite() {
+            lo = lo.inf(&p);
+            hi = hi.sup(&p);
+        }
+        if lo.x > hi.x {
+            return Camera::framing_aspect(
+                Point3::origin(),
+                Point3::new(1.0, 1.0, 1.0),
+                azimuth,
+                elevation,
+                aspect,
+            );
+        }
+        Camera::fit(lo, hi, finite(), azimuth, elevation, aspect)
+    }
+
+    /// The camera looking at the centre of `[lo, hi]` from the angles, at the least distance
+    /// that keeps every point of `points` in the middle [`FRAME_FILL`] of the picture
+    /// ([`Camera::framing_aspect`] derives it).
+    fn fit(
+        lo: Point3<f64>,
+        hi: Point3<f64>,
+        points: impl Iterator<Item = Point3<f64>>,
+        azimuth: f64,
+        elevation: f64,
+        aspect: f64,
+    ) -> Camera {
         let centre = nalgebra::center(&lo, &hi);
         let radius = (hi - lo).norm() * 0.5;
         let (az, el) = (azimuth.to_radians(), elevation.to_radians());
@@ -121,13 +180,8 @@ impl Camera {
         let ty = FRAME_FILL * (FRAME_FOV_DEGREES.to_radians() * 0.5).tan();
         let tx = ty * aspect;
         let mut distance = MIN_FRAME_DISTANCE * radius;
-        for k in 0..8 {
-            let corner = Point3::new(
-                if k & 1 == 0 { lo.x } else { hi.x },
-                if k & 2 == 0 { lo.y } else { hi.y },
-                if k & 4 == 0 { lo.z } else { hi.z },
-            );
-            let q = corner - centre;
+        for p in points {
+            let q = p - centre;
             let (x, y, z) = (q.dot(&r), q.dot(&u), q.dot(&f));
             distance = distance.max(x.abs() / tx - z).max(y.abs() / ty - z);
         }

@@ -5,11 +5,11 @@
 //! The triangles are drawn as they come, unwelded (each Triangle record's three vertices; a
 //! TriangleMesh's vertices shared as in the record), with their normals (the geometric normal
 //! where a vertex has none) and colours (the uniform material where a vertex has none). The
-//! camera frames the triangles' bounding box from the given azimuth and elevation.
+//! camera looks at the centre of the triangles' bounding box from the given azimuth and
+//! elevation, as near as keeps every vertex in the middle 90% of the width and the height.
 
 use std::io::Write;
 
-use nalgebra::Point3;
 use render::{Camera, Image, RenderMesh, RenderOptions, Shading};
 
 use crate::error::FilterError;
@@ -148,17 +148,6 @@ pub fn render_mesh(tris: &[[Vertex; 3]], default_color: [f32; 3]) -> RenderMesh 
         push_triangle(&mut m, t, default_color);
     }
     m
-}
-
-/// Bounding box of the mesh's finite positions (a unit box at the origin when empty):
-/// `meshio::BoundingBox`, the workspace's one box.
-fn bounds(m: &RenderMesh) -> (Point3<f64>, Point3<f64>) {
-    let b = meshio::BoundingBox::of_finite(&m.positions);
-    if b.is_empty() {
-        (Point3::origin(), Point3::new(1.0, 1.0, 1.0))
-    } else {
-        (b.min, b.max)
-    }
 }
 
 /// Picture options (`render`, `wire`).
@@ -310,9 +299,10 @@ pub fn draw_mesh(mesh: &RenderMesh, view: &View) -> Result<Image, FilterError> {
     draw_mesh_with(mesh, view, Shading::Lit)
 }
 
-/// Draws a render mesh with a shading mode (ignored by a wire frame). The camera frames the
-/// mesh's bounding box for the picture's aspect (`render::Camera::framing_aspect`: the box
-/// inside the middle 90% of the width and of the height). A mode the renderer refuses (the
+/// Draws a render mesh with a shading mode (ignored by a wire frame). The camera looks at the
+/// centre of the mesh's bounding box from the view's angles, as near as keeps every vertex in
+/// the middle 90% of the width and of the height (`render::Camera::framing_points`, for the
+/// picture's aspect): the object fills 90% of one of them. A mode the renderer refuses (the
 /// highlight lights seen end on: `--direction` along `--view`) is a usage error.
 pub fn draw_mesh_with(
     mesh: &RenderMesh,
@@ -328,9 +318,8 @@ pub fn draw_mesh_with(
         shading,
         ..RenderOptions::default()
     };
-    let (lo, hi) = bounds(mesh);
     let aspect = f64::from(w) / f64::from(h);
-    let camera = Camera::framing_aspect(lo, hi, view.view.0, view.view.1, aspect);
+    let camera = Camera::framing_points(&mesh.positions, view.view.0, view.view.1, aspect);
     if view.wire {
         return Ok(render::wire_frame(mesh, &camera, w, h));
     }

@@ -457,26 +457,46 @@ fn framing_fits_every_vertex_with_its_margin() {
         for &(w, h) in &[(400u32, 300u32), (300, 400), (200, 200), (640, 120)] {
             let aspect = f64::from(w) / f64::from(h);
             for &(az, el) in &views {
-                let cam = Camera::framing_aspect(b.min, b.max, az, el, aspect);
-                let (mut lo, mut hi) = ((f64::INFINITY, f64::INFINITY), (0.0f64, 0.0f64));
-                for p in &m.positions {
-                    let (x, y) = project(&cam, w, h, p);
-                    lo = (lo.0.min(x), lo.1.min(y));
-                    hi = (hi.0.max(x), hi.1.max(y));
+                for tight in [false, true] {
+                    let cam = if tight {
+                        Camera::framing_points(&m.positions, az, el, aspect)
+                    } else {
+                        Camera::framing_aspect(b.min, b.max, az, el, aspect)
+                    };
+                    let (mut lo, mut hi) = ((f64::INFINITY, f64::INFINITY), (0.0f64, 0.0f64));
+                    for p in &m.positions {
+                        let (x, y) = project(&cam, w, h, p);
+                        lo = (lo.0.min(x), lo.1.min(y));
+                        hi = (hi.0.max(x), hi.1.max(y));
+                    }
+                    // Fitted to the points, one of them touches the margin (unless the distance
+                    // floor, 1.25 half-diagonals, holds the eye back).
+                    let (mw, mh) = (margin * f64::from(w), margin * f64::from(h));
+                    let touch = (lo.0 - mw)
+                        .min(lo.1 - mh)
+                        .min(f64::from(w) - mw - hi.0)
+                        .min(f64::from(h) - mh - hi.1);
+                    let floor = (cam.eye - cam.target).norm()
+                        <= 1.25 * (b.max - b.min).norm() * 0.5 * (1.0 + 1e-12);
+                    if tight && !floor {
+                        assert!(
+                            touch.abs() < 1e-6,
+                            "{name} {w}x{h} from {az},{el}: {touch} px spare"
+                        );
+                    }
+                    let inside = lo.0 >= mw - EDGE
+                        && lo.1 >= mh - EDGE
+                        && hi.0 <= f64::from(w) - mw + EDGE
+                        && hi.1 <= f64::from(h) - mh + EDGE;
+                    assert!(inside, "{name} {w}x{h} from {az},{el}: x {lo:?}..{hi:?}");
+                    // And the object is not lost in the frame: it spans at least a third of the
+                    // width or of the height (the box's corners, not the object, touch the margin).
+                    let span = ((hi.0 - lo.0) / f64::from(w)).max((hi.1 - lo.1) / f64::from(h));
+                    assert!(
+                        span > 1.0 / 3.0,
+                        "{name} {w}x{h} from {az},{el}: spans {span}"
+                    );
                 }
-                let (mw, mh) = (margin * f64::from(w), margin * f64::from(h));
-                let inside = lo.0 >= mw - EDGE
-                    && lo.1 >= mh - EDGE
-                    && hi.0 <= f64::from(w) - mw + EDGE
-                    && hi.1 <= f64::from(h) - mh + EDGE;
-                assert!(inside, "{name} {w}x{h} from {az},{el}: x {lo:?}..{hi:?}");
-                // And the object is not lost in the frame: it spans at least a third of the
-                // width or of the height (the box's corners, not the object, touch the margin).
-                let span = ((hi.0 - lo.0) / f64::from(w)).max((hi.1 - lo.1) / f64::from(h));
-                assert!(
-                    span > 1.0 / 3.0,
-                    "{name} {w}x{h} from {az},{el}: spans {span}"
-                );
             }
         }
         // `framing` is the square case: inside any landscape picture.

@@ -137,7 +137,8 @@ impl Filter for Render {
         The triangles are drawn as they come, unwelded (a Triangle's own three vertices, a \
         TriangleMesh's shared as in the record), with their normals (the geometric normal where \
         a vertex has none) and colours (the uniform material where a vertex has none); the \
-        camera frames their bounding box from --view, with a margin of 5% of each side. Other \
+        camera looks at their bounding box's centre from --view, as near as keeps every vertex \
+        inside the middle 90% of the width and the height. Other \
         records are ignored. A picture with nothing drawn on it (no triangles in the stream: \
         `tess` forgotten) is an error, and a --size whose drawing would not fit in memory is \
         refused before the stream is read.\n\n\
