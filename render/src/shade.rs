@@ -65,7 +65,7 @@ pub const FRAME_FOV_DEGREES: f64 = 30.0;
 /// for a box that the field of view alone would let the eye come nearer to (a segment seen end
 /// on, a point). Not more: in a wide picture the field of view puts an edge-on disk at 1.3
 /// half-diagonals.
-const MIN_FRAME_DISTANCE: f64 = 1.25;
+pub const MIN_FRAME_DISTANCE: f64 = 1.25;
 
 impl Camera {
     /// A camera looking at the box `[lo, hi]` from azimuth and elevation (degrees, about the z
