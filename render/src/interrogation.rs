@@ -143,6 +143,17 @@ impl Shading {
         width: DEFAULT_WIDTH,
     };
 
+    /// The mode's name as the testbed spells it: `shaded`, `reflection`, `isophotes`,
+    /// `highlight`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Shading::Lit => "shaded",
+            Shading::Reflection { .. } => "reflection",
+            Shading::Isophotes { .. } => "isophotes",
+            Shading::Highlight { .. } => "highlight",
+        }
+    }
+
     /// Checks the numbers: a stripe count from 1 to [`MAX_STRIPES`], a width in `[0, 1]`, a
     /// direction finite and not zero. The message names the field.
     pub fn validate(&self) -> Result<(), String> {

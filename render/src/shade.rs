@@ -676,12 +676,7 @@ fn perpendicular(a: &Vector3<f64>, v: Vector3<f64>, fallback: Vector3<f64>) -> V
 impl Probe {
     /// Sets up `shading` for the picture `view` of `scene`; `None` for [`Shading::Lit`].
     fn new(shading: &Shading, view: &View, scene: &Scene) -> Result<Option<Probe>, RenderError> {
-        let mode = match shading {
-            Shading::Lit => return Ok(None),
-            Shading::Reflection { .. } => "reflection",
-            Shading::Isophotes { .. } => "isophotes",
-            Shading::Highlight { .. } => "highlight",
-        };
+        let mode = shading.name();
         shading
             .validate()
             .map_err(|message| RenderError::Shading { mode, message })?;
@@ -1020,6 +1015,14 @@ fn draw<S>(
 where
     S: FnOnce(&Frame<'_>, &View, &Lighting<'_>) -> Result<(), RenderError>,
 {
+    // Refused before any drawing (`Probe::new` sets the mode up after the depth pass).
+    options
+        .shading
+        .validate()
+        .map_err(|message| RenderError::Shading {
+            mode: options.shading.name(),
+            message,
+        })?;
     let (w, h) = (
         options.width.max(1) as usize,
         options.height.max(1) as usize,
@@ -1447,6 +1450,48 @@ mod tests {
         assert!(render_many(&[], &RenderOptions::default())
             .unwrap()
             .is_empty());
+    }
+
+    #[test]
+    fn interrogation_modes_are_deterministic_and_refuse_bad_numbers() {
+        let m = busy_mesh(120, 40);
+        let cam = Camera {
+            eye: Point3::new(0.5, -6.0, 3.0),
+            ..top_camera()
+        };
+        for shading in [Shading::REFLECTION, Shading::ISOPHOTES, Shading::HIGHLIGHT] {
+            let o = RenderOptions {
+                width: 301,
+                height: 203,
+                shading,
+                ..RenderOptions::default()
+            };
+            let first = render(&m, &cam, &o).unwrap();
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(3)
+                .build()
+                .unwrap();
+            assert!(pool.install(|| render(&m, &cam, &o)).unwrap() == first);
+            assert!(render_with(&m, &cam, &o, false).unwrap() == first);
+            // Two tones and the background only.
+            let mut tones: Vec<u8> = first.rgb.clone();
+            tones.sort_unstable();
+            tones.dedup();
+            assert_eq!(tones.len(), 3, "{shading:?}: {tones:?}");
+        }
+        let bad = RenderOptions {
+            shading: Shading::Isophotes {
+                bands: 0,
+                light: None,
+                width: 0.5,
+            },
+            ..RenderOptions::default()
+        };
+        let err = render(&m, &cam, &bad).unwrap_err().to_string();
+        assert!(
+            err.contains("isophotes") && err.contains("stripes 0"),
+            "{err}"
+        );
     }
 
     /// Relative accuracy promised by [`spec_power`] for whole exponents `e`: `2·e` ulps.
