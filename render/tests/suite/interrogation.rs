@@ -385,9 +385,22 @@ fn a_crease_breaks_the_reflection_lines_and_a_smooth_bend_does_not() {
     let cam = side_camera(d);
     let crease = roof(slope, 0.25, None);
     let bend = roof(slope, 0.25, Some(0.2));
+    // Pictures to look at: the axis along the ridge, and tilted so the stripes cross it
+    // (where a crease offsets them and a smooth bend bends them).
+    let tilted = options(
+        w,
+        h,
+        Shading::Reflection {
+            stripes: 16,
+            direction: Some(Vector3::new(0.0, 1.0, 1.0)),
+            width: 0.5,
+        },
+    );
     for (name, m) in [("crease", &crease), ("bend", &bend)] {
         let img = render(m, &cam, &o).unwrap();
         std::fs::write(format!("/tmp/interro-roof-{name}.png"), png(&img)).ok();
+        let img = render(m, &cam, &tilted).unwrap();
+        std::fs::write(format!("/tmp/interro-roof-{name}-tilted.png"), png(&img)).ok();
     }
     let fc = interrogation_field(&crease, &cam, &o).unwrap();
     let fb = interrogation_field(&bend, &cam, &o).unwrap();
