@@ -36,4 +36,12 @@ pub enum RenderError {
         /// The file that was to be drawn.
         path: PathBuf,
     },
+    /// The shading mode's numbers are out of range ([`crate::shade::Shading::validate`]).
+    #[error("shading mode {mode}: {message}")]
+    Shading {
+        /// The mode (`reflection`, `isophotes`, `highlight`).
+        mode: &'static str,
+        /// What is wrong, naming the field.
+        message: String,
+    },
 }

@@ -13,6 +13,8 @@
 //! * [`chart`] — line charts (optionally log y, in grids) and grouped bar charts;
 //! * [`shade`] — a z-buffer rasterizer with near-plane clipping, perspective-correct
 //!   interpolation, Blinn–Phong shading and an optional wireframe;
+//! * [`interrogation`] — reflection lines, isophotes and highlight lines, per pixel from the
+//!   interpolated normal ([`shade::Shading`]);
 //! * [`srgb`] — linear → 8-bit sRGB by table, equal to the formula;
 //! * [`colors`] — diverging and sequential colour maps (Moreland, viridis);
 //! * [`mosaic`] — composites of rendered tiles with a title and a legend;
@@ -23,6 +25,7 @@ pub mod colors;
 pub mod curveplot;
 pub mod error;
 pub mod font;
+pub mod interrogation;
 pub mod mosaic;
 pub mod shade;
 pub mod srgb;
@@ -37,5 +40,6 @@ pub use curveplot::{
 pub use error::RenderError;
 pub use mosaic::{write_composite, Legend, LegendKind, Tile};
 pub use shade::{
-    render, render_many, wire_frame, write_png, Camera, Image, RenderMesh, RenderOptions,
+    interrogation_field, render, render_many, wire_frame, write_png, Camera, Field, Image,
+    RenderMesh, RenderOptions, Shading,
 };

@@ -4,7 +4,8 @@
 //! plane), perspective-correct interpolation of normals, colours and positions (weights
 //! `λᵢ/zᵢ`, renormalized), per-pixel Blinn–Phong shading with two-sided lighting, lights fixed
 //! to the camera (a key light above left, a fill light right) so every view is lit alike, and
-//! sRGB output. Bad triangles (non-finite vertices) are skipped, never a panic.
+//! sRGB output; or, instead of the lighting, reflection lines, isophotes or highlight lines computed
+//! per pixel from the interpolated normal ([`Shading`], [`crate::interrogation`]). Bad triangles (non-finite vertices) are skipped, never a panic.
 //!
 //! Speed: vertices are transformed once, triangles set up in parallel chunks, and
 //! the picture drawn in bands of rows in parallel (rayon) with deferred shading (a depth pass
@@ -19,7 +20,10 @@ use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
 
 use crate::error::RenderError;
+use crate::interrogation::{frac_distance, reflection_angle, LightLines, DARK, LIGHT};
 use crate::srgb::Srgb8Table;
+
+pub use crate::interrogation::Shading;
 
 /// A triangle mesh to draw: per-vertex positions, normals and linear RGB colours in `[0, 1]`.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -47,28 +51,149 @@ pub struct Camera {
     pub fov_y_degrees: f64,
 }
 
+/// How much of the picture's width and height [`Camera::framing`] lets the object fill: 90%,
+/// a margin of 5% of each side all round (an object drawn to the very edge looks cut off, and a
+/// silhouette pixel on the border cannot be told from one outside it).
+pub const FRAME_FILL: f64 = 0.9;
+
+/// Vertical field of view of [`Camera::framing`], degrees (a mild perspective: the pictures
+/// compare shapes, not depth cues).
+pub const FRAME_FOV_DEGREES: f64 = 30.0;
+
+/// Least distance from [`Camera::framing`]'s eye to the box centre, in box half-diagonals:
+/// every point of the box is then at least a quarter half-diagonal in front of the eye, even
+/// for a box that the field of view alone would let the eye come nearer to (a segment seen end
+/// on, a point). Not more: in a wide picture the field of view puts an edge-on disk at 1.3
+/// half-diagonals.
+pub const MIN_FRAME_DISTANCE: f64 = 1.25;
+
 impl Camera {
     /// A camera looking at the box `[lo, hi]` from azimuth and elevation (degrees, about the z
-    /// axis and above the xy plane), far enough that the box's bounding sphere fits the view.
+    /// axis and above the xy plane), for a picture at least as wide as it is tall: the box
+    /// (and so everything in it) fills at most [`FRAME_FILL`] of the picture's height and of
+    /// its width. [`Camera::framing_aspect`] with aspect 1, which fits the box in the square
+    /// `height × height` at the picture's centre: a wider picture only adds room at the sides.
     pub fn framing(lo: Point3<f64>, hi: Point3<f64>, azimuth: f64, elevation: f64) -> Camera {
+        Camera::framing_aspect(lo, hi, azimuth, elevation, 1.0)
+    }
+
+    /// [`Camera::framing`] for a picture of `aspect = width / height` (a portrait picture,
+    /// `aspect < 1`, needs it; a non-finite or non-positive aspect is taken as 1).
+    ///
+    /// The view direction is fixed by the angles, so only the distance `D` from the box centre
+    /// is chosen. A corner with camera-frame offsets `(x, y, z)` from the centre (`z` along the
+    /// view) is seen at `x / (D + z)` across and `y / (D + z)` up, and the picture shows up to
+    /// `aspect · tan(fov/2)` and `tan(fov/2)`; the corner lies in the filled part iff
+    /// `D ≥ |x| / (FRAME_FILL · aspect · tan(fov/2)) − z` and `D ≥ |y| / (FRAME_FILL ·
+    /// tan(fov/2)) − z`. `D` is the largest of these over the eight corners (and at least
+    /// [`MIN_FRAME_DISTANCE`] half-diagonals, so the whole box is in front of the eye). A
+    /// perspective projection maps segments in front of the eye to segments, so the box, the
+    /// convex hull of its corners, projects inside the convex hull of their images: inside the
+    /// filled rectangle. This fits the box itself, not its bounding sphere (whose silhouette
+    /// overstates a flat or elongated box by up to √3, and which the 0.8 shortcut this replaced
+    /// let the corners of a square plate, and the ends of a tall cylinder seen from the side,
+    /// stick out of: 17.9° off axis in a 15° half-field).
+    pub fn framing_aspect(
+        lo: Point3<f64>,
+        hi: Point3<f64>,
+        azimuth: f64,
+        elevation: f64,
+        aspect: f64,
+    ) -> Camera {
+        let corners = (0..8).map(|k| {
+            Point3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            )
+        });
+        Camera::fit(lo, hi, corners, azimuth, elevation, aspect)
+    }
+
+    /// [`Camera::framing_aspect`] fitted to `points` themselves rather than to the corners of
+    /// their bounding box (same centre, the box's; same bounds on the distance, over the
+    /// points): the tightest distance at which every point lies in the middle [`FRAME_FILL`]
+    /// of the width and the height, so the object fills that much of one of them. A mesh is
+    /// inside the convex hull of its vertices, so its vertices suffice. Points that are not
+    /// finite are left out; none left frames the unit box at the origin.
+    pub fn framing_points(
+        points: &[Point3<f64>],
+        azimuth: f64,
+        elevation: f64,
+        aspect: f64,
+    ) -> Camera {
+        let finite = || {
+            points
+                .iter()
+                .copied()
+                .filter(|p| p.iter().all(|x| x.is_finite()))
+        };
+        let (mut lo, mut hi) = (
+            Point3::from(Vector3::repeat(f64::INFINITY)),
+            Point3::from(Vector3::repeat(f64::NEG_INFINITY)),
+        );
+        for p in finite() {
+            lo = lo.inf(&p);
+            hi = hi.sup(&p);
+        }
+        if lo.x > hi.x {
+            return Camera::framing_aspect(
+                Point3::origin(),
+                Point3::new(1.0, 1.0, 1.0),
+                azimuth,
+                elevation,
+                aspect,
+            );
+        }
+        Camera::fit(lo, hi, finite(), azimuth, elevation, aspect)
+    }
+
+    /// The camera looking at the centre of `[lo, hi]` from the angles, at the least distance
+    /// that keeps every point of `points` in the middle [`FRAME_FILL`] of the picture
+    /// ([`Camera::framing_aspect`] derives it).
+    fn fit(
+        lo: Point3<f64>,
+        hi: Point3<f64>,
+        points: impl Iterator<Item = Point3<f64>>,
+        azimuth: f64,
+        elevation: f64,
+        aspect: f64,
+    ) -> Camera {
         let centre = nalgebra::center(&lo, &hi);
-        let radius = ((hi - lo).norm() * 0.5).max(f64::MIN_POSITIVE);
+        let radius = (hi - lo).norm() * 0.5;
         let (az, el) = (azimuth.to_radians(), elevation.to_radians());
         let dir = Vector3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
-        let fov = 30.0f64;
-        // The bounding sphere of a box overstates most objects' silhouettes; 0.8 of the
-        // sphere-fitting distance keeps flat and elongated shapes (a ring) inside the frame.
-        let distance = radius / (fov.to_radians() * 0.5).sin() * 0.8;
         let up = if el.cos() < 1e-3 {
             Vector3::y()
         } else {
             Vector3::z()
         };
+        let aspect = if aspect.is_finite() && aspect > 0.0 {
+            aspect
+        } else {
+            1.0
+        };
+        // The frame `View::new` builds for this camera.
+        let f = -dir;
+        let r = f.cross(&up).normalize();
+        let u = r.cross(&f);
+        let ty = FRAME_FILL * (FRAME_FOV_DEGREES.to_radians() * 0.5).tan();
+        let tx = ty * aspect;
+        let mut distance = MIN_FRAME_DISTANCE * radius;
+        for p in points {
+            let q = p - centre;
+            let (x, y, z) = (q.dot(&r), q.dot(&u), q.dot(&f));
+            distance = distance.max(x.abs() / tx - z).max(y.abs() / ty - z);
+        }
+        if !(distance > 0.0 && distance.is_finite()) {
+            // A point (or a box that is not finite): any distance frames it.
+            distance = 1.0;
+        }
         Camera {
             eye: centre + dir * distance,
             target: centre,
             up,
-            fov_y_degrees: fov,
+            fov_y_degrees: FRAME_FOV_DEGREES,
         }
     }
 }
@@ -95,6 +220,10 @@ pub struct RenderOptions {
     /// Colour of a triangle-edge overlay (the testbed's XRender view), drawn with the depth
     /// test; `None` draws no edges.
     pub wireframe: Option<[f32; 3]>,
+    /// How visible pixels are coloured: lit (the default), or one of the interrogation modes
+    /// (reflection lines, isophotes, highlight lines; [`crate::interrogation`]), which ignore
+    /// the lights, material and vertex colours above.
+    pub shading: Shading,
 }
 
 impl Default for RenderOptions {
@@ -109,6 +238,7 @@ impl Default for RenderOptions {
             shininess: 40.0,
             background: [1.0, 1.0, 1.0],
             wireframe: None,
+            shading: Shading::Lit,
         }
     }
 }
@@ -505,6 +635,249 @@ impl Lighting<'_> {
     }
 }
 
+/// An interrogation mode set up for one picture, in camera space (the eye at the origin, `x`
+/// right, `y` up, `z` along the view).
+#[derive(Clone, Copy)]
+enum Probe {
+    /// Reflection lines: the frame `(e1, e2)` perpendicular to the axis, stripes per radian.
+    Reflection {
+        e1: Vector3<f64>,
+        e2: Vector3<f64>,
+        per_radian: f64,
+        half_width: f64,
+    },
+    /// Isophotes: the unit light direction.
+    Isophotes {
+        light: Vector3<f64>,
+        bands: f64,
+        half_width: f64,
+    },
+    /// Highlight lines: the lights and the dark distance.
+    Highlight {
+        lights: LightLines,
+        dark_within: f64,
+    },
+}
+
+/// A unit vector perpendicular to the unit vector `a`, the part of `v` perpendicular to `a`
+/// when that is not (nearly) zero, else that of `fallback`, else of the x axis.
+fn perpendicular(a: &Vector3<f64>, v: Vector3<f64>, fallback: Vector3<f64>) -> Vector3<f64> {
+    /// Below this length the perpendicular part is dominated by rounding.
+    const TINY: f64 = 1e-9;
+    for c in [v, fallback, Vector3::x(), Vector3::y()] {
+        let p = c - a * a.dot(&c);
+        if p.norm() > TINY {
+            return p.normalize();
+        }
+    }
+    Vector3::z()
+}
+
+impl Probe {
+    /// Sets up `shading` for the picture `view` of `scene`; `None` for [`Shading::Lit`].
+    fn new(shading: &Shading, view: &View, scene: &Scene) -> Result<Option<Probe>, RenderError> {
+        let mode = shading.name();
+        shading
+            .validate()
+            .map_err(|message| RenderError::Shading { mode, message })?;
+        let cam = |d: &Option<Vector3<f64>>, default: Vector3<f64>| {
+            d.map_or(default, |d| view.dir_to_cam(&d.normalize()).normalize())
+        };
+        let (up, to_eye) = (Vector3::y(), -Vector3::z());
+        Ok(Some(match *shading {
+            Shading::Lit => return Ok(None),
+            Shading::Reflection {
+                stripes,
+                direction,
+                width,
+            } => {
+                let axis = cam(&direction, up);
+                let e1 = perpendicular(&axis, to_eye, up);
+                Probe::Reflection {
+                    e1,
+                    // Camera coordinates (x right, y up, z away from the eye) are left-handed:
+                    // the world's `a × e₁` is `e₁ × a` here.
+                    e2: e1.cross(&axis),
+                    per_radian: f64::from(stripes) / std::f64::consts::TAU,
+                    half_width: width * 0.5,
+                }
+            }
+            Shading::Isophotes {
+                bands,
+                light,
+                width,
+            } => Probe::Isophotes {
+                light: cam(&light, to_eye),
+                bands: f64::from(bands),
+                half_width: width * 0.5,
+            },
+            Shading::Highlight {
+                lines,
+                direction,
+                width,
+            } => {
+                let along = cam(&direction, up);
+                let e = along - to_eye * to_eye.dot(&along);
+                /// Below this the lights' direction is the view axis: no lines to see.
+                const ALONG_VIEW: f64 = 1e-6;
+                if e.norm() < ALONG_VIEW {
+                    return Err(RenderError::Shading {
+                        mode,
+                        message: "direction along the view axis: the lights would be seen end on"
+                            .into(),
+                    });
+                }
+                let e = e.normalize();
+                let (centre, radius) = scene.bounding_sphere();
+                let radius = if radius > 0.0 { radius } else { 1.0 };
+                let spacing = 2.0 * radius / f64::from(lines);
+                Probe::Highlight {
+                    lights: LightLines {
+                        a0: centre + to_eye * radius,
+                        e,
+                        m: to_eye,
+                        t: to_eye.cross(&e),
+                        spacing,
+                    },
+                    dark_within: width * spacing * 0.5,
+                }
+            }
+        }))
+    }
+
+    /// The unit normal at a pixel from its interpolated normal `n` and camera-space position
+    /// `pos` (the view direction where `n` is zero), and the unit view ray.
+    #[inline]
+    fn unit(n: Vector3<f64>, pos: Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+        let d = pos.normalize();
+        let n = if n.norm() > 0.0 { n.normalize() } else { -d };
+        (n, d)
+    }
+
+    /// The stripe parameter at a pixel ([`crate::interrogation`]): reflection `s = stripes ·
+    /// θ/2π`, isophote `s = bands · (n·L + 1)/2`, highlight the light index `t`.
+    #[inline]
+    fn parameter(&self, n: Vector3<f64>, pos: Vector3<f64>) -> f64 {
+        let (n, d) = Probe::unit(n, pos);
+        match self {
+            Probe::Reflection {
+                e1, e2, per_radian, ..
+            } => per_radian * reflection_angle(&d, &n, e1, e2),
+            Probe::Isophotes { light, bands, .. } => {
+                let n = if n.dot(&d) > 0.0 { -n } else { n };
+                bands * (n.dot(light) + 1.0) * 0.5
+            }
+            Probe::Highlight { lights, .. } => lights.distance(&pos, &n).0,
+        }
+    }
+
+    /// Whether a pixel is on a dark stripe.
+    #[inline]
+    fn dark(&self, n: Vector3<f64>, pos: Vector3<f64>) -> bool {
+        match self {
+            Probe::Reflection { half_width, .. } | Probe::Isophotes { half_width, .. } => {
+                frac_distance(self.parameter(n, pos)) < *half_width
+            }
+            Probe::Highlight {
+                lights,
+                dark_within,
+            } => {
+                let (n, _) = Probe::unit(n, pos);
+                lights.distance(&pos, &n).1 < *dark_within
+            }
+        }
+    }
+}
+
+impl Scene {
+    /// Centre and radius of the bounding sphere of the finite vertices' bounding box
+    /// (camera space; the origin and 0 when there are none).
+    fn bounding_sphere(&self) -> (Vector3<f64>, f64) {
+        let mut lo = Vector3::repeat(f64::INFINITY);
+        let mut hi = Vector3::repeat(f64::NEG_INFINITY);
+        for v in &self.verts {
+            if v.c.iter().all(|x| x.is_finite()) {
+                lo = lo.inf(&v.c);
+                hi = hi.sup(&v.c);
+            }
+        }
+        if lo.x > hi.x {
+            return (Vector3::zeros(), 0.0);
+        }
+        ((lo + hi) * 0.5, (hi - lo).norm() * 0.5)
+    }
+}
+
+/// The depth pass's result, ready for the shading pass.
+struct Frame<'a> {
+    scene: &'a Scene,
+    nearest: &'a [TriId],
+    w: usize,
+    parallel: bool,
+    /// The wireframe's pixels (empty without a wireframe).
+    wire_mask: Vec<bool>,
+}
+
+impl Frame<'_> {
+    /// Colours every pixel of `out` (`K` elements a pixel, rows top to bottom): a wireframe
+    /// pixel `wire` (where `mask` says), a pixel without a triangle `background`, a covered
+    /// pixel `f(vertices, a, b, c)` of its triangle's perspective-correct barycentric weights.
+    fn shade<E, const K: usize, F>(
+        &self,
+        out: &mut [E],
+        background: [E; K],
+        wire: Option<([E; K], &[bool])>,
+        f: F,
+    ) where
+        E: Copy + Send + Sync,
+        F: Fn([&Cv; 3], f64, f64, f64) -> [E; K] + Sync,
+    {
+        let (w, scene, nearest) = (self.w, self.scene, self.nearest);
+        let shade_band = |(b, out): (usize, &mut [E])| {
+            let r0 = b * BAND_ROWS;
+            for (i, px) in out.chunks_exact_mut(K).enumerate() {
+                let idx = r0 * w + i;
+                let colour = match wire {
+                    Some((c, mask)) if mask.get(idx) == Some(&true) => c,
+                    _ => match scene.tri(nearest[idx]) {
+                        None => background,
+                        Some((t, v)) => {
+                            let (x, y) = (idx % w, idx / w);
+                            let e = t.at(&t.row(y), x);
+                            match t.inside(&e) {
+                                true => {
+                                    let (wt, sum) = t.weights(&e);
+                                    f(v, wt[0] / sum, wt[1] / sum, wt[2] / sum)
+                                }
+                                false => background,
+                            }
+                        }
+                    },
+                };
+                px.copy_from_slice(&colour);
+            }
+        };
+        if self.parallel {
+            out.par_chunks_mut(K * BAND_ROWS * w)
+                .enumerate()
+                .for_each(shade_band);
+        } else {
+            out.chunks_mut(K * BAND_ROWS * w)
+                .enumerate()
+                .for_each(shade_band);
+        }
+    }
+}
+
+/// The interpolated normal and camera-space position of a pixel.
+#[inline]
+fn normal_position(v: [&Cv; 3], a: f64, b: f64, c: f64) -> (Vector3<f64>, Vector3<f64>) {
+    (
+        v[0].n * a + v[1].n * b + v[2].n * c,
+        v[0].c * a + v[1].c * b + v[2].c * c,
+    )
+}
+
 /// Renders `mesh` seen by `camera`.
 ///
 /// Parallel inside (rayon): the vertices are transformed and the triangles set up in chunks,
@@ -512,13 +885,77 @@ impl Lighting<'_> {
 /// is deferred: the depth pass keeps, per pixel, the nearest triangle (the first of equally
 /// near ones, as before), and each visible pixel is shaded once. The bytes are the same on
 /// every run and for any number of threads. To draw many pictures, [`render_many`] also runs
-/// the pictures in parallel.
+/// the pictures in parallel. An interrogation mode ([`RenderOptions::shading`]) with numbers
+/// out of range is an error ([`Shading::validate`]).
 pub fn render(
     mesh: &RenderMesh,
     camera: &Camera,
     options: &RenderOptions,
 ) -> Result<Image, RenderError> {
     render_with(mesh, camera, options, true)
+}
+
+/// Per-pixel values of a picture, rows top to bottom; NaN where no triangle is seen.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Field {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width · height` values.
+    pub values: Vec<f64>,
+}
+
+impl Field {
+    /// The value at pixel `(x, y)` (NaN outside the picture).
+    pub fn at(&self, x: u32, y: u32) -> f64 {
+        if x >= self.width || y >= self.height {
+            return f64::NAN;
+        }
+        self.values[(y * self.width + x) as usize]
+    }
+}
+
+/// The stripe parameter of [`RenderOptions::shading`] at every pixel [`render`] would draw
+/// (same camera, same nearest triangle, same interpolation; the wireframe is not drawn):
+/// reflection lines `s = stripes · θ/2π` (dark within `width/2` of a whole number; it jumps
+/// by `stripes` where `θ` passes ±π), isophotes `s = bands · (n·L + 1)/2`, highlight lines
+/// the continuous light index `t` (NaN where the normal line is parallel to the lights'
+/// plane), and for [`Shading::Lit`] the key light's `n·l` (two-sided). For measuring what the
+/// stripes show: a jump of `s` between neighbouring pixels is a break of the stripes.
+pub fn interrogation_field(
+    mesh: &RenderMesh,
+    camera: &Camera,
+    options: &RenderOptions,
+) -> Result<Field, RenderError> {
+    let o = RenderOptions {
+        wireframe: None,
+        ..options.clone()
+    };
+    let mut values = Vec::new();
+    let (w, h) = draw(mesh, camera, &o, true, |frame, view, lighting| {
+        values = vec![0.0f64; frame.w * view.h];
+        match Probe::new(&o.shading, view, frame.scene)? {
+            None => frame.shade(&mut values, [f64::NAN], None, |v, a, b, c| {
+                let (n, pos) = normal_position(v, a, b, c);
+                let (mut n, d) = Probe::unit(n, pos);
+                if n.dot(&d) > 0.0 {
+                    n = -n;
+                }
+                [n.dot(&lighting.key)]
+            }),
+            Some(p) => frame.shade(&mut values, [f64::NAN], None, |v, a, b, c| {
+                let (n, pos) = normal_position(v, a, b, c);
+                [p.parameter(n, pos)]
+            }),
+        }
+        Ok(())
+    })?;
+    Ok(Field {
+        width: w as u32,
+        height: h as u32,
+        values,
+    })
 }
 
 /// [`render`], parallel inside or not (the bytes are the same either way).
@@ -528,6 +965,64 @@ fn render_with(
     options: &RenderOptions,
     parallel: bool,
 ) -> Result<Image, RenderError> {
+    let mut rgb = Vec::new();
+    let (w, h) = draw(mesh, camera, options, parallel, |frame, view, lighting| {
+        // Shading pass: every visible pixel once, straight to sRGB bytes.
+        let srgb = Srgb8Table::get();
+        let background = srgb.encode3(options.background);
+        let wire = options
+            .wireframe
+            .map(|c| (srgb.encode3(c), &frame.wire_mask[..]));
+        rgb = vec![0u8; 3 * frame.w * view.h];
+        match Probe::new(&options.shading, view, frame.scene)? {
+            None => frame.shade(&mut rgb, background, wire, |v, a, b, c| {
+                let (n, pos) = normal_position(v, a, b, c);
+                let (af, bf, cf) = (a as f32, b as f32, c as f32);
+                let col =
+                    std::array::from_fn(|k| v[0].col[k] * af + v[1].col[k] * bf + v[2].col[k] * cf);
+                srgb.encode3(lighting.shade(n, col, pos))
+            }),
+            Some(p) => {
+                let (dark, light) = (srgb.encode3(DARK), srgb.encode3(LIGHT));
+                frame.shade(&mut rgb, background, wire, |v, a, b, c| {
+                    let (n, pos) = normal_position(v, a, b, c);
+                    if p.dark(n, pos) {
+                        dark
+                    } else {
+                        light
+                    }
+                })
+            }
+        }
+        Ok(())
+    })?;
+    Ok(Image {
+        width: w as u32,
+        height: h as u32,
+        rgb,
+    })
+}
+
+/// The set-up, depth pass and wireframe mask of a picture, then `shade` with them; the
+/// picture's size.
+fn draw<S>(
+    mesh: &RenderMesh,
+    camera: &Camera,
+    options: &RenderOptions,
+    parallel: bool,
+    shade: S,
+) -> Result<(usize, usize), RenderError>
+where
+    S: FnOnce(&Frame<'_>, &View, &Lighting<'_>) -> Result<(), RenderError>,
+{
+    // Refused before any drawing (`Probe::new` sets the mode up after the depth pass).
+    options
+        .shading
+        .validate()
+        .map_err(|message| RenderError::Shading {
+            mode: options.shading.name(),
+            message,
+        })?;
     let (w, h) = (
         options.width.max(1) as usize,
         options.height.max(1) as usize,
@@ -612,56 +1107,15 @@ fn render_with(
         }
     }
 
-    // Shading pass: every visible pixel once, straight to sRGB bytes.
-    let srgb = Srgb8Table::get();
-    let background = srgb.encode3(options.background);
-    let wire = options.wireframe.map(|c| srgb.encode3(c));
-    let mut rgb = vec![0u8; 3 * w * h];
-    let shade_band = |(b, out): (usize, &mut [u8])| {
-        let r0 = b * BAND_ROWS;
-        for (i, px) in out.chunks_exact_mut(3).enumerate() {
-            let idx = r0 * w + i;
-            let colour = match (wire, wire_mask.get(idx)) {
-                (Some(c), Some(true)) => c,
-                _ => match scene.tri(nearest[idx]) {
-                    None => background,
-                    Some((t, v)) => {
-                        let (x, y) = (idx % w, idx / w);
-                        let e = t.at(&t.row(y), x);
-                        match t.inside(&e) {
-                            true => {
-                                let (wt, sum) = t.weights(&e);
-                                let (a, b, c) = (wt[0] / sum, wt[1] / sum, wt[2] / sum);
-                                let n = v[0].n * a + v[1].n * b + v[2].n * c;
-                                let pos = v[0].c * a + v[1].c * b + v[2].c * c;
-                                let (af, bf, cf) = (a as f32, b as f32, c as f32);
-                                let col = std::array::from_fn(|k| {
-                                    v[0].col[k] * af + v[1].col[k] * bf + v[2].col[k] * cf
-                                });
-                                srgb.encode3(lighting.shade(n, col, pos))
-                            }
-                            false => background,
-                        }
-                    }
-                },
-            };
-            px.copy_from_slice(&colour);
-        }
+    let frame = Frame {
+        scene: &scene,
+        nearest: &nearest,
+        w,
+        parallel,
+        wire_mask,
     };
-    if parallel {
-        rgb.par_chunks_mut(3 * BAND_ROWS * w)
-            .enumerate()
-            .for_each(shade_band);
-    } else {
-        rgb.chunks_mut(3 * BAND_ROWS * w)
-            .enumerate()
-            .for_each(shade_band);
-    }
-    Ok(Image {
-        width: w as u32,
-        height: h as u32,
-        rgb,
-    })
+    shade(&frame, &view, &lighting)?;
+    Ok((w, h))
 }
 
 /// Renders every `(mesh, camera)` pair with the same options, in parallel over the pictures
@@ -996,6 +1450,48 @@ mod tests {
         assert!(render_many(&[], &RenderOptions::default())
             .unwrap()
             .is_empty());
+    }
+
+    #[test]
+    fn interrogation_modes_are_deterministic_and_refuse_bad_numbers() {
+        let m = busy_mesh(120, 40);
+        let cam = Camera {
+            eye: Point3::new(0.5, -6.0, 3.0),
+            ..top_camera()
+        };
+        for shading in [Shading::REFLECTION, Shading::ISOPHOTES, Shading::HIGHLIGHT] {
+            let o = RenderOptions {
+                width: 301,
+                height: 203,
+                shading,
+                ..RenderOptions::default()
+            };
+            let first = render(&m, &cam, &o).unwrap();
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(3)
+                .build()
+                .unwrap();
+            assert!(pool.install(|| render(&m, &cam, &o)).unwrap() == first);
+            assert!(render_with(&m, &cam, &o, false).unwrap() == first);
+            // Two tones and the background only.
+            let mut tones: Vec<u8> = first.rgb.clone();
+            tones.sort_unstable();
+            tones.dedup();
+            assert_eq!(tones.len(), 3, "{shading:?}: {tones:?}");
+        }
+        let bad = RenderOptions {
+            shading: Shading::Isophotes {
+                bands: 0,
+                light: None,
+                width: 0.5,
+            },
+            ..RenderOptions::default()
+        };
+        let err = render(&m, &cam, &bad).unwrap_err().to_string();
+        assert!(
+            err.contains("isophotes") && err.contains("stripes 0"),
+            "{err}"
+        );
     }
 
     /// Relative accuracy promised by [`spec_power`] for whole exponents `e`: `2·e` ulps.

@@ -5,12 +5,12 @@
 //! The triangles are drawn as they come, unwelded (each Triangle record's three vertices; a
 //! TriangleMesh's vertices shared as in the record), with their normals (the geometric normal
 //! where a vertex has none) and colours (the uniform material where a vertex has none). The
-//! camera frames the triangles' bounding box from the given azimuth and elevation.
+//! camera looks at the centre of the triangles' bounding box from the given azimuth and
+//! elevation, as near as keeps every vertex in the middle 90% of the width and the height.
 
 use std::io::Write;
 
-use nalgebra::Point3;
-use render::{Camera, Image, RenderMesh, RenderOptions};
+use render::{Camera, Image, RenderMesh, RenderOptions, Shading};
 
 use crate::error::FilterError;
 use crate::options::pair;
@@ -150,17 +150,6 @@ pub fn render_mesh(tris: &[[Vertex; 3]], default_color: [f32; 3]) -> RenderMesh 
     m
 }
 
-/// Bounding box of the mesh's finite positions (a unit box at the origin when empty):
-/// `meshio::BoundingBox`, the workspace's one box.
-fn bounds(m: &RenderMesh) -> (Point3<f64>, Point3<f64>) {
-    let b = meshio::BoundingBox::of_finite(&m.positions);
-    if b.is_empty() {
-        (Point3::origin(), Point3::new(1.0, 1.0, 1.0))
-    } else {
-        (b.min, b.max)
-    }
-}
-
 /// Picture options (`render`, `wire`).
 #[derive(clap::Args, Debug, Clone, Default, PartialEq, Eq)]
 pub struct PictureArgs {
@@ -251,6 +240,16 @@ pub fn blank_reason(name: &str, triangles: usize, seen: &Seen, blank: bool) -> O
 /// ([`blank_reason`]), and a size whose drawing would not fit in memory is refused before the
 /// stream is read ([`check_picture_memory`]).
 pub fn picture(name: &'static str, stream: &StreamOptions, view: &View) -> Result<(), FilterError> {
+    picture_with(name, stream, view, Shading::Lit)
+}
+
+/// [`picture`] with a shading mode (`render --mode`; ignored by a wire frame).
+pub fn picture_with(
+    name: &'static str,
+    stream: &StreamOptions,
+    view: &View,
+    shading: Shading,
+) -> Result<(), FilterError> {
     check_side(view)?;
     check_picture_memory(view)?;
     let mut seen = Seen::default();
@@ -258,7 +257,7 @@ pub fn picture(name: &'static str, stream: &StreamOptions, view: &View) -> Resul
     if let Some(why) = blank_reason(name, mesh.faces.len(), &seen, false) {
         return Err(FilterError::Blank(why));
     }
-    let image = draw_mesh(&mesh, view)?;
+    let image = draw_mesh_with(&mesh, view, shading)?;
     // Both pictures are drawn on white (`render`'s default background, `wire_frame`'s).
     let blank = image.rgb.iter().all(|&b| b == u8::MAX);
     if let Some(why) = blank_reason(name, mesh.faces.len(), &seen, blank) {
@@ -297,20 +296,40 @@ fn check_side(view: &View) -> Result<(), FilterError> {
 
 /// Draws a render mesh (unwelded triangles).
 pub fn draw_mesh(mesh: &RenderMesh, view: &View) -> Result<Image, FilterError> {
+    draw_mesh_with(mesh, view, Shading::Lit)
+}
+
+/// Draws a render mesh with a shading mode (ignored by a wire frame). The camera looks at the
+/// centre of the mesh's bounding box from the view's angles, as near as keeps every vertex in
+/// the middle 90% of the width and of the height (`render::Camera::framing_points`, for the
+/// picture's aspect): the object fills 90% of one of them. A mode the renderer refuses (the
+/// highlight lights seen end on: `--direction` along `--view`) is a usage error.
+pub fn draw_mesh_with(
+    mesh: &RenderMesh,
+    view: &View,
+    shading: Shading,
+) -> Result<Image, FilterError> {
     check_side(view)?;
     check_picture_memory(view)?;
     let (w, h) = view.size;
     let options = RenderOptions {
         width: w,
         height: h,
+        shading,
         ..RenderOptions::default()
     };
-    let (lo, hi) = bounds(mesh);
-    let camera = Camera::framing(lo, hi, view.view.0, view.view.1);
+    let aspect = f64::from(w) / f64::from(h);
+    let camera = Camera::framing_points(&mesh.positions, view.view.0, view.view.1, aspect);
     if view.wire {
         return Ok(render::wire_frame(mesh, &camera, w, h));
     }
-    Ok(render::render(mesh, &camera, &options)?)
+    match render::render(mesh, &camera, &options) {
+        Err(render::RenderError::Shading { mode, message }) => Err(FilterError::Usage(format!(
+            "--mode {mode}: {message} (--view {},{})",
+            view.view.0, view.view.1
+        ))),
+        other => Ok(other?),
+    }
 }
 
 /// Encodes an image as PNG (`render::write_png`).

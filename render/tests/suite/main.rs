@@ -3,3 +3,4 @@
 
 mod chart;
 mod curve_figure;
+mod interrogation;

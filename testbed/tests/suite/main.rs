@@ -8,6 +8,7 @@ mod numerics;
 mod pipeline;
 mod principal;
 mod registry;
+mod render_modes;
 mod shell_docs;
 mod stream_bounds;
 mod support;
