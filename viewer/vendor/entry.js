@@ -2,6 +2,5 @@
 // script that defines the global `THREE` (works from file://, no modules to resolve).
 export {
   WebGLRenderer, Scene, PerspectiveCamera, BufferGeometry, BufferAttribute,
-  ShaderMaterial, Mesh, LineSegments, LineBasicMaterial, Color, Vector3, Matrix4,
-  Quaternion, DoubleSide, REVISION
+  ShaderMaterial, Mesh, LineSegments, LineBasicMaterial, Vector3, Matrix3, DoubleSide, REVISION
 } from 'three';
