@@ -215,11 +215,11 @@ fn reflection_lines_and_isophotes_show_stripes_shading_does_not() {
     };
     let dir = tempfile::tempdir().expect("tempdir");
     let path = write_page(dir.path(), "torus", &torus_page());
-    let zebra = shoot(&browser, &path, "mode=zebra&ui=0", SIZE, "torus-zebra");
+    let zebra = shoot(&browser, &path, "mode=zebra&boundaries=0&ui=0", SIZE, "torus-zebra");
     assert_eq!(zebra.status, "ready:zebra");
-    let iso = shoot(&browser, &path, "mode=isophotes&ui=0", SIZE, "torus-isophotes");
+    let iso = shoot(&browser, &path, "mode=isophotes&boundaries=0&ui=0", SIZE, "torus-isophotes");
     assert_eq!(iso.status, "ready:isophotes");
-    let shaded = shoot(&browser, &path, "mode=shaded&ui=0", SIZE, "torus-shaded");
+    let shaded = shoot(&browser, &path, "mode=shaded&boundaries=0&ui=0", SIZE, "torus-shaded");
     let (z, i, s) = (stripes(&zebra), stripes(&iso), stripes(&shaded));
     eprintln!("dark/bright transitions along a row: zebra {z}, isophotes {i}, shaded {s}");
     assert!(z >= 10, "reflection lines: only {z} transitions");
