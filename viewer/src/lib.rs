@@ -521,6 +521,100 @@ pub fn view_from_tessellation(title: impl Into<String>, t: &Tessellation) -> Vie
     }
 }
 
+/// A view of triangular Bézier patches: their tessellation at `density` segments per patch
+/// edge ([`surface::tessellate`]) as [`view_from_tessellation`] gives it, with the control nets
+/// ([`control_nets`]).
+pub fn view_from_patches(
+    title: impl Into<String>,
+    patches: &[BezierTriangle],
+    density: usize,
+) -> Result<View, surface::TessError> {
+    let t = surface::tessellate(patches, density)?;
+    let mut view = view_from_tessellation(title, &t);
+    view.nets = Some(control_nets(patches));
+    Ok(view)
+}
+
+/// A view of a mesh as a file gave it ([`meshio::RawMesh`]): polygons fan-triangulated around
+/// their first corner; the file's normals, or else area-weighted face normals summed at the
+/// vertices (`+z` at a vertex no face with area touches); `K`, `H`, `k1`, `k2` when the file
+/// carries curvature ([`meshio::RawMesh::curvature`], the exported convention); the polygons'
+/// edges as the data mesh.
+pub fn view_from_raw(title: impl Into<String>, raw: &meshio::RawMesh) -> Result<View, ViewError> {
+    let title = title.into();
+    let positions: Vec<Point> = raw.positions.iter().map(|&p| to_f32(p)).collect();
+    let mut indices = Vec::new();
+    let mut edges = Vec::new();
+    for poly in raw.polygons.iter() {
+        for k in 2..poly.len() {
+            indices.push([poly[0] as u32, poly[k - 1] as u32, poly[k] as u32]);
+        }
+        for k in 0..poly.len() {
+            edges.push([poly[k] as u32, poly[(k + 1) % poly.len()] as u32]);
+        }
+    }
+    let normals: Vec<Point> = match &raw.normals {
+        Some(n) if n.iter().all(|v| v.norm() > 0.0) => {
+            n.iter().map(|v| [v.x as f32, v.y as f32, v.z as f32]).collect()
+        }
+        _ => {
+            let mut sum = vec![nalgebra::Vector3::<f64>::zeros(); raw.positions.len()];
+            for t in &indices {
+                let [a, b, c] = t.map(|i| raw.positions.get(i as usize).copied());
+                if let (Some(a), Some(b), Some(c)) = (a, b, c) {
+                    // Twice the area times the unit normal: large faces weigh more.
+                    let n = (b - a).cross(&(c - a));
+                    for &i in t {
+                        if let Some(s) = sum.get_mut(i as usize) {
+                            *s += n;
+                        }
+                    }
+                }
+            }
+            sum.iter()
+                .map(|s| {
+                    let n = s.try_normalize(0.0).unwrap_or_else(nalgebra::Vector3::z);
+                    [n.x as f32, n.y as f32, n.z as f32]
+                })
+                .collect()
+        }
+    };
+    let mut scalars = Vec::new();
+    if let Some(c) = &raw.curvature {
+        if c.gaussian.len() == positions.len() && c.mean.len() == positions.len() {
+            let root = |k: f64, h: f64| (h * h - k).max(0.0).sqrt();
+            let f = |v: &[f64]| v.iter().map(|&x| x as f32).collect::<Vec<f32>>();
+            let k1: Vec<f64> = c.gaussian.iter().zip(&c.mean).map(|(&k, &h)| h + root(k, h)).collect();
+            let k2: Vec<f64> = c.gaussian.iter().zip(&c.mean).map(|(&k, &h)| h - root(k, h)).collect();
+            scalars = vec![
+                ("K".to_string(), f(&c.gaussian)),
+                ("H".to_string(), f(&c.mean)),
+                ("k1".to_string(), f(&k1)),
+                ("k2".to_string(), f(&k2)),
+            ];
+        }
+    }
+    let mut seen = std::collections::HashSet::new();
+    let data_mesh = edges
+        .iter()
+        .filter(|[a, b]| seen.insert((*a.min(b), *a.max(b))))
+        .filter_map(|[a, b]| Some([*positions.get(*a as usize)?, *positions.get(*b as usize)?]))
+        .collect();
+    let view = View {
+        title,
+        mesh: TriangleMesh {
+            positions,
+            normals,
+            indices,
+        },
+        scalars,
+        data_mesh: Some(data_mesh),
+        ..View::default()
+    };
+    check(&view)?;
+    Ok(view)
+}
+
 /// A short summary of a page's size: the embedded data and the whole file (for reports).
 pub fn size_summary(page: &Page) -> String {
     let mut s = String::new();
