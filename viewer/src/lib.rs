@@ -24,6 +24,9 @@ use std::fmt::Write as _;
 
 use surface::{BezierTriangle, Tessellation};
 
+pub mod patch_file;
+pub use patch_file::{is_patch_file, read_patch_file, PatchFileError};
+
 /// The vendored three.js bundle (a classic script defining the global `THREE`).
 const THREE_JS: &str = include_str!("../vendor/three.min.js");
 /// The page's script: decodes the data, builds the views, handles input and the hash.
@@ -243,15 +246,16 @@ fn check(view: &View) -> Result<(), ViewError> {
             });
         }
     }
-    let finite = |what: &str, values: &mut dyn Iterator<Item = f32>| {
-        match Iterator::position(&mut &mut *values, |x| !x.is_finite()) {
-            None => Ok(()),
-            Some(at) => Err(ViewError::NotFinite {
-                view: name(),
-                what: what.into(),
-                at,
-            }),
-        }
+    let finite = |what: &str, values: &mut dyn Iterator<Item = f32>| match Iterator::position(
+        &mut &mut *values,
+        |x| !x.is_finite(),
+    ) {
+        None => Ok(()),
+        Some(at) => Err(ViewError::NotFinite {
+            view: name(),
+            what: what.into(),
+            at,
+        }),
     };
     finite(
         "positions",
@@ -294,7 +298,9 @@ fn check(view: &View) -> Result<(), ViewError> {
         if let Some(s) = segments {
             finite(
                 what,
-                &mut s.iter().map(|[a, b]| a[0] + a[1] + a[2] + b[0] + b[1] + b[2]),
+                &mut s
+                    .iter()
+                    .map(|[a, b]| a[0] + a[1] + a[2] + b[0] + b[1] + b[2]),
             )?;
         }
     }
@@ -308,10 +314,14 @@ fn ranges(views: &[View]) -> serde_json::Value {
     let mut all: BTreeMap<&str, Vec<f32>> = BTreeMap::new();
     for v in views {
         for (name, values) in &v.scalars {
-            all.entry(name).or_default().extend(values.iter().map(|x| x.abs()));
+            all.entry(name)
+                .or_default()
+                .extend(values.iter().map(|x| x.abs()));
         }
         if let Some(d) = &v.distance {
-            all.entry("distance").or_default().extend(d.iter().map(|x| x.abs()));
+            all.entry("distance")
+                .or_default()
+                .extend(d.iter().map(|x| x.abs()));
         }
     }
     let mut out = serde_json::Map::new();
@@ -429,7 +439,8 @@ pub fn wireframe(positions: &[Point], triangles: &[[u32; 3]]) -> Vec<Segment> {
 }
 
 /// The control nets of triangular Bézier patches: each patch's net of `(n+1)(n+2)/2` points
-/// joined as its `n²` small triangles' edges (every net edge once a patch).
+/// joined as the edges of its `n(n+1)/2` upward small triangles, which hold every edge of the
+/// net once: `3n(n+1)/2` segments a patch.
 pub fn control_nets(patches: &[BezierTriangle]) -> Vec<Segment> {
     let mut out = Vec::new();
     for patch in patches {
@@ -440,7 +451,8 @@ pub fn control_nets(patches: &[BezierTriangle]) -> Vec<Segment> {
         for i in 0..n {
             for j in 0..n - i {
                 let k = n - 1 - i - j;
-                if let (Some(a), Some(b), Some(c)) = (p(i + 1, j, k), p(i, j + 1, k), p(i, j, k + 1))
+                if let (Some(a), Some(b), Some(c)) =
+                    (p(i + 1, j, k), p(i, j + 1, k), p(i, j, k + 1))
                 {
                     out.extend([[a, b], [b, c], [c, a]]);
                 }
@@ -474,15 +486,25 @@ pub fn view_from_tessellation(title: impl Into<String>, t: &Tessellation) -> Vie
     // Internally H = −1 on the unit sphere with outward normals; the page shows the exported sign.
     let h: Vec<f64> = t.mean.iter().map(|h| -h).collect();
     let root = |k: f64, h: f64| (h * h - k).max(0.0).sqrt();
-    let k1: Vec<f32> = k.iter().zip(&h).map(|(&k, &h)| (h + root(k, h)) as f32).collect();
-    let k2: Vec<f32> = k.iter().zip(&h).map(|(&k, &h)| (h - root(k, h)) as f32).collect();
+    let k1: Vec<f32> = k
+        .iter()
+        .zip(&h)
+        .map(|(&k, &h)| (h + root(k, h)) as f32)
+        .collect();
+    let k2: Vec<f32> = k
+        .iter()
+        .zip(&h)
+        .map(|(&k, &h)| (h - root(k, h)) as f32)
+        .collect();
     // Edge → (patch of the first face, faces seen).
     let mut edges: HashMap<(usize, usize), (usize, bool, u8)> = HashMap::new();
     for (f, tri) in t.faces.iter().enumerate() {
         let patch = t.patch_of_face.get(f).copied().unwrap_or(0);
         for c in 0..3 {
             let (a, b) = (tri[c], tri[(c + 1) % 3]);
-            let e = edges.entry((a.min(b), a.max(b))).or_insert((patch, false, 0));
+            let e = edges
+                .entry((a.min(b), a.max(b)))
+                .or_insert((patch, false, 0));
             e.2 = e.2.saturating_add(1);
             if e.0 != patch {
                 e.1 = true;
@@ -554,9 +576,10 @@ pub fn view_from_raw(title: impl Into<String>, raw: &meshio::RawMesh) -> Result<
         }
     }
     let normals: Vec<Point> = match &raw.normals {
-        Some(n) if n.iter().all(|v| v.norm() > 0.0) => {
-            n.iter().map(|v| [v.x as f32, v.y as f32, v.z as f32]).collect()
-        }
+        Some(n) if n.iter().all(|v| v.norm() > 0.0) => n
+            .iter()
+            .map(|v| [v.x as f32, v.y as f32, v.z as f32])
+            .collect(),
         _ => {
             let mut sum = vec![nalgebra::Vector3::<f64>::zeros(); raw.positions.len()];
             for t in &indices {
@@ -584,8 +607,18 @@ pub fn view_from_raw(title: impl Into<String>, raw: &meshio::RawMesh) -> Result<
         if c.gaussian.len() == positions.len() && c.mean.len() == positions.len() {
             let root = |k: f64, h: f64| (h * h - k).max(0.0).sqrt();
             let f = |v: &[f64]| v.iter().map(|&x| x as f32).collect::<Vec<f32>>();
-            let k1: Vec<f64> = c.gaussian.iter().zip(&c.mean).map(|(&k, &h)| h + root(k, h)).collect();
-            let k2: Vec<f64> = c.gaussian.iter().zip(&c.mean).map(|(&k, &h)| h - root(k, h)).collect();
+            let k1: Vec<f64> = c
+                .gaussian
+                .iter()
+                .zip(&c.mean)
+                .map(|(&k, &h)| h + root(k, h))
+                .collect();
+            let k2: Vec<f64> = c
+                .gaussian
+                .iter()
+                .zip(&c.mean)
+                .map(|(&k, &h)| h - root(k, h))
+                .collect();
             scalars = vec![
                 ("K".to_string(), f(&c.gaussian)),
                 ("H".to_string(), f(&c.mean)),
@@ -680,19 +713,31 @@ mod tests {
         let mut page = Page::new("p");
         let mut v = one_triangle();
         v.mesh.indices[0][2] = 3;
-        assert!(matches!(page.add_view(v), Err(ViewError::Index { index: 3, .. })));
+        assert!(matches!(
+            page.add_view(v),
+            Err(ViewError::Index { index: 3, .. })
+        ));
         let mut v = one_triangle();
         v.scalars.push(("K".into(), vec![0.0; 2]));
-        assert!(matches!(page.add_view(v), Err(ViewError::Length { got: 2, .. })));
+        assert!(matches!(
+            page.add_view(v),
+            Err(ViewError::Length { got: 2, .. })
+        ));
         let mut v = one_triangle();
         v.scalars.push(("zebra".into(), vec![0.0; 3]));
         assert!(matches!(page.add_view(v), Err(ViewError::Name { .. })));
         let mut v = one_triangle();
         v.mesh.positions[1][2] = f32::NAN;
-        assert!(matches!(page.add_view(v), Err(ViewError::NotFinite { at: 1, .. })));
+        assert!(matches!(
+            page.add_view(v),
+            Err(ViewError::NotFinite { at: 1, .. })
+        ));
         let mut v = one_triangle();
         v.mesh.normals[2] = [0.0; 3];
-        assert!(matches!(page.add_view(v), Err(ViewError::ZeroNormal { vertex: 2, .. })));
+        assert!(matches!(
+            page.add_view(v),
+            Err(ViewError::ZeroNormal { vertex: 2, .. })
+        ));
         assert!(page.add_view(one_triangle()).is_ok());
         assert_eq!(page.views().len(), 1);
     }
@@ -728,5 +773,47 @@ mod tests {
         let p = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]];
         let w = wireframe(&p, &[[0, 1, 2], [1, 3, 2]]);
         assert_eq!(w.len(), 5);
+    }
+
+    #[test]
+    fn a_flat_cubic_patch_gives_its_net_boundary_and_zero_curvature() {
+        // The cubic net of the triangle (0,0,0), (1,0,0), (0,1,0): points at (j, k)/3.
+        let patch = BezierTriangle::from_fn(3, |_i, j, k| {
+            nalgebra::Point3::new(j as f64 / 3.0, k as f64 / 3.0, 0.0)
+        });
+        let s = 4;
+        let view = view_from_patches("flat", &[patch], s).unwrap_or_default();
+        // (s+1)(s+2)/2 samples, s² triangles; the net's n(n+1)/2 = 6 upward triangles hold
+        // its 18 edges; the border has 3s edges and no edge lies between two patches.
+        assert_eq!(view.mesh.positions.len(), 15);
+        assert_eq!(view.mesh.indices.len(), 16);
+        assert_eq!(view.nets.as_ref().map(Vec::len), Some(18));
+        assert_eq!(view.boundaries.as_ref().map(Vec::len), Some(3 * s));
+        for (name, values) in &view.scalars {
+            assert!(values.iter().all(|v| v.abs() < 1e-12), "{name} on a plane");
+        }
+    }
+
+    #[test]
+    fn a_raw_quad_is_fanned_with_area_normals_and_its_edges_as_data_mesh() {
+        let p = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let mut raw = meshio::RawMesh::from_triangles(
+            p.iter()
+                .map(|q| nalgebra::Point3::new(q[0], q[1], q[2]))
+                .collect(),
+            &[],
+        );
+        raw.polygons.push(&[0, 1, 2, 3]);
+        let view = view_from_raw("quad", &raw).unwrap_or_default();
+        assert_eq!(view.mesh.indices, vec![[0, 1, 2], [0, 2, 3]]);
+        assert!(view.mesh.normals.iter().all(|n| n == &[0.0, 0.0, 1.0]));
+        // Four sides, not the fan's diagonal; no curvature in the file, no scalar modes.
+        assert_eq!(view.data_mesh.as_ref().map(Vec::len), Some(4));
+        assert!(view.scalars.is_empty());
     }
 }

@@ -101,7 +101,10 @@ fn transitions(s: &Shot, y: usize) -> usize {
 fn stripes(s: &Shot) -> usize {
     let ((_, y0, _, y1), _) = object_box(s);
     let third = (y1 - y0) / 3;
-    (y0 + third..=y1 - third).map(|y| transitions(s, y)).max().unwrap_or(0)
+    (y0 + third..=y1 - third)
+        .map(|y| transitions(s, y))
+        .max()
+        .unwrap_or(0)
 }
 
 /// Mean absolute difference per channel between two equal-sized regions `[x, x + w)`.
@@ -110,7 +113,9 @@ fn region_difference(a: &Shot, ax: usize, b: &Shot, bx: usize, w: usize) -> f64 
     for y in 0..a.height {
         for x in 0..w {
             let (p, q) = (a.at(ax + x, y), b.at(bx + x, y));
-            sum += (0..3).map(|c| (f64::from(p[c]) - f64::from(q[c])).abs()).sum::<f64>();
+            sum += (0..3)
+                .map(|c| (f64::from(p[c]) - f64::from(q[c])).abs())
+                .sum::<f64>();
         }
     }
     sum / (3 * w * a.height) as f64
@@ -118,16 +123,33 @@ fn region_difference(a: &Shot, ax: usize, b: &Shot, bx: usize, w: usize) -> f64 
 
 #[test]
 fn every_mode_draws_without_script_errors_and_fits_the_frame() {
-    let Some(browser) = browser_or_skip("every_mode_draws_without_script_errors_and_fits_the_frame")
+    let Some(browser) =
+        browser_or_skip("every_mode_draws_without_script_errors_and_fits_the_frame")
     else {
         return;
     };
     let dir = tempfile::tempdir().expect("tempdir");
     let mut page = Page::new("modes");
-    page.add_view(sphere("sphere", 64, 32)).expect("a valid sphere");
+    page.add_view(sphere("sphere", 64, 32))
+        .expect("a valid sphere");
     let path = write_page(dir.path(), "modes", &page);
-    for mode in ["shaded", "K", "H", "k1", "k2", "zebra", "isophotes", "distance"] {
-        let shot = shoot(&browser, &path, &format!("mode={mode}&ui=0"), SIZE, &format!("sphere-{mode}"));
+    for mode in [
+        "shaded",
+        "K",
+        "H",
+        "k1",
+        "k2",
+        "zebra",
+        "isophotes",
+        "distance",
+    ] {
+        let shot = shoot(
+            &browser,
+            &path,
+            &format!("mode={mode}&ui=0"),
+            SIZE,
+            &format!("sphere-{mode}"),
+        );
         assert_eq!(shot.status, format!("ready:{mode}"), "mode {mode}");
         let ((x0, y0, x1, y1), n) = object_box(&shot);
         assert!(n > 0, "mode {mode}: nothing drawn");
@@ -142,7 +164,10 @@ fn every_mode_draws_without_script_errors_and_fits_the_frame() {
             shot.height
         );
         let span = (x1 - x0).max(y1 - y0) as f64 / shot.width.min(shot.height) as f64;
-        assert!(span >= MIN_SPAN, "mode {mode}: object spans only {span:.2} of the frame");
+        assert!(
+            span >= MIN_SPAN,
+            "mode {mode}: object spans only {span:.2} of the frame"
+        );
     }
     // An unknown mode is reported as an error, not drawn as something else.
     let shot = shoot(&browser, &path, "mode=nonsense", SIZE, "sphere-nonsense");
@@ -156,17 +181,32 @@ fn the_torus_fits_the_frame_from_any_side() {
     };
     let dir = tempfile::tempdir().expect("tempdir");
     let path = write_page(dir.path(), "torus", &torus_page());
-    for (k, hash) in ["turn=0", "turn=90&tilt=60", "tilt=-110", "turn=45&tilt=-20"].iter().enumerate() {
-        let shot = shoot(&browser, &path, &format!("{hash}&ui=0"), SIZE, &format!("torus-fit-{k}"));
+    for (k, hash) in ["turn=0", "turn=90&tilt=60", "tilt=-110", "turn=45&tilt=-20"]
+        .iter()
+        .enumerate()
+    {
+        let shot = shoot(
+            &browser,
+            &path,
+            &format!("{hash}&ui=0"),
+            SIZE,
+            &format!("torus-fit-{k}"),
+        );
         assert_eq!(shot.status, "ready:shaded", "{hash}");
         let ((x0, y0, x1, y1), _) = object_box(&shot);
         assert!(
-            x0 >= EDGE_MARGIN_PX && y0 >= EDGE_MARGIN_PX && x1 + EDGE_MARGIN_PX < shot.width && y1 + EDGE_MARGIN_PX < shot.height,
+            x0 >= EDGE_MARGIN_PX
+                && y0 >= EDGE_MARGIN_PX
+                && x1 + EDGE_MARGIN_PX < shot.width
+                && y1 + EDGE_MARGIN_PX < shot.height,
             "{hash}: object box {:?} touches the frame",
             (x0, y0, x1, y1)
         );
         let span = (x1 - x0).max(y1 - y0) as f64 / shot.width.min(shot.height) as f64;
-        assert!(span >= MIN_SPAN, "{hash}: object spans only {span:.2} of the frame");
+        assert!(
+            span >= MIN_SPAN,
+            "{hash}: object spans only {span:.2} of the frame"
+        );
     }
 }
 
@@ -195,7 +235,10 @@ fn gaussian_curvature_on_a_torus_shows_both_diverging_hues() {
     }
     // K > 0 on the outer half of the torus, K < 0 on the inner: each hue covers a good part.
     let (fr, fb) = (red as f64 / object as f64, blue as f64 / object as f64);
-    assert!(fr > 0.05 && fb > 0.05, "reddish {fr:.3}, bluish {fb:.3} of {object} object pixels");
+    assert!(
+        fr > 0.05 && fb > 0.05,
+        "reddish {fr:.3}, bluish {fb:.3} of {object} object pixels"
+    );
     // The colour bar (bottom right) is shown with its labels.
     let bar = (shot.width - 200..shot.width - 20)
         .filter(|&x| {
@@ -215,16 +258,37 @@ fn reflection_lines_and_isophotes_show_stripes_shading_does_not() {
     };
     let dir = tempfile::tempdir().expect("tempdir");
     let path = write_page(dir.path(), "torus", &torus_page());
-    let zebra = shoot(&browser, &path, "mode=zebra&boundaries=0&ui=0", SIZE, "torus-zebra");
+    let zebra = shoot(
+        &browser,
+        &path,
+        "mode=zebra&boundaries=0&ui=0",
+        SIZE,
+        "torus-zebra",
+    );
     assert_eq!(zebra.status, "ready:zebra");
-    let iso = shoot(&browser, &path, "mode=isophotes&boundaries=0&ui=0", SIZE, "torus-isophotes");
+    let iso = shoot(
+        &browser,
+        &path,
+        "mode=isophotes&boundaries=0&ui=0",
+        SIZE,
+        "torus-isophotes",
+    );
     assert_eq!(iso.status, "ready:isophotes");
-    let shaded = shoot(&browser, &path, "mode=shaded&boundaries=0&ui=0", SIZE, "torus-shaded");
+    let shaded = shoot(
+        &browser,
+        &path,
+        "mode=shaded&boundaries=0&ui=0",
+        SIZE,
+        "torus-shaded",
+    );
     let (z, i, s) = (stripes(&zebra), stripes(&iso), stripes(&shaded));
     eprintln!("dark/bright transitions along a row: zebra {z}, isophotes {i}, shaded {s}");
     assert!(z >= 10, "reflection lines: only {z} transitions");
     assert!(i >= 6, "isophotes: only {i} transitions");
-    assert!(s <= 2, "shaded: {s} transitions (the row test would not tell stripes)");
+    assert!(
+        s <= 2,
+        "shaded: {s} transitions (the row test would not tell stripes)"
+    );
 }
 
 #[test]
@@ -243,8 +307,20 @@ fn line_toggles_draw_boundaries_and_the_data_mesh() {
     let dark = |p: [u8; 3]| luminance(p) < 50.0;
     let blue = |p: [u8; 3]| i32::from(p[2]) > i32::from(p[0]) + 80;
     let none = shoot(&browser, &path, "boundaries=0&ui=0", SIZE, "torus-no-lines");
-    let bounds = shoot(&browser, &path, "boundaries=1&ui=0", SIZE, "torus-boundaries");
-    let mesh = shoot(&browser, &path, "boundaries=0&mesh=1&ui=0", SIZE, "torus-data-mesh");
+    let bounds = shoot(
+        &browser,
+        &path,
+        "boundaries=1&ui=0",
+        SIZE,
+        "torus-boundaries",
+    );
+    let mesh = shoot(
+        &browser,
+        &path,
+        "boundaries=0&mesh=1&ui=0",
+        SIZE,
+        "torus-data-mesh",
+    );
     let (d0, d1) = (count(&none, &dark), count(&bounds, &dark));
     let (b0, b1) = (count(&none, &blue), count(&mesh, &blue));
     eprintln!("dark pixels {d0} → {d1} with boundaries; blue {b0} → {b1} with the data mesh");
@@ -260,7 +336,8 @@ fn linked_views_turn_together_by_drag_and_by_hash() {
     let dir = tempfile::tempdir().expect("tempdir");
     let mut page = Page::new("two");
     for title in ["left", "right"] {
-        page.add_view(torus(title, 96, 48, 2.0, 0.75, 8)).expect("a valid torus");
+        page.add_view(torus(title, 96, 48, 2.0, 0.75, 8))
+            .expect("a valid torus");
     }
     let path = write_page(dir.path(), "two", &page);
     let size = (720, 320);
@@ -270,7 +347,13 @@ fn linked_views_turn_together_by_drag_and_by_hash() {
     // pixel) ...
     let dragged_left = shoot(&browser, &path, "ui=0&drag=0:120:60", size, "two-drag-left");
     // ... as it does over the right view, and as the hash's turn does.
-    let dragged_right = shoot(&browser, &path, "ui=0&drag=1:120:60", size, "two-drag-right");
+    let dragged_right = shoot(
+        &browser,
+        &path,
+        "ui=0&drag=1:120:60",
+        size,
+        "two-drag-right",
+    );
     let turned = shoot(&browser, &path, "ui=0&turn=-60&tilt=30", size, "two-turn");
     for s in [&before, &dragged_left, &dragged_right, &turned] {
         assert_eq!(s.status, "ready:shaded");
@@ -290,7 +373,10 @@ fn linked_views_turn_together_by_drag_and_by_hash() {
         assert!(halves(s) < 0.5, "halves differ by {:.3}", halves(s));
     }
     // The turn and tilt really changed the picture, and both drags and the hash agree.
-    assert!(moved > 1.0, "the drag changed the left half by only {moved:.3}");
+    assert!(
+        moved > 1.0,
+        "the drag changed the left half by only {moved:.3}"
+    );
     assert!(region_difference(&dragged_left, 0, &dragged_right, 0, size.0) < 0.5);
     assert!(region_difference(&dragged_left, 0, &turned, 0, size.0) < 0.5);
 }

@@ -65,9 +65,15 @@ fn the_page_is_at_most_twice_the_glb() {
             data / glb,
             html / glb
         );
-        assert!(data <= MAX_RATIO * glb, "data {data} > {MAX_RATIO} × glb {glb}");
+        assert!(
+            data <= MAX_RATIO * glb,
+            "data {data} > {MAX_RATIO} × glb {glb}"
+        );
         if nu * nv >= 100_000 {
-            assert!(html <= MAX_RATIO * glb, "page {html} > {MAX_RATIO} × glb {glb}");
+            assert!(
+                html <= MAX_RATIO * glb,
+                "page {html} > {MAX_RATIO} × glb {glb}"
+            );
         }
     }
 }

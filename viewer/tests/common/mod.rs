@@ -62,7 +62,12 @@ pub fn torus(title: &str, nu: usize, nv: usize, big_r: f32, r: f32, patch: usize
         let mut t = Vec::new();
         for i in (0..nu).step_by(step) {
             for j in (0..nv).step_by(step) {
-                let (a, b, c, d) = (id(i, j), id(i + step, j), id(i + step, j + step), id(i, j + step));
+                let (a, b, c, d) = (
+                    id(i, j),
+                    id(i + step, j),
+                    id(i + step, j + step),
+                    id(i, j + step),
+                );
                 t.push([a, b, c]);
                 t.push([a, c, d]);
             }
@@ -90,7 +95,12 @@ pub fn torus(title: &str, nu: usize, nv: usize, big_r: f32, r: f32, patch: usize
             normals,
             indices,
         },
-        scalars: vec![("K".into(), k), ("H".into(), h), ("k1".into(), k1), ("k2".into(), k2)],
+        scalars: vec![
+            ("K".into(), k),
+            ("H".into(), h),
+            ("k1".into(), k1),
+            ("k2".into(), k2),
+        ],
         boundaries: Some(boundaries),
         data_mesh: Some(data_mesh),
         ..View::default()
@@ -253,7 +263,10 @@ pub fn shoot(browser: &Path, page: &Path, hash: &str, size: (usize, usize), name
         .to_string();
     let dir = tempfile::tempdir().expect("a temporary directory");
     let png = dir.path().join("shot.png");
-    run(browser, &[window, format!("--screenshot={}", png.display()), url]);
+    run(
+        browser,
+        &[window, format!("--screenshot={}", png.display()), url],
+    );
     if let Some(keep) = std::env::var_os("VIEWER_SCREENSHOTS") {
         let _ = std::fs::create_dir_all(&keep);
         let _ = std::fs::copy(&png, Path::new(&keep).join(format!("{name}.png")));
