@@ -743,6 +743,25 @@ mod tests {
     }
 
     #[test]
+    fn the_page_loads_nothing_from_outside() {
+        let mut page = Page::new("p");
+        assert!(page.add_view(one_triangle()).is_ok());
+        let html = page.to_html().to_ascii_lowercase();
+        // No external script, style, image or frame: everything is inline.
+        for needle in [
+            "<script src",
+            "<link",
+            "<img",
+            "<iframe",
+            "import(",
+            "@import",
+        ] {
+            assert!(!html.contains(needle), "the page has {needle}");
+        }
+        assert!(!PAGE_JS.contains("fetch(") && !PAGE_JS.contains("http"));
+    }
+
+    #[test]
     fn titles_cannot_break_out_of_the_page() {
         let mut page = Page::new("<b>a</script>");
         let mut v = one_triangle();

@@ -139,7 +139,9 @@ const views = data.views.map((v) => {
     if (v[t] == null) continue;
     const g = new THREE.BufferGeometry();
     g.setAttribute('position', new THREE.BufferAttribute(decode(v[t], Float32Array), 3));
-    lines[t] = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: LINE_COLOURS[t] }));
+    // Nets are dense (a quartic's is 30 segments a patch): drawn see-through.
+    const see = t === 'nets' ? { transparent: true, opacity: 0.55 } : {};
+    lines[t] = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: LINE_COLOURS[t], ...see }));
     scene.add(lines[t]);
   }
   // The bounding sphere: centre of the box, radius the farthest vertex from it.

@@ -4,6 +4,8 @@
 //! does). Skipped with a printed reason when Chromium is missing, unless
 //! `VIEWER_REQUIRE_BROWSER=1` (then failed).
 
+#![allow(clippy::expect_used)] // test fixtures fail loudly by design
+
 mod common;
 
 use std::path::{Path, PathBuf};

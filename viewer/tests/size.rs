@@ -2,6 +2,8 @@
 //! `u32` indices): the embedded data is at most twice the glb at any size, and so is the whole
 //! page once the mesh outweighs the vendored three.js (a constant ≈ 0.54 MB).
 
+#![allow(clippy::expect_used)] // test fixtures fail loudly by design
+
 mod common;
 
 use nalgebra::{Point3, Vector3};
@@ -49,7 +51,8 @@ fn glb_of(view: &View) -> Vec<u8> {
 #[test]
 fn the_page_is_at_most_twice_the_glb() {
     for (nu, nv) in [(48, 24), (192, 96), (512, 256)] {
-        let mut view = common::torus("torus", nu, nv, 2.0, 0.75, 8);
+        let full = common::torus("torus", nu, nv, 2.0, 0.75, 8);
+        let mut view = full.clone();
         // The page carries what the glb cannot (k1, k2, boundaries, data mesh): the bound is for
         // the same surface, so only the glb's data are kept.
         view.scalars.retain(|(n, _)| n == "K" || n == "H");
@@ -68,6 +71,18 @@ fn the_page_is_at_most_twice_the_glb() {
         assert!(
             data <= MAX_RATIO * glb,
             "data {data} > {MAX_RATIO} × glb {glb}"
+        );
+        // With κ1 and κ2 as well (what `view_from_tessellation` gives), still within the bound.
+        let mut with_principal = Page::new("size");
+        let mut four = full;
+        four.boundaries = None;
+        four.data_mesh = None;
+        with_principal.add_view(four).expect("a valid torus");
+        let data4 = with_principal.data_json().len() as f64;
+        eprintln!("  with κ1, κ2: data {data4} ({:.2}×)", data4 / glb);
+        assert!(
+            data4 <= MAX_RATIO * glb,
+            "data with κ1, κ2 {data4} > {MAX_RATIO} × glb {glb}"
         );
         if nu * nv >= 100_000 {
             assert!(

@@ -2,6 +2,7 @@
 //! Chromium that opens a page at a hash and returns the page's status and a screenshot.
 
 #![allow(dead_code)] // each test file uses a part
+#![allow(clippy::expect_used)] // test fixtures fail loudly by design
 
 use std::f32::consts::TAU;
 use std::path::{Path, PathBuf};
@@ -153,10 +154,12 @@ pub fn sphere(title: &str, nu: usize, nv: usize) -> View {
     }
 }
 
-/// Where Chromium is: `$VIEWER_CHROMIUM`, `/usr/bin/chromium`, or `chromium` on the `PATH`.
+/// Where Chromium is: `$VIEWER_CHROMIUM` when set (and then only there, so that pointing it
+/// at nothing tries the skip), else `/usr/bin/chromium` or `chromium` on the `PATH`.
 pub fn chromium() -> Option<PathBuf> {
     if let Some(p) = std::env::var_os("VIEWER_CHROMIUM") {
-        return Some(PathBuf::from(p));
+        let p = PathBuf::from(p);
+        return p.exists().then_some(p);
     }
     let fixed = PathBuf::from("/usr/bin/chromium");
     if fixed.exists() {
@@ -174,8 +177,15 @@ pub fn chromium() -> Option<PathBuf> {
 pub fn browser_or_skip(test: &str) -> Option<PathBuf> {
     let found = chromium();
     if found.is_none() {
-        let why = "no Chromium: /usr/bin/chromium is missing, $VIEWER_CHROMIUM is unset and \
-                   `chromium` is not on the PATH (Debian: apt-get install -y chromium)";
+        let why = match std::env::var_os("VIEWER_CHROMIUM") {
+            Some(p) => format!(
+                "no Chromium: $VIEWER_CHROMIUM = {} does not exist",
+                p.to_string_lossy()
+            ),
+            None => "no Chromium: /usr/bin/chromium is missing, $VIEWER_CHROMIUM is unset and \
+                     `chromium` is not on the PATH (Debian: apt-get install -y chromium)"
+                .to_string(),
+        };
         if std::env::var("VIEWER_REQUIRE_BROWSER").as_deref() == Ok("1") {
             panic!("{test}: VIEWER_REQUIRE_BROWSER=1 but {why}");
         }
