@@ -29,6 +29,10 @@ pub struct ViewArgs {
     /// Segments per patch edge when tessellating patch files.
     #[arg(long, default_value_t = 8)]
     density: usize,
+    /// The axis the camera keeps up and the reflection lines turn about: z (the workbench's
+    /// data) or y (most scanned models); the page's `#up=` overrides it.
+    #[arg(long, default_value_t = meshio::UpAxis::Z)]
+    up: meshio::UpAxis,
 }
 
 /// Writes the page.
@@ -44,6 +48,7 @@ pub fn run(args: &ViewArgs) -> Result<ExitCode, ExperimentError> {
         .collect();
     let title = args.title.clone().unwrap_or_else(|| names.join(" · "));
     let mut page = viewer::Page::new(title);
+    page.set_up(args.up);
     for (file, name) in args.files.iter().zip(&names) {
         let view = view_of(file, name, args.density)?;
         say!(

@@ -14,10 +14,11 @@
 //! boundaries, control nets and the data mesh, where a view gives them as line segments.
 //!
 //! The URL hash selects the state, so a headless browser can take one screenshot a state:
-//! `#mode=K&turn=30&tilt=10&zoom=1.5&pan=0.1,0&boundaries=1&nets=0&mesh=1`
+//! `#mode=K&turn=30&tilt=10&zoom=1.5&pan=0.1,0&boundaries=1&nets=0&mesh=1&up=y&ui=0`
 //! (`drag=0:120:0` replays a mouse drag of 120 px right over view 0, through the same
-//! handlers a person's drag goes through). The page sets `document.title` to `ready:<mode>`
-//! once it has drawn, or `error:<message>` on any script error (README.md).
+//! handlers a person's drag goes through; `ui=0` hides the toolbar, titles and colour bar).
+//! Once drawn, the page's `#status` element reads `ready:<mode>`; any script error sets
+//! `error:<message>` there and in `document.title` (README.md).
 
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
@@ -158,6 +159,7 @@ pub enum ViewError {
 pub struct Page {
     title: String,
     views: Vec<View>,
+    up: meshio::UpAxis,
 }
 
 impl Page {
@@ -166,7 +168,15 @@ impl Page {
         Page {
             title: title.into(),
             views: Vec::new(),
+            up: meshio::UpAxis::Z,
         }
+    }
+
+    /// The axis the camera keeps up and the reflection lines turn about: `z` (the default,
+    /// the workbench's data) or `y` (most scanned models, glTF). The hash's `up=` overrides it.
+    pub fn set_up(&mut self, up: meshio::UpAxis) -> &mut Self {
+        self.up = up;
+        self
     }
 
     /// Adds a view after checking it: lengths, indices, finite numbers, non-zero normals and
@@ -189,6 +199,7 @@ impl Page {
         let views: Vec<serde_json::Value> = self.views.iter().map(view_json).collect();
         let doc = serde_json::json!({
             "title": self.title,
+            "up": self.up.name(),
             "ranges": ranges,
             "views": views,
         });

@@ -55,6 +55,8 @@ uniform float range;     // colour range: |value| = range is full colour
 uniform vec3 diverging[5];
 uniform vec3 sequential[5];
 uniform mat3 viewToWorld;
+uniform vec3 across1;    // with across2 and the up axis, a right-handed world basis
+uniform vec3 across2;
 uniform float stripes;
 uniform float bands;
 varying vec3 vN;
@@ -90,9 +92,9 @@ void main() {
   } else if (mode == 2) {
     c = ramp(sequential, vS / range) * (0.55 + 0.45 * light) + 0.12 * spec;
   } else if (mode == 3) {
-    // Reflection lines: the reflected view ray's angle about the world's vertical axis.
+    // Reflection lines: the reflected view ray's angle about the world's up axis.
     vec3 r = viewToWorld * reflect(-v, n);
-    float s = atan(r.y, r.x) / (2.0 * PI) * stripes;
+    float s = atan(dot(r, across2), dot(r, across1)) / (2.0 * PI) * stripes;
     c = vec3(mix(0.06, 0.97, wave(s)));
   } else if (mode == 4) {
     // Isophotes: bands of constant n·L for the key light.
@@ -130,6 +132,7 @@ const views = data.views.map((v) => {
       mode: { value: 0 }, range: { value: 1 }, stripes: { value: STRIPES }, bands: { value: BANDS },
       diverging: { value: DIVERGING.map(toVec3) }, sequential: { value: SEQUENTIAL.map(toVec3) },
       viewToWorld: { value: new THREE.Matrix3() },
+      across1: { value: new THREE.Vector3() }, across2: { value: new THREE.Vector3() },
     },
   });
   const scene = new THREE.Scene();
@@ -154,7 +157,6 @@ const views = data.views.map((v) => {
     r2 = Math.max(r2, dx * dx + dy * dy + dz * dz);
   }
   const camera = new THREE.PerspectiveCamera(FOV_DEG, 1, 0.01, 100);
-  camera.up.set(0, 0, 1); // the workbench's data are z up
   const title = document.createElement('div');
   title.className = 'title';
   stage.appendChild(title);
@@ -165,6 +167,12 @@ const views = data.views.map((v) => {
 const defaults = () => ({ yaw: DEFAULT_YAW, pitch: DEFAULT_PITCH, zoom: 1, panX: 0, panY: 0 });
 let cam = defaults();
 let mode = 'shaded';
+// The up axis and two across it, right-handed (e1 × e2 = up): z up (the workbench's data) or y.
+const BASES = {
+  z: [new THREE.Vector3(1, 0, 0), new THREE.Vector3(0, 1, 0), new THREE.Vector3(0, 0, 1)],
+  y: [new THREE.Vector3(0, 0, 1), new THREE.Vector3(1, 0, 0), new THREE.Vector3(0, 1, 0)],
+};
+let basis = BASES[data.up] || BASES.z;
 const shown = { boundaries: true, nets: false, data_mesh: false };
 
 function layout() {
@@ -187,9 +195,16 @@ function placeCamera(v) {
   const halfX = Math.atan(Math.tan(halfY) * camera.aspect);
   const dist = (radius * FIT_MARGIN) / Math.sin(Math.min(halfX, halfY)) / cam.zoom;
   const yaw = (cam.yaw * Math.PI) / 180, pitch = (cam.pitch * Math.PI) / 180;
-  const dir = new THREE.Vector3(Math.cos(pitch) * Math.cos(yaw), Math.cos(pitch) * Math.sin(yaw), Math.sin(pitch));
-  const right = new THREE.Vector3(-Math.sin(yaw), Math.cos(yaw), 0);
+  const [e1, e2, e3] = basis;
+  const dir = new THREE.Vector3()
+    .addScaledVector(e1, Math.cos(pitch) * Math.cos(yaw))
+    .addScaledVector(e2, Math.cos(pitch) * Math.sin(yaw))
+    .addScaledVector(e3, Math.sin(pitch));
+  const right = new THREE.Vector3().addScaledVector(e1, -Math.sin(yaw)).addScaledVector(e2, Math.cos(yaw));
   const up = new THREE.Vector3().crossVectors(dir, right).negate();
+  camera.up.copy(e3);
+  v.material.uniforms.across1.value.copy(e1);
+  v.material.uniforms.across2.value.copy(e2);
   const target = center.clone().addScaledVector(right, cam.panX * radius).addScaledVector(up, cam.panY * radius);
   camera.position.copy(target).addScaledVector(dir, dist);
   camera.lookAt(target);
@@ -312,7 +327,7 @@ canvas.addEventListener('wheel', (e) => {
   redraw();
 }, { passive: false });
 
-// The hash: #mode=K&turn=30&tilt=10&zoom=1.5&pan=0.1,0&boundaries=1&nets=0&mesh=1&ui=0&drag=0:120:0
+// The hash: #mode=K&turn=30&tilt=10&zoom=1.5&pan=0.1,0&boundaries=1&nets=0&mesh=1&up=y&ui=0&drag=0:120:0
 function applyHash() {
   const h = new URLSearchParams(location.hash.slice(1));
   cam = defaults();
@@ -326,6 +341,9 @@ function applyHash() {
   cam.yaw += num('turn', 0);
   cam.pitch = Math.max(-89, Math.min(89, cam.pitch + num('tilt', 0)));
   cam.zoom = num('zoom', 1);
+  const upName = h.get('up') || data.up;
+  if (!BASES[upName]) throw new Error(`unknown up axis "${upName}" (z or y)`);
+  basis = BASES[upName];
   if (h.has('pan')) [cam.panX, cam.panY] = h.get('pan').split(',').map(Number);
   for (const t of toggles) if (h.has(hashToggle[t])) shown[t] = h.get(hashToggle[t]) === '1';
   const bare = h.get('ui') === '0';

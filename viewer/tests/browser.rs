@@ -382,3 +382,79 @@ fn linked_views_turn_together_by_drag_and_by_hash() {
     assert!(region_difference(&dragged_left, 0, &dragged_right, 0, size.0) < 0.5);
     assert!(region_difference(&dragged_left, 0, &turned, 0, size.0) < 0.5);
 }
+
+/// The octahedron's eight faces as flat cubic patches, through [`viewer::view_from_patches`]
+/// (the path `experiments view` takes for patch files).
+fn octahedron_page() -> Page {
+    let v = [
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    let faces = [
+        [0, 1, 4],
+        [1, 2, 4],
+        [2, 3, 4],
+        [3, 0, 4],
+        [1, 0, 5],
+        [2, 1, 5],
+        [3, 2, 5],
+        [0, 3, 5],
+    ];
+    let patches: Vec<surface::BezierTriangle> = faces
+        .iter()
+        .map(|f| {
+            surface::BezierTriangle::from_fn(3, |i, j, k| {
+                let w = [i as f64 / 3.0, j as f64 / 3.0, k as f64 / 3.0];
+                let c = |a: usize| (0..3).map(|m| w[m] * v[f[m]][a]).sum::<f64>();
+                nalgebra::Point3::new(c(0), c(1), c(2))
+            })
+        })
+        .collect();
+    let mut page = Page::new("octahedron");
+    page.add_view(viewer::view_from_patches("octahedron", &patches, 6).expect("tessellates"))
+        .expect("a valid view");
+    page
+}
+
+#[test]
+fn patch_views_draw_their_control_nets_and_turn_about_either_up_axis() {
+    let Some(browser) =
+        browser_or_skip("patch_views_draw_their_control_nets_and_turn_about_either_up_axis")
+    else {
+        return;
+    };
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = write_page(dir.path(), "octahedron", &octahedron_page());
+    // The nets' colour, 0xd06000, drawn at opacity 0.55 over the grey-blue surface.
+    let orange = |p: [u8; 3]| i32::from(p[0]) > i32::from(p[2]) + 60;
+    let count = |s: &Shot| {
+        (0..s.height)
+            .flat_map(|y| (0..s.width).map(move |x| (x, y)))
+            .filter(|&(x, y)| orange(s.at(x, y)))
+            .count()
+    };
+    let without = shoot(&browser, &path, "ui=0", SIZE, "octahedron");
+    let with = shoot(&browser, &path, "ui=0&nets=1", SIZE, "octahedron-nets");
+    assert_eq!(with.status, "ready:shaded");
+    let (a, b) = (count(&without), count(&with));
+    eprintln!("orange pixels {a} → {b} with the control nets");
+    assert!(b > a + 500, "nets: orange pixels {a} → {b}");
+    // Either up axis frames the object; a wrong one is an error.
+    let y_up = shoot(
+        &browser,
+        &path,
+        "ui=0&up=y&mode=zebra",
+        SIZE,
+        "octahedron-y-up",
+    );
+    assert_eq!(y_up.status, "ready:zebra");
+    let ((x0, y0, x1, y1), n) = object_box(&y_up);
+    assert!(n > 0 && x0 >= EDGE_MARGIN_PX && y0 >= EDGE_MARGIN_PX);
+    assert!(x1 + EDGE_MARGIN_PX < y_up.width && y1 + EDGE_MARGIN_PX < y_up.height);
+    let bad = shoot(&browser, &path, "up=w", SIZE, "octahedron-bad-up");
+    assert!(bad.status.starts_with("error:"), "status {}", bad.status);
+}
