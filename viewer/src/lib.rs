@@ -21,7 +21,6 @@
 //! `error:<message>` there and in `document.title` (README.md).
 
 use std::collections::{BTreeMap, HashMap};
-use std::fmt::Write as _;
 
 use surface::{BezierTriangle, Tessellation};
 
@@ -657,20 +656,6 @@ pub fn view_from_raw(title: impl Into<String>, raw: &meshio::RawMesh) -> Result<
     };
     check(&view)?;
     Ok(view)
-}
-
-/// A short summary of a page's size: the embedded data and the whole file (for reports).
-pub fn size_summary(page: &Page) -> String {
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "{} views, data {} bytes, page {} bytes (three.js {} bytes)",
-        page.views.len(),
-        page.data_json().len(),
-        page.to_html().len(),
-        THREE_JS.len()
-    );
-    s
 }
 
 #[cfg(test)]
