@@ -554,7 +554,7 @@ pub fn view_from_tessellation(title: impl Into<String>, t: &Tessellation) -> Vie
 }
 
 /// A view of triangular Bézier patches: their tessellation at `density` segments per patch
-/// edge ([`surface::tessellate`]) as [`view_from_tessellation`] gives it, with the control nets
+/// edge ([`surface::tessellate()`]) as [`view_from_tessellation`] gives it, with the control nets
 /// ([`control_nets`]).
 pub fn view_from_patches(
     title: impl Into<String>,
