@@ -24,6 +24,7 @@ mod ring;
 mod schemes;
 mod solvers;
 mod sweep;
+mod view;
 
 // The library's modules, under the names the experiments use (`crate::error::…`).
 use experiments::{curve_args, datasets, error, input, limits, study};
@@ -80,6 +81,9 @@ enum Experiment {
     /// The committed real-world meshes read, repaired, completed by estimation and fitted with
     /// every curve construction; pictures of the optimized-curve surfaces.
     Realmesh(realmesh::RealMeshArgs),
+    /// One self-contained interactive HTML page of mesh or patch files side by side (shaded,
+    /// curvature, reflection lines, isophotes; linked cameras; works offline).
+    View(view::ViewArgs),
     /// Print the shell completion script (bash, zsh, fish, elvish, powershell) to standard
     /// output.
     Completions {
@@ -139,6 +143,7 @@ fn main() -> ExitCode {
         Experiment::Estimation(args) => estimation::run(&args),
         Experiment::Realmesh(args) => realmesh::run(&args),
         Experiment::Schemes(args) => schemes::run(&args),
+        Experiment::View(args) => view::run(&args),
     };
     match result {
         Ok(code) => code,
