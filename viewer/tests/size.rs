@@ -41,10 +41,9 @@ fn glb_of(view: &View) -> Vec<u8> {
             .map(|n| Vector3::new(f64::from(n[0]), f64::from(n[1]), f64::from(n[2])))
             .collect(),
     );
-    raw.curvature = Some(meshio::Curvature {
-        gaussian: scalar("K"),
-        mean: scalar("H"),
-    });
+    // K and H only, as the page's data: the principal directions a fit's glb also carries
+    // would make the glb larger and the comparison easier.
+    raw.curvature = Some(meshio::Curvature::from_exported(scalar("K"), scalar("H")));
     meshio::write_bytes(&raw, &meshio::glb::Glb, &meshio::WriteOptions::new()).expect("a glb")
 }
 
