@@ -168,6 +168,15 @@ pub enum ExperimentError {
     /// tells a usage error from a runtime one).
     #[error(transparent)]
     Study(#[from] crate::study::StudyError),
+    /// A surface could not be put on an interactive page (a value no page can draw).
+    #[error("{}: cannot draw it on the page", path.display())]
+    Page {
+        /// The page, or the file drawn on it.
+        path: PathBuf,
+        /// Why.
+        #[source]
+        source: viewer::ViewError,
+    },
     /// `--corpus` holds no readable mesh file.
     #[error("--corpus {path}: no mesh files (readable: {})", meshio::readable_extensions(), path = .path.display())]
     EmptyCorpus {

@@ -64,6 +64,12 @@ pub struct FitArgs {
     /// split, the timings (under `time`) and the peak memory. `-`: standard output.
     #[arg(long)]
     report: Option<PathBuf>,
+    /// Write an interactive page of the fitted surface here: one self-contained HTML file that
+    /// works offline (turn, zoom, pan; shaded, K, H, κ1, κ2, reflection lines, isophotes;
+    /// patch boundaries, control nets and the data mesh), tessellated at `--segments`. The fit
+    /// is then held whole, not streamed (the same numbers).
+    #[arg(long, value_name = "PAGE.html")]
+    html: Option<PathBuf>,
 }
 
 impl FitArgs {
@@ -83,7 +89,7 @@ impl FitArgs {
             patches_out: self.output.clone(),
             mesh_out: self.mesh_output.clone(),
             mesh_options: self.mesh_options,
-            keep: false,
+            keep: self.html.is_some(),
         }
     }
 }
@@ -100,7 +106,46 @@ pub fn run(args: &FitArgs) -> Result<ExitCode, ExperimentError> {
             "--output - and --report - both name standard output; send one to a file".into(),
         ));
     }
+    if let Some(page) = &args.html {
+        crate::output::refuse_unwritable("--html", page, &args.input.data)?;
+        if args.fit.scheme.is_subdivision() {
+            return Err(ExperimentError::Usage(
+                "--html draws patches: a subdivision scheme has none (view its --mesh-output with `experiments view`)".into(),
+            ));
+        }
+    }
     let outcome = fitjob::run(args.job(), &mut |line| say!("{line}"))?;
+    if let (
+        Some(page),
+        fitjob::Kept {
+            mesh: Some(mesh),
+            frame: Some(frame),
+            fit: Some(fit),
+            ..
+        },
+    ) = (&args.html, &outcome.kept)
+    {
+        let mut tess = surface::tessellate_fit(mesh, fit, args.segments).map_err(|source| {
+            ExperimentError::Tessellate {
+                subject: args.input.data.clone(),
+                source,
+            }
+        })?;
+        tess.to_world(frame);
+        // A data set's true surface gives the page its distance mode.
+        let truth = (!fitjob::input::is_file_input(&args.input.data))
+            .then(|| surface::dataset_by_name(&args.input.data, args.input.resolution).ok())
+            .flatten();
+        let view = crate::pages::fit_view(
+            &format!("{} — {}", args.input.data, fit.scheme),
+            &tess,
+            Some((mesh, frame)),
+            Some(fit),
+            truth.as_ref().map(|d| d.surface.as_ref()),
+        );
+        let bytes = crate::pages::write(page, &args.input.data, vec![view])?;
+        say!("  page: {} ({bytes} bytes)", page.display());
+    }
     let report = outcome.report;
     for line in report.summary_lines() {
         say!("{line}");

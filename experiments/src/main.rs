@@ -19,6 +19,7 @@ mod estimation;
 mod fit;
 mod interior;
 mod output;
+mod pages;
 mod realmesh;
 mod ring;
 mod schemes;

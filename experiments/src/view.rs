@@ -57,7 +57,10 @@ pub fn run(args: &ViewArgs) -> Result<ExitCode, ExperimentError> {
             view.mesh.indices.len()
         );
         page.add_view(view)
-            .map_err(|e| ExperimentError::Usage(format!("{}: {e}", file.display())))?;
+            .map_err(|source| ExperimentError::Page {
+                path: file.clone(),
+                source,
+            })?;
     }
     let html = page.to_html();
     write_result(Some(&args.output), html.as_bytes())?;

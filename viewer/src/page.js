@@ -331,7 +331,11 @@ canvas.addEventListener('wheel', (e) => {
 function applyHash() {
   const h = new URLSearchParams(location.hash.slice(1));
   cam = defaults();
-  const want = h.get('mode');
+  // `reflection` and `reflection-lines` name the zebra mode too (the renderer's and the
+  // command line's word for it).
+  const alias = { reflection: 'zebra', 'reflection-lines': 'zebra' };
+  const asked = h.get('mode');
+  const want = asked == null ? null : alias[asked.toLowerCase()] || asked;
   if (want != null) {
     const m = modes.find((x) => x === want) || modes.find((x) => x.toLowerCase() === want.toLowerCase());
     if (!m) throw new Error(`unknown mode "${want}" (modes: ${modes.join(', ')})`);

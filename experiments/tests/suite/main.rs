@@ -6,6 +6,7 @@ mod curve_cli;
 mod exit_status;
 mod hostile_cli;
 mod mesh_cli;
+mod page_cli;
 mod schemes_cli;
 mod shell_docs;
 mod studies_cli;
