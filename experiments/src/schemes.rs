@@ -21,7 +21,6 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use curves::method_by_name;
-use meshio::BoundingBox;
 use render::colors as colormap;
 use render::{
     render, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions, Tile,
@@ -147,6 +146,10 @@ fn error_cells(errors: Option<&surface::SurfaceErrors>) -> String {
         None => "— | — | — | —".into(),
     }
 }
+
+/// Segments a face of the interactive page's tessellations (the pictures use `--face-segments`):
+/// 16 triangles a face keeps the ring's page of eight schemes near 2 MB.
+const PAGE_FACE_SEGMENTS: usize = 4;
 
 /// The measures the schemes are ranked by: the record key (a path of `/`-separated keys), how
 /// the report names it, lower is better for all.
@@ -274,7 +277,9 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
     );
     // The bar counts the meshes begun; its message names the one being compared.
     let bar = progress::Progress::bar("schemes", args.data.len() as u64);
-    for data_item in &args.data {
+    // The mesh whose page is written: the ring, the seeds' subject, when it is among them.
+    let page_item = args.data.iter().position(|d| d.trim() == "ring").unwrap_or(0);
+    for (item, data_item) in args.data.iter().enumerate() {
         bar.inc(1);
         bar.stage(data_item);
         let subject_data =
@@ -304,7 +309,11 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
         );
         let mut tiles_shaded = Vec::new();
         let mut tiles_k = Vec::new();
+        let mut tiles_zebra = Vec::new();
         let mut tessellations = Vec::new();
+        // One mesh's page (the ring's) shows every scheme at PAGE_FACE_SEGMENTS (a page is a few
+        // megabytes; one a study keeps the results small).
+        let mut page_views = Vec::new();
         for entry in REGISTRY {
             let scheme = scheme_by_name(entry.name, &SchemeOptions::default())?;
             let subject = format!("{name}/{}", entry.name);
@@ -362,6 +371,22 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
                 "ends": serde_json::to_value(surface::ends::measure(mesh, &f, truth)).unwrap_or(Value::Null),
                 "fit_time_seconds": fit_ms / 1e3,
             }));
+            if item == page_item {
+                let coarse = segments(PAGE_FACE_SEGMENTS, f.layout.patches_per_face());
+                let t = surface::tessellate_fit(mesh, &f, coarse).map_err(|source| {
+                    ExperimentError::Tessellate {
+                        subject: format!("{name}/{} (page)", entry.name),
+                        source,
+                    }
+                })?;
+                page_views.push(crate::pages::fit_view(
+                    &format!("{name}/{}", entry.name),
+                    &t,
+                    Some((mesh, &surface::Frame::identity())),
+                    None,
+                    truth,
+                ));
+            }
             tessellations.push((entry.name, tess));
         }
         for entry in subdiv::SCHEMES.iter().filter(|e| e.name != "loop-warren") {
@@ -416,15 +441,27 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
             }
         }
         .max(1e-12);
-        // Framing: the union of every scheme's bounds, so no picture is clipped.
-        let b = BoundingBox::of(tessellations.iter().flat_map(|(_, t)| &t.positions));
-        let cam = Camera::framing(b.min, b.max, VIEW.0, VIEW.1);
+        // Framing: every scheme's vertices at once, so no picture is clipped and all are seen
+        // from the same camera.
+        let all: Vec<nalgebra::Point3<f64>> = tessellations
+            .iter()
+            .flat_map(|(_, t)| t.positions.iter().copied())
+            .collect();
+        let cam = Camera::framing_points(&all, VIEW.0, VIEW.1, TILE.0 as f64 / TILE.1 as f64);
         let options = RenderOptions {
             width: TILE.0,
             height: TILE.1,
             ..RenderOptions::default()
         };
+        let zebra = RenderOptions {
+            shading: render::interrogation::Shading::REFLECTION,
+            ..options.clone()
+        };
         for (scheme, t) in &tessellations {
+            tiles_zebra.push(Tile {
+                image: render(&coloured(t, |_| colormap::MATERIAL), &cam, &zebra)?,
+                label: format!("{scheme} — reflection lines"),
+            });
             tiles_shaded.push(Tile {
                 image: render(&coloured(t, |_| colormap::MATERIAL), &cam, &options)?,
                 label: format!("{scheme} — shaded"),
@@ -438,10 +475,12 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
                 label: format!("{scheme} — K"),
             });
         }
-        // Blocks of COLUMNS schemes: a shaded row, then the same schemes' K row.
+        // Blocks of COLUMNS schemes: a shaded row, the same schemes' K row, then their
+        // reflection lines (continuous across patch boundaries on a G1 surface, broken on C0).
         let columns = COLUMNS.min(tiles_shaded.len()).max(1);
-        let mut tiles = Vec::with_capacity(2 * tiles_shaded.len());
+        let mut tiles = Vec::with_capacity(3 * tiles_shaded.len());
         let mut k_tiles = tiles_k.into_iter();
+        let mut zebra_tiles = tiles_zebra.into_iter();
         let blank = |t: &Tile| Tile {
             image: render::Image {
                 width: t.image.width,
@@ -457,13 +496,15 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
             tiles.extend(std::iter::repeat_with(|| blank(&block[0])).take(pad));
             tiles.extend(k_tiles.by_ref().take(block.len()));
             tiles.extend(std::iter::repeat_with(|| blank(&block[0])).take(pad));
+            tiles.extend(zebra_tiles.by_ref().take(block.len()));
+            tiles.extend(std::iter::repeat_with(|| blank(&block[0])).take(pad));
         }
         let file = picture_name(name, &pictures);
         pictures.push(file.clone());
         write_composite(
             &tiles,
             columns,
-            &format!("{name}: every scheme, shaded and Gaussian curvature K (rows alternate)"),
+            &format!("{name}: every scheme, shaded, Gaussian curvature K and reflection lines (rows by threes)"),
             Some(&Legend {
                 title: "Gaussian curvature K (the K rows)".into(),
                 kind: LegendKind::Diverging { limit: k_limit },
@@ -498,6 +539,20 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
             for s in stems {
                 let _ = writeln!(md, "![{name}: curvature along paths]({s}.png)\n");
             }
+        }
+        // The interactive page of that mesh: every patch scheme side by side.
+        if !page_views.is_empty() {
+            let page = format!("{}.html", file.trim_end_matches(".png"));
+            let bytes = crate::pages::write(
+                &out.join(&page),
+                &format!("{name}: every scheme"),
+                std::mem::take(&mut page_views),
+            )?;
+            let _ = writeln!(
+                md,
+                "\nInteractive: [{page}]({page}) ({:.1} MB, works offline): every patch scheme side by side with linked cameras, tessellated at {PAGE_FACE_SEGMENTS} segments a face; shaded, K, H, κ1, κ2, reflection lines, isophotes, distance to the true surface; patch boundaries and the data mesh.",
+                bytes as f64 / 1e6
+            );
         }
         let mine: Vec<&Value> = records.iter().filter(|r| r["dataset"] == name).collect();
         md.push_str(&ranking(&mine));
