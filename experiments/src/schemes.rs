@@ -278,7 +278,11 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
     // The bar counts the meshes begun; its message names the one being compared.
     let bar = progress::Progress::bar("schemes", args.data.len() as u64);
     // The mesh whose page is written: the ring, the seeds' subject, when it is among them.
-    let page_item = args.data.iter().position(|d| d.trim() == "ring").unwrap_or(0);
+    let page_item = args
+        .data
+        .iter()
+        .position(|d| d.trim() == "ring")
+        .unwrap_or(0);
     for (item, data_item) in args.data.iter().enumerate() {
         bar.inc(1);
         bar.stage(data_item);

@@ -317,29 +317,44 @@ fn check(view: &View) -> Result<(), ViewError> {
     Ok(())
 }
 
-/// The colour range of every scalar name (and `distance`) over all views: the
-/// [`RANGE_QUANTILE`] of the absolute values (the largest value where that is zero, 1 where
-/// everything is zero), and the true largest absolute value.
+/// The colour range of every scalar name (and `distance`) over all views: each view's
+/// [`RANGE_QUANTILE`] of its absolute values, and of those the median over the views (the
+/// lower one of an even count), so that one view with lumps (dBHS curves on the ring reach
+/// |K| ≈ 8 000 where the others stay below 5) does not wash out the others, which share the
+/// scale; the largest value where that is zero, 1 where everything is zero; and the true
+/// largest absolute value over all views.
 fn ranges(views: &[View]) -> serde_json::Value {
-    let mut all: BTreeMap<&str, Vec<f32>> = BTreeMap::new();
+    let mut all: BTreeMap<&str, Vec<Vec<f32>>> = BTreeMap::new();
     for v in views {
         for (name, values) in &v.scalars {
             all.entry(name)
                 .or_default()
-                .extend(values.iter().map(|x| x.abs()));
+                .push(values.iter().map(|x| x.abs()).collect());
         }
         if let Some(d) = &v.distance {
             all.entry("distance")
                 .or_default()
-                .extend(d.iter().map(|x| x.abs()));
+                .push(d.iter().map(|x| x.abs()).collect());
         }
     }
     let mut out = serde_json::Map::new();
-    for (name, mut values) in all {
-        values.sort_by(f32::total_cmp);
-        let max = values.last().copied().unwrap_or(0.0);
-        let at = ((values.len().saturating_sub(1)) as f64 * RANGE_QUANTILE).round() as usize;
-        let q = values.get(at).copied().unwrap_or(0.0);
+    for (name, per_view) in all {
+        let mut max = 0.0f32;
+        let mut quantiles: Vec<f32> = per_view
+            .into_iter()
+            .map(|mut values| {
+                values.sort_by(f32::total_cmp);
+                max = max.max(values.last().copied().unwrap_or(0.0));
+                let at =
+                    ((values.len().saturating_sub(1)) as f64 * RANGE_QUANTILE).round() as usize;
+                values.get(at).copied().unwrap_or(0.0)
+            })
+            .collect();
+        quantiles.sort_by(f32::total_cmp);
+        let q = quantiles
+            .get(quantiles.len().saturating_sub(1) / 2)
+            .copied()
+            .unwrap_or(0.0);
         let range = if q > 0.0 {
             q
         } else if max > 0.0 {
@@ -781,6 +796,20 @@ mod tests {
         assert_eq!(r["K"]["max"], 2.0);
         // All zero: the range falls back to 1 so the map is defined.
         assert_eq!(r["distance"]["range"], 1.0);
+    }
+
+    #[test]
+    fn one_view_with_lumps_does_not_set_the_others_scale() {
+        let mut page = Page::new("p");
+        for k in [[1.0, -2.0, 0.5], [3.0, 1.0, -1.5], [8000.0, -6000.0, 2.0]] {
+            let mut v = one_triangle();
+            v.scalars.push(("K".into(), k.to_vec()));
+            assert!(page.add_view(v).is_ok());
+        }
+        let r = ranges(page.views());
+        // The views' own ranges are 2, 3 and 8 000: the median, 3, is the page's.
+        assert_eq!(r["K"]["range"], 3.0);
+        assert_eq!(r["K"]["max"], 8000.0);
     }
 
     #[test]

@@ -245,7 +245,7 @@ function colourbar() {
   bar.querySelector('.mid').textContent = fmt((lo + r.range) / 2);
   bar.querySelector('.hi').textContent = fmt(r.range);
   bar.querySelector('.note').textContent = r.max > r.range
-    ? `clipped at the ${Math.round(r.quantile * 100)}th percentile of |${mode}|; max ${fmt(r.max)}` : '';
+    ? `clipped at the views' median ${Math.round(r.quantile * 100)}th percentile of |${mode}|; max ${fmt(r.max)}` : '';
 }
 
 function draw() {

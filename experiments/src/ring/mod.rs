@@ -63,6 +63,9 @@ pub struct RingArgs {
     output: PathBuf,
 }
 
+/// Segments per patch edge of the interactive page's surfaces (the pictures use `--segments`).
+const PAGE_SEGMENTS: usize = 4;
+
 /// Runs the experiment.
 pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     let t_all = Instant::now();
@@ -154,6 +157,29 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         &sphere_tess,
     ));
     let principal_picture = principal::write(&out, &glyphs)?;
+    // The interactive page: every construction's surface side by side (cameras linked), at
+    // PAGE_SEGMENTS so the page stays near 2 MB, with the data mesh and the distance to the
+    // torus.
+    let mut views = Vec::new();
+    for m in &fits {
+        let tess = surface::tessellate_fit(mesh, &m.fit, PAGE_SEGMENTS.min(args.segments))
+            .map_err(|source| ExperimentError::Tessellate {
+                subject: format!("ring/{} (page)", m.name),
+                source,
+            })?;
+        views.push(crate::pages::fit_view(
+            &format!("Shirman–Séquin, {} curves", m.name),
+            &tess,
+            Some((mesh, &surface::Frame::identity())),
+            None,
+            Some(truth),
+        ));
+    }
+    let page_bytes = crate::pages::write(
+        &out.join("ring.html"),
+        "The ring: every boundary-curve construction",
+        views,
+    )?;
     stage("render", t);
 
     let t = Instant::now();
@@ -173,6 +199,10 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     let text = pretty_json(&report, "the ring report")?;
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let mut md = report::markdown(args, &report, &surfaces, &fits);
+    md.push_str(&format!(
+        "\nInteractive: [ring.html](ring.html) ({:.1} MB, works offline): the surfaces of every construction side by side with linked cameras; shaded, K, H, κ1, κ2, reflection lines, isophotes, distance to the torus; patch boundaries and the data mesh.\n",
+        page_bytes as f64 / 1e6
+    ));
     md.push_str(&format!(
         "\n## Principal directions\n\nShort glyphs on the shaded surfaces along each sample's principal directions (red: κ1, the larger principal curvature; blue: κ2; from the tessellations' exact shape tensors). On the true ring they follow the meridians and the parallels; the sphere is umbilic, so its fit's glyphs point wherever its small departures from the sphere send them.\n\n![principal directions]({principal_picture})\n"
     ));
