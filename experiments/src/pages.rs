@@ -55,7 +55,18 @@ pub fn fit_view(
 
 /// Writes a page of `views` (side by side, cameras linked) titled `title` to `path`.
 pub fn write(path: &Path, title: &str, views: Vec<viewer::View>) -> Result<u64, ExperimentError> {
+    write_up(path, title, views, meshio::UpAxis::Z)
+}
+
+/// [`write`] for data whose up axis is `up` (scans are mostly y up).
+pub fn write_up(
+    path: &Path,
+    title: &str,
+    views: Vec<viewer::View>,
+    up: meshio::UpAxis,
+) -> Result<u64, ExperimentError> {
     let mut page = viewer::Page::new(title);
+    page.set_up(up);
     for v in views {
         page.add_view(v).map_err(|source| ExperimentError::Page {
             path: path.to_path_buf(),

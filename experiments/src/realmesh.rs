@@ -111,6 +111,8 @@ struct Corpus {
 struct Shot {
     name: String,
     tess: surface::Tessellation,
+    /// The coarser tessellation of the interactive page ([`PAGE_SAMPLING`]).
+    page_tess: surface::Tessellation,
     size: f64,
     y_up: bool,
 }
@@ -262,9 +264,16 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                     }
                 })?;
                 let size = BoundingBox::of(&tess.positions).diagonal();
+                let page_tess = surface::tessellate_fit(mesh, &f, PAGE_SAMPLING).map_err(
+                    |source| ExperimentError::Tessellate {
+                        subject: format!("{subject} (page)"),
+                        source,
+                    },
+                )?;
                 shots[*c].push(Shot {
                     name: name.clone(),
                     tess,
+                    page_tess,
                     size,
                     y_up: corpora[*c].y_up,
                 });
@@ -290,6 +299,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     for (corpus, shots) in corpora.iter().zip(&shots) {
         let limit = pictures(shots, &corpus.name, &out, &mut md)?;
         limits.insert(corpus.name.clone(), json!(limit));
+        page(shots, corpus, &out, &mut md)?;
     }
     let mut root = Map::new();
     root.insert("estimator".into(), json!(args.estimate));
@@ -321,6 +331,47 @@ const PICTURE_COLUMNS: usize = 5;
 /// The shaded and the KColor composites of one corpus (`shaded.png`, `kcolor.png` for the
 /// scans; `<corpus>-shaded.png`, … for the others), front and back views of every object framed
 /// whole; returns the KColor limit used.
+/// Segments per patch edge of the interactive page's surfaces (the pictures use [`SAMPLING`]).
+const PAGE_SAMPLING: usize = 2;
+
+/// Triangles of one mesh's surface on a corpus page, and of the page's surfaces together: a
+/// page stays near 3 MB (a larger mesh is left off the page and named).
+const PAGE_TRIANGLES: (usize, usize) = (45_000, 60_000);
+
+/// The corpus's interactive page (`<corpus>.html`): its meshes' surfaces side by side, with
+/// their curvature and reflection lines; the meshes over [`PAGE_TRIANGLES`] are left off and
+/// named in the report.
+fn page(shots: &[Shot], corpus: &Corpus, out: &Path, md: &mut String) -> Result<(), ExperimentError> {
+    let mut total = 0;
+    let mut views = Vec::new();
+    let mut left = Vec::new();
+    for s in shots {
+        let n = s.page_tess.faces.len();
+        if n > PAGE_TRIANGLES.0 || total + n > PAGE_TRIANGLES.1 {
+            left.push(s.name.as_str());
+            continue;
+        }
+        total += n;
+        let mut view = crate::pages::fit_view(&s.name, &s.page_tess, None, None, None);
+        // Patch boundaries would be half the page (six segments a patch at s = 2): left off.
+        view.boundaries = None;
+        views.push(view);
+    }
+    if views.is_empty() {
+        return Ok(());
+    }
+    let file = format!("{}.html", corpus.name);
+    let up = if corpus.y_up { meshio::UpAxis::Y } else { meshio::UpAxis::Z };
+    let bytes = crate::pages::write_up(&out.join(&file), &format!("{}: every mesh, {PICTURED_METHOD} curves", corpus.name), views, up)?;
+    let _ = writeln!(
+        md,
+        "\nInteractive: [{file}]({file}) ({:.1} MB, works offline): the meshes side by side with linked cameras, tessellated at {PAGE_SAMPLING} segments a patch edge; shaded, K, H, κ1, κ2, reflection lines, isophotes (patch boundaries left off for size).{}",
+        bytes as f64 / 1e6,
+        if left.is_empty() { String::new() } else { format!(" Left off (over {} triangles, or the page full): {}.", PAGE_TRIANGLES.0, left.join(", ")) }
+    );
+    Ok(())
+}
+
 fn pictures(
     shots: &[Shot],
     corpus: &str,
