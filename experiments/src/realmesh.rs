@@ -264,12 +264,13 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                     }
                 })?;
                 let size = BoundingBox::of(&tess.positions).diagonal();
-                let page_tess = surface::tessellate_fit(mesh, &f, PAGE_SAMPLING).map_err(
-                    |source| ExperimentError::Tessellate {
-                        subject: format!("{subject} (page)"),
-                        source,
-                    },
-                )?;
+                let page_tess =
+                    surface::tessellate_fit(mesh, &f, PAGE_SAMPLING).map_err(|source| {
+                        ExperimentError::Tessellate {
+                            subject: format!("{subject} (page)"),
+                            source,
+                        }
+                    })?;
                 shots[*c].push(Shot {
                     name: name.clone(),
                     tess,
@@ -341,7 +342,12 @@ const PAGE_TRIANGLES: (usize, usize) = (45_000, 60_000);
 /// The corpus's interactive page (`<corpus>.html`): its meshes' surfaces side by side, with
 /// their curvature and reflection lines; the meshes over [`PAGE_TRIANGLES`] are left off and
 /// named in the report.
-fn page(shots: &[Shot], corpus: &Corpus, out: &Path, md: &mut String) -> Result<(), ExperimentError> {
+fn page(
+    shots: &[Shot],
+    corpus: &Corpus,
+    out: &Path,
+    md: &mut String,
+) -> Result<(), ExperimentError> {
     let mut total = 0;
     let mut views = Vec::new();
     let mut left = Vec::new();
@@ -361,8 +367,17 @@ fn page(shots: &[Shot], corpus: &Corpus, out: &Path, md: &mut String) -> Result<
         return Ok(());
     }
     let file = format!("{}.html", corpus.name);
-    let up = if corpus.y_up { meshio::UpAxis::Y } else { meshio::UpAxis::Z };
-    let bytes = crate::pages::write_up(&out.join(&file), &format!("{}: every mesh, {PICTURED_METHOD} curves", corpus.name), views, up)?;
+    let up = if corpus.y_up {
+        meshio::UpAxis::Y
+    } else {
+        meshio::UpAxis::Z
+    };
+    let bytes = crate::pages::write_up(
+        &out.join(&file),
+        &format!("{}: every mesh, {PICTURED_METHOD} curves", corpus.name),
+        views,
+        up,
+    )?;
     let _ = writeln!(
         md,
         "\nInteractive: [{file}]({file}) ({:.1} MB, works offline): the meshes side by side with linked cameras, tessellated at {PAGE_SAMPLING} segments a patch edge; shaded, K, H, κ1, κ2, reflection lines, isophotes (patch boundaries left off for size).{}",

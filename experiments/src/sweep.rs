@@ -226,6 +226,11 @@ fn grid_of(args: &SweepArgs) -> Result<Grid, ExperimentError> {
     Ok(Grid::new(axes)?)
 }
 
+/// Most tasks on the sweep's page, and their triangles together: a page near 3 MB.
+const PAGE_VIEWS: usize = 8;
+/// See [`PAGE_VIEWS`].
+const PAGE_TRIANGLES: usize = 65_000;
+
 /// Runs the sweep: the manifest, one task, one shard, or the whole grid.
 pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     let grid = grid_of(args)?;
@@ -254,6 +259,15 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
     // The curvature along paths of the data-set tasks, for a whole run's plots (sampled as each
     // task finishes; its surface is not kept).
     let mut paths = Vec::new();
+    // The interactive page: the tasks of the grid's first data set (the ring's when it is in
+    // the grid), side by side.
+    let page_data = mine
+        .iter()
+        .find(|t| !t.file && t.data == "ring")
+        .or_else(|| mine.iter().find(|t| !t.file))
+        .map(|t| t.data.clone());
+    let mut views = Vec::new();
+    let mut page_triangles = 0usize;
     let started = Instant::now();
     let bar = progress::Progress::bar("sweep", mine.len() as u64);
     for t in &mine {
@@ -261,6 +275,21 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         let (line, surface) = run_grid_task_keeping(t, &grid)?;
         if !partial {
             paths.extend(curvature::task_paths(t, &surface));
+            if page_data.as_deref() == Some(t.data.as_str())
+                && views.len() < PAGE_VIEWS
+                && page_triangles + surface.tessellation.faces.len() <= PAGE_TRIANGLES
+            {
+                page_triangles += surface.tessellation.faces.len();
+                let mut view = crate::pages::fit_view(
+                    &t.id,
+                    &surface.tessellation,
+                    None,
+                    None,
+                    surface.truth.as_deref(),
+                );
+                view.boundaries = None;
+                views.push(view);
+            }
         }
         results.push(line);
         bar.inc(1);
@@ -298,7 +327,19 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
             manifest_text.as_bytes(),
         )?;
         write_report(staged.path(), &grid.json(), results, &lines)?;
-        curvature::write(staged.path(), &paths)?;
+        let page = match (&page_data, views.is_empty()) {
+            (Some(data), false) => {
+                let file = format!("{data}.html");
+                crate::pages::write(
+                    &staged.path().join(&file),
+                    &format!("sweep: the tasks on {data}"),
+                    views,
+                )?;
+                Some(file)
+            }
+            _ => None,
+        };
+        curvature::write(staged.path(), &paths, page.as_deref())?;
         staged.commit()?;
         say!(
             "sweep: {} tasks in {:.2} s → {}",

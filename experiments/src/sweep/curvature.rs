@@ -84,8 +84,9 @@ fn window(truth: &[f64]) -> (f64, f64) {
 /// How far beyond the true range a chart's y axis reaches, in spans of that range.
 const WINDOW_MARGIN: f64 = 1.0;
 
-/// Writes the figures and `curvature.md` into `out`; nothing when no task has paths.
-pub fn write(out: &Path, tasks: &[TaskPaths]) -> Result<(), ExperimentError> {
+/// Writes the figures and `curvature.md` into `out` (naming the run's interactive `page`
+/// when there is one); nothing when no task has paths.
+pub fn write(out: &Path, tasks: &[TaskPaths], page: Option<&str>) -> Result<(), ExperimentError> {
     if tasks.is_empty() {
         return Ok(());
     }
@@ -97,6 +98,12 @@ pub fn write(out: &Path, tasks: &[TaskPaths]) -> Result<(), ExperimentError> {
         "Written with `report.md` by a whole `sweep` run. {}\n",
         description()
     );
+    if let Some(p) = page {
+        let _ = writeln!(
+            md,
+            "Interactive: [{p}]({p}) (works offline): the tasks on that data set side by side with linked cameras; shaded, K, H, κ1, κ2, reflection lines, isophotes, distance to the true surface.\n"
+        );
+    }
     for group in groups {
         let mine: Vec<&TaskPaths> = tasks.iter().filter(|t| t.group == group).collect();
         let prefix = format!("{}/", group.split('@').next().unwrap_or(group));
