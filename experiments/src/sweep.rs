@@ -49,6 +49,7 @@ use experiments::sweep_tasks::grid::{self, Axes, Grid, Task, MANIFEST};
 use experiments::sweep_tasks::{check_schemes, find_task, join_results, run_grid_task_keeping};
 
 pub(crate) mod curvature;
+mod pictures;
 
 /// A shard `i/n`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -268,6 +269,8 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         .map(|t| t.data.clone());
     let mut views = Vec::new();
     let mut page_triangles = 0usize;
+    // Each data set's tasks' surfaces for its composite (at most pictures::MAX_COLUMNS).
+    let mut shots: Vec<pictures::Group> = Vec::new();
     let started = Instant::now();
     let bar = progress::Progress::bar("sweep", mine.len() as u64);
     for t in &mine {
@@ -275,6 +278,27 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         let (line, surface) = run_grid_task_keeping(t, &grid)?;
         if !partial {
             paths.extend(curvature::task_paths(t, &surface));
+            let group = match t.resolution {
+                Some(r) => format!("{}@{r}", t.data),
+                None => t.data.clone(),
+            };
+            let k_true_max = surface.truth.as_deref().map(|tr| {
+                surface
+                    .tessellation
+                    .positions
+                    .iter()
+                    .map(|p| tr.closest(p).gaussian().abs())
+                    .fold(0.0f64, f64::max)
+            });
+            let shot = pictures::Shot {
+                id: t.id.clone(),
+                tess: surface.tessellation.clone(),
+                k_true_max,
+            };
+            match shots.iter_mut().find(|g| g.name == group) {
+                Some(g) => g.add(shot),
+                None => shots.push(pictures::Group::new(group, shot)),
+            }
             if page_data.as_deref() == Some(t.data.as_str())
                 && views.len() < PAGE_VIEWS
                 && page_triangles + surface.tessellation.faces.len() <= PAGE_TRIANGLES
@@ -339,7 +363,11 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
             }
             _ => None,
         };
-        curvature::write(staged.path(), &paths, page.as_deref())?;
+        let mut composites = Vec::new();
+        for group in &shots {
+            composites.push(pictures::write(staged.path(), group)?);
+        }
+        curvature::write(staged.path(), &paths, page.as_deref(), &composites)?;
         staged.commit()?;
         say!(
             "sweep: {} tasks in {:.2} s → {}",

@@ -84,25 +84,51 @@ fn window(truth: &[f64]) -> (f64, f64) {
 /// How far beyond the true range a chart's y axis reaches, in spans of that range.
 const WINDOW_MARGIN: f64 = 1.0;
 
-/// Writes the figures and `curvature.md` into `out` (naming the run's interactive `page`
-/// when there is one); nothing when no task has paths.
-pub fn write(out: &Path, tasks: &[TaskPaths], page: Option<&str>) -> Result<(), ExperimentError> {
-    if tasks.is_empty() {
+/// Writes the figures and `curvature.md` into `out`, with the run's interactive `page` and its
+/// `(data set, file)` picture composites named; nothing when there is nothing to show.
+pub fn write(
+    out: &Path,
+    tasks: &[TaskPaths],
+    page: Option<&str>,
+    composites: &[super::pictures::Composite],
+) -> Result<(), ExperimentError> {
+    if tasks.is_empty() && composites.is_empty() {
         return Ok(());
     }
     let mut groups: Vec<&str> = tasks.iter().map(|t| t.group.as_str()).collect();
     groups.dedup();
-    let mut md = String::from("# Sweep: curvature along paths\n\n");
-    let _ = writeln!(
-        md,
-        "Written with `report.md` by a whole `sweep` run. {}\n",
-        description()
-    );
+    let mut md = String::from("# Sweep: the surfaces and their curvature\n\n");
+    md.push_str("Written with `report.md` by a whole `sweep` run.\n\n");
+    if !composites.is_empty() {
+        let _ = writeln!(
+            md,
+            "## The surfaces\n\n{}\n",
+            super::pictures::description()
+        );
+        for c in composites {
+            let _ = writeln!(
+                md,
+                "### {}\n\n![{}: every task]({})\n",
+                c.group, c.group, c.file
+            );
+            if !c.left_out.is_empty() {
+                let _ = writeln!(
+                    md,
+                    "Left out of the composite (more than {} tasks): {}.\n",
+                    super::pictures::MAX_COLUMNS,
+                    c.left_out.join(", ")
+                );
+            }
+        }
+    }
     if let Some(p) = page {
         let _ = writeln!(
             md,
             "Interactive: [{p}]({p}) (works offline): the tasks on that data set side by side with linked cameras; shaded, K, H, κ1, κ2, reflection lines, isophotes, distance to the true surface.\n"
         );
+    }
+    if !tasks.is_empty() {
+        let _ = writeln!(md, "## Curvature along paths\n\n{}\n", description());
     }
     for group in groups {
         let mine: Vec<&TaskPaths> = tasks.iter().filter(|t| t.group == group).collect();
@@ -121,7 +147,7 @@ pub fn write(out: &Path, tasks: &[TaskPaths], page: Option<&str>) -> Result<(), 
             &format!("{group}: curvature along paths, every task against the true surface"),
             &rows,
         )?;
-        let _ = writeln!(md, "## {group}\n");
+        let _ = writeln!(md, "### {group}\n");
         for s in stems {
             let _ = writeln!(md, "![{group}]({s}.png)\n");
         }

@@ -434,7 +434,7 @@ fn a_whole_run_plots_the_curvature_along_paths() {
     assert_eq!(code, 0, "{err}");
     let md = std::fs::read_to_string(dir.path().join("curvature.md")).unwrap();
     assert!(md.contains("![ring](curvature-ring.png)"), "{md}");
-    assert!(!md.contains("octa"), "{md}");
+    assert!(!md.contains("curvature-octa"), "{md}");
     for ext in ["png", "svg"] {
         let f = dir.path().join(format!("curvature-ring.{ext}"));
         assert!(
@@ -458,4 +458,58 @@ fn a_whole_run_plots_the_curvature_along_paths() {
     let (code, err) = run(&[&["sweep", "--shard", "0/1", "-o", s][..], &grid].concat());
     assert_eq!(code, 0, "{err}");
     assert!(!shards.path().join("curvature.md").exists());
+    assert!(!shards.path().join("tasks-ring.png").exists());
+}
+
+/// The PNG's (width, height), from its IHDR chunk.
+fn png_size(path: &std::path::Path) -> (u32, u32) {
+    let b = std::fs::read(path).unwrap();
+    assert_eq!(&b[1..4], b"PNG", "{}", path.display());
+    let be = |i: usize| u32::from_be_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]]);
+    (be(16), be(20))
+}
+
+/// A whole run draws one composite per data set, a column per task (shaded, K, reflection
+/// lines), octahedron included, names them in `curvature.md`, and names the tasks beyond the
+/// composite's columns.
+#[test]
+fn a_whole_run_draws_a_composite_per_data_set_with_a_column_per_task() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let grid = ["--data", "ring,octa", "--curves", "chord,dbhs"];
+    let (code, err) = run(&[&["sweep", "-o", out][..], &grid].concat());
+    assert_eq!(code, 0, "{err}");
+    let md = std::fs::read_to_string(dir.path().join("curvature.md")).unwrap();
+    let (ring, octa) = (
+        dir.path().join("tasks-ring.png"),
+        dir.path().join("tasks-octa.png"),
+    );
+    assert!(md.contains("![ring: every task](tasks-ring.png)"), "{md}");
+    assert!(md.contains("![octa: every task](tasks-octa.png)"), "{md}");
+    assert!(!md.contains("Left out of the composite"), "{md}");
+    // Two tasks a data set: two tile columns, three tile rows (taller than wide per tile).
+    let (w, h) = png_size(&ring);
+    assert_eq!(png_size(&octa), (w, h));
+    assert_eq!(w % 2, 0);
+    assert!(h > (w / 2) * 2, "{w}×{h}: fewer than three rows of tiles");
+    // Twelve tasks on the ring: ten columns, two named as left out.
+    let many = tempfile::tempdir().unwrap();
+    let m = many.path().to_str().unwrap();
+    let grid = [
+        "--data",
+        "ring",
+        "--curves",
+        "chord",
+        "--beta",
+        "0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0,1.1,1.2",
+    ];
+    let (code, err) = run(&[&["sweep", "-o", m][..], &grid].concat());
+    assert_eq!(code, 0, "{err}");
+    let (w10, _) = png_size(&many.path().join("tasks-ring.png"));
+    assert_eq!(w10, w / 2 * 10);
+    let md = std::fs::read_to_string(many.path().join("curvature.md")).unwrap();
+    assert!(
+        md.contains("Left out of the composite (more than 10 tasks)"),
+        "{md}"
+    );
 }
