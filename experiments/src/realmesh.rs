@@ -462,8 +462,12 @@ fn pictures(
                         colors,
                         faces: t.faces.clone(),
                     };
-                    let b = BoundingBox::of(&mesh.positions);
-                    let cam = Camera::framing(b.min, b.max, az, el);
+                    let cam = Camera::framing_points(
+                        &mesh.positions,
+                        az,
+                        el,
+                        f64::from(options.width) / f64::from(options.height),
+                    );
                     tiles.push(Tile {
                         image: render(&mesh, &cam, &options)?,
                         label: format!("{} — {vname}", s.name),

@@ -7,6 +7,10 @@
 //! nets; any other file is read as a mesh (`meshio::read_file`, every readable format) and shown
 //! with its own normals or area-weighted ones, its curvature when the file carries it, and its
 //! edges as the data mesh.
+//!
+//! A directory (a study's result directory) stands for its viewable files, sorted by name:
+//! mesh files by extension, `.bzp` patch files, and `.jsonl` files whose first record is a
+//! patch (a sweep's `results.jsonl` is not); the others are named on stderr as skipped.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -17,7 +21,8 @@ use crate::output::write_result;
 /// Options of the `view` experiment.
 #[derive(clap::Args, Debug)]
 pub struct ViewArgs {
-    /// Mesh files (any readable format) or patch files (.jsonl, .bzp), one view each.
+    /// Mesh files (any readable format), patch files (.jsonl, .bzp) or directories (their
+    /// viewable files), one view a file.
     #[arg(required = true)]
     files: Vec<PathBuf>,
     /// The page to write (one self-contained HTML file, works offline).
@@ -37,8 +42,11 @@ pub struct ViewArgs {
 
 /// Writes the page.
 pub fn run(args: &ViewArgs) -> Result<ExitCode, ExperimentError> {
-    let names: Vec<String> = args
-        .files
+    let mut files = Vec::new();
+    for arg in &args.files {
+        files.extend(expand(arg)?);
+    }
+    let names: Vec<String> = files
         .iter()
         .map(|f| {
             f.file_name()
@@ -49,7 +57,7 @@ pub fn run(args: &ViewArgs) -> Result<ExitCode, ExperimentError> {
     let title = args.title.clone().unwrap_or_else(|| names.join(" · "));
     let mut page = viewer::Page::new(title);
     page.set_up(args.up);
-    for (file, name) in args.files.iter().zip(&names) {
+    for (file, name) in files.iter().zip(&names) {
         let view = view_of(file, name, args.density)?;
         say!(
             "  {name}: {} vertices, {} triangles",
@@ -93,4 +101,76 @@ fn view_of(file: &Path, name: &str, density: usize) -> Result<viewer::View, Expe
     })?;
     viewer::view_from_raw(name, &raw)
         .map_err(|e| ExperimentError::Usage(format!("{}: {e}", file.display())))
+}
+
+/// Most bytes of a `.jsonl` file's first line read to tell a patch file from other JSON Lines.
+const FIRST_LINE_LIMIT: u64 = 1 << 20;
+
+/// The files `arg` stands for: itself, or a directory's viewable files sorted by name.
+fn expand(arg: &Path) -> Result<Vec<PathBuf>, ExperimentError> {
+    if !arg.is_dir() {
+        return Ok(vec![arg.to_path_buf()]);
+    }
+    let read = |source| ExperimentError::Read {
+        path: arg.to_path_buf(),
+        source,
+    };
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(arg)
+        .map_err(read)?
+        .map(|e| e.map(|e| e.path()))
+        .collect::<Result<_, _>>()
+        .map_err(read)?;
+    entries.sort();
+    let mut kept = Vec::new();
+    let mut skipped = Vec::new();
+    for p in entries {
+        let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
+        if !p.is_file() {
+            continue;
+        }
+        let ext = p
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        let viewable = match ext.as_deref() {
+            Some("bzp") => true,
+            Some("jsonl") => first_record_is_a_patch(&p),
+            _ => meshio::format_for_path(&p).is_some(),
+        };
+        if viewable {
+            kept.push(p);
+        } else if let Some(n) = name {
+            skipped.push(n);
+        }
+    }
+    if !skipped.is_empty() {
+        say!(
+            "  {}: skipped {} files that are neither meshes nor patches ({})",
+            arg.display(),
+            skipped.len(),
+            skipped.join(", ")
+        );
+    }
+    if kept.is_empty() {
+        return Err(ExperimentError::Usage(format!(
+            "{}: the directory holds no mesh or patch file",
+            arg.display()
+        )));
+    }
+    Ok(kept)
+}
+
+/// Whether the first line of a JSON Lines file is a patch record (`"type": "BezierTriangle"`).
+fn first_record_is_a_patch(path: &Path) -> bool {
+    use std::io::{BufRead, Read};
+    let Ok(f) = std::fs::File::open(path) else {
+        return false;
+    };
+    let mut line = String::new();
+    if std::io::BufReader::new(f.take(FIRST_LINE_LIMIT))
+        .read_line(&mut line)
+        .is_err()
+    {
+        return false;
+    }
+    serde_json::from_str::<serde_json::Value>(&line).is_ok_and(|r| r["type"] == "BezierTriangle")
 }

@@ -13,7 +13,6 @@
 
 use std::path::Path;
 
-use meshio::BoundingBox;
 use nalgebra::{Point3, Vector3};
 use render::colors as colormap;
 use render::{write_composite, Camera, RenderMesh, RenderOptions, Tile};
@@ -105,8 +104,12 @@ pub fn write(out: &Path, surfaces: &[(String, &Tessellation)]) -> Result<String,
     };
     let mut tiles = Vec::new();
     for (label, t) in surfaces {
-        let b = BoundingBox::of(t.positions.iter());
-        let cam = Camera::framing(b.min, b.max, VIEW.0, VIEW.1);
+        let cam = Camera::framing_points(
+            &t.positions,
+            VIEW.0,
+            VIEW.1,
+            f64::from(TILE.0) / f64::from(TILE.1),
+        );
         tiles.push(Tile {
             image: render::render(&glyph_mesh(t), &cam, &options)?,
             label: label.clone(),

@@ -4,7 +4,6 @@
 
 use std::path::Path;
 
-use meshio::BoundingBox;
 use nalgebra::Vector3;
 use render::colors as colormap;
 use render::{write_composite, Camera, Image, Legend, LegendKind, RenderMesh, RenderOptions, Tile};
@@ -87,8 +86,11 @@ fn gaussian_limit(views: &[SurfaceView<'_>]) -> f64 {
 
 /// Renders the three composites; returns their description for the report.
 pub fn render_all(out: &Path, views: &[SurfaceView<'_>]) -> Result<Value, ExperimentError> {
-    let BoundingBox { min: lo, max: hi } =
-        BoundingBox::of(views.iter().flat_map(|v| &v.tess.positions));
+    // Every surface from the same camera, framed on all of their vertices.
+    let all: Vec<nalgebra::Point3<f64>> = views
+        .iter()
+        .flat_map(|v| v.tess.positions.iter().copied())
+        .collect();
     // Colour limits shared by every surface so the pictures compare: the true ring's largest
     // |K|, and twice the median over the fitted surfaces of their largest distance (so the
     // typical fitted surface uses the lower half of the scale; lumps and flat triangles
@@ -136,7 +138,9 @@ pub fn render_all(out: &Path, views: &[SurfaceView<'_>]) -> Result<Value, Experi
         // Every (view, surface) picture in parallel, in the composite's order.
         let cams: Vec<Camera> = VIEWS
             .iter()
-            .map(|(az, el, _)| Camera::framing(lo, hi, *az, *el))
+            .map(|(az, el, _)| {
+                Camera::framing_points(&all, *az, *el, f64::from(TILE.0) / f64::from(TILE.1))
+            })
             .collect();
         let jobs: Vec<(&RenderMesh, &Camera)> = cams
             .iter()

@@ -108,3 +108,58 @@ fn html_is_refused_for_a_subdivision_scheme_and_view_reads_what_fit_wrote() {
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("/no/such.ply"), "{err}");
 }
+
+/// A directory stands for its meshes and patch files, sorted by name: a patch `.jsonl` is
+/// shown, a `.jsonl` of other records (a sweep's results) and pictures are named as skipped,
+/// and a directory with nothing to show is refused by name.
+#[test]
+fn view_of_a_result_directory_shows_its_meshes_and_patches_and_names_the_rest() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let (code, _, err) = common::run(
+        &[
+            "fit",
+            "--data",
+            "octa",
+            "--output",
+            d.join("b-patches.jsonl").to_str().unwrap(),
+            "--mesh-output",
+            d.join("a-octa.ply").to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    std::fs::write(d.join("results.jsonl"), "{\"task\":\"ring/chord\"}\n").unwrap();
+    std::fs::write(d.join("report.md"), "# report\n").unwrap();
+    let page = tempfile::tempdir().unwrap();
+    let view = page.path().join("dir.html");
+    let (code, _, err) = common::run(
+        &["view", d.to_str().unwrap(), "-o", view.to_str().unwrap()],
+        "",
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("skipped 2 files") && err.contains("report.md, results.jsonl"),
+        "{err}"
+    );
+    let html = std::fs::read_to_string(&view).unwrap();
+    let (a, b) = (
+        html.find("a-octa.ply").unwrap(),
+        html.find("b-patches.jsonl").unwrap(),
+    );
+    assert!(a < b, "views out of name order");
+    assert!(!html.contains("results.jsonl"));
+    let empty = tempfile::tempdir().unwrap();
+    std::fs::write(empty.path().join("notes.txt"), "x").unwrap();
+    let (code, _, err) = common::run(
+        &[
+            "view",
+            empty.path().to_str().unwrap(),
+            "-o",
+            view.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("holds no mesh or patch file"), "{err}");
+}
