@@ -327,7 +327,7 @@ canvas.addEventListener('wheel', (e) => {
   redraw();
 }, { passive: false });
 
-// The hash: #mode=K&turn=30&tilt=10&zoom=1.5&pan=0.1,0&boundaries=1&nets=0&mesh=1&up=y&ui=0&drag=0:120:0
+// The hash: #mode=K&turn=30&tilt=10&zoom=1.5&pan=0.1,0&boundaries=1&nets=0&mesh=1&up=y&ui=0&drag=0:120:0[:pan]&wheel=0:-300
 function applyHash() {
   const h = new URLSearchParams(location.hash.slice(1));
   cam = defaults();
@@ -357,17 +357,32 @@ function applyHash() {
   if (bare) document.getElementById('colorbar').style.visibility = 'hidden';
   draw();
   if (h.has('drag')) {
-    // A drag replayed through the mouse handlers: view index, then pixels right and down.
-    const [i, dx, dy] = h.get('drag').split(':').map(Number);
+    // A drag replayed through the mouse handlers: view index, pixels right and down, and
+    // `pan` as a fourth field for a shift-drag.
+    const [si, sdx, sdy, kind] = h.get('drag').split(':');
+    const [i, dx, dy] = [si, sdx, sdy].map(Number);
     const v = views[i];
     if (!v) throw new Error(`drag: no view ${i}`);
+    if (kind !== undefined && kind !== 'pan') throw new Error(`drag: unknown kind "${kind}" (pan)`);
     const r = canvas.getBoundingClientRect();
     const x0 = r.left + v.cell.x + v.cell.w / 2, y0 = r.top + v.cell.y + v.cell.h / 2;
-    const ev = (type, x, y) => new PointerEvent(type, { clientX: x, clientY: y, button: 0, buttons: 1, bubbles: true });
+    const shiftKey = kind === 'pan';
+    const ev = (type, x, y) => new PointerEvent(type, { clientX: x, clientY: y, button: 0, buttons: 1, shiftKey, bubbles: true });
     canvas.dispatchEvent(ev('pointerdown', x0, y0));
     const steps = 10;
     for (let s = 1; s <= steps; s++) window.dispatchEvent(ev('pointermove', x0 + (dx * s) / steps, y0 + (dy * s) / steps));
     window.dispatchEvent(ev('pointerup', x0 + dx, y0 + dy));
+    draw();
+  }
+  if (h.has('wheel')) {
+    // Wheel steps replayed through the wheel handler: view index, then deltaY (negative
+    // zooms in).
+    const [i, dy] = h.get('wheel').split(':').map(Number);
+    const v = views[i];
+    if (!v) throw new Error(`wheel: no view ${i}`);
+    const r = canvas.getBoundingClientRect();
+    const x0 = r.left + v.cell.x + v.cell.w / 2, y0 = r.top + v.cell.y + v.cell.h / 2;
+    canvas.dispatchEvent(new WheelEvent('wheel', { clientX: x0, clientY: y0, deltaY: dy, bubbles: true, cancelable: true }));
     draw();
   }
 }

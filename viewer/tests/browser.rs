@@ -383,6 +383,99 @@ fn linked_views_turn_together_by_drag_and_by_hash() {
     assert!(region_difference(&dragged_left, 0, &turned, 0, size.0) < 0.5);
 }
 
+/// The bounding box `(x0, y0, x1, y1)` of the non-background pixels in columns `xs`.
+fn box_in(s: &Shot, xs: std::ops::Range<usize>) -> (usize, usize, usize, usize) {
+    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+    for y in 0..s.height {
+        for x in xs.clone() {
+            if !background(s.at(x, y)) {
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            }
+        }
+    }
+    (x0, y0, x1, y1)
+}
+
+/// The wheel's zoom factor for `delta_y`: `exp(−delta_y · 0.0015)` (page.js's `ZOOM_PER_WHEEL`).
+fn wheel_zoom(delta_y: f64) -> f64 {
+    (-delta_y * 0.0015).exp()
+}
+
+/// Pixels two silhouettes' edges may differ by and still be the same shape moved (rounding of
+/// the rasterized edge, one pixel each side).
+const EDGE_PX: usize = 2;
+
+/// The wheel zooms every view exactly as the hash's `zoom` does; a shift-drag over one view
+/// moves both objects right, rigidly (a translation: no turn, no zoom).
+///
+/// The pan's size per dragged pixel depends on the view's height when the drag happens, and
+/// headless Chromium runs the page's script in a smaller viewport (181 px for a 320 px window)
+/// than it takes the screenshot in, so the drag is checked as a rigid move to the right rather
+/// than against a hash `pan` of a computed size.
+#[test]
+fn the_wheel_zooms_and_a_shift_drag_pans_every_view() {
+    let Some(browser) = browser_or_skip("the_wheel_zooms_and_a_shift_drag_pans_every_view") else {
+        return;
+    };
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut page = Page::new("two");
+    for title in ["left", "right"] {
+        page.add_view(torus(title, 96, 48, 2.0, 0.75, 8))
+            .expect("a valid torus");
+    }
+    let path = write_page(dir.path(), "two", &page);
+    let size = (720, 320);
+    let half = size.0 / 2;
+    let before = shoot(&browser, &path, "ui=0", size, "two-before-zoom");
+    // Wheel steps of −300 over the right view zoom every view in by exp(0.45).
+    let wheeled = shoot(&browser, &path, "ui=0&wheel=1:-300", size, "two-wheel");
+    let zoomed = shoot(
+        &browser,
+        &path,
+        &format!("ui=0&zoom={}", wheel_zoom(-300.0)),
+        size,
+        "two-zoom",
+    );
+    let dragged = shoot(
+        &browser,
+        &path,
+        "ui=0&drag=0:20:0:pan",
+        size,
+        "two-pan-drag",
+    );
+    for s in [&before, &wheeled, &zoomed, &dragged] {
+        assert_eq!(s.status, "ready:shaded");
+    }
+    let halves = |s: &Shot| region_difference(s, 0, s, half, half);
+    let zoom_moved = region_difference(&before, 0, &wheeled, 0, size.0);
+    let (b, d) = (box_in(&before, 0..half), box_in(&dragged, 0..half));
+    let (br, dr) = (
+        box_in(&before, half..size.0),
+        box_in(&dragged, half..size.0),
+    );
+    eprintln!(
+        "wheel changed the picture by {zoom_moved:.3}, wheel vs hash {:.3}; halves {:.3}, {:.3}; \
+         left view {b:?} → {d:?}, right view {br:?} → {dr:?}",
+        region_difference(&wheeled, 0, &zoomed, 0, size.0),
+        halves(&wheeled),
+        halves(&dragged),
+    );
+    assert!(
+        zoom_moved > 1.0,
+        "the wheel changed the picture by only {zoom_moved:.3}"
+    );
+    assert!(region_difference(&wheeled, 0, &zoomed, 0, size.0) < 0.5);
+    // Both views follow either gesture.
+    for s in [&wheeled, &dragged] {
+        assert!(halves(s) < 0.5, "halves differ by {:.3}", halves(s));
+    }
+    // The pan: both edges move right by the same amount, the rows stay.
+    let shift = d.0 as i64 - b.0 as i64;
+    assert!(shift > 10, "the pan moved the object by {shift} px");
+    assert!((d.2 as i64 - b.2 as i64 - shift).unsigned_abs() as usize <= EDGE_PX);
+    assert!(b.1.abs_diff(d.1) <= EDGE_PX && b.3.abs_diff(d.3) <= EDGE_PX);
+}
+
 /// The octahedron's eight faces as flat cubic patches, through [`viewer::view_from_patches`]
 /// (the path `experiments view` takes for patch files).
 fn octahedron_page() -> Page {
