@@ -1,0 +1,66 @@
+//! The original testbed's tangent rules (`curves::projection`, `curves::tweak`) through the
+//! surface fit: the `ring` and `sphere` data sets fitted by `shirman-sequin` on each rule's
+//! curves (the projection family at both reaches), G1 measured on every regular edge, no face
+//! refused; the projection's space curves keep their tangents in the tangent planes.
+
+#![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
+
+use curves::{method_by_name, MethodOptions, Reach};
+use surface::{dataset_by_name, fit_scheme, measure_g1, scheme_by_name, SchemeOptions};
+
+/// The G1 bound of docs/conventions.md, as for `chord`.
+const G1_TOL: f64 = 1e-9;
+
+/// Patch corners interpolate the data to rounding.
+const INTERPOLATION: f64 = 1e-12;
+
+/// `|t̂ · n|` of a projected tangent: one projection and one normalization.
+const IN_PLANE: f64 = 1e-14;
+
+#[test]
+fn ring_and_sphere_stay_g1_on_every_tangent_rule() {
+    let scheme = scheme_by_name("shirman-sequin", &SchemeOptions::default()).unwrap();
+    for name in ["ring", "sphere"] {
+        let data = dataset_by_name(name, None).unwrap();
+        let mesh = &data.mesh;
+        for reach in [Reach::Third, Reach::FourNinths] {
+            let options = MethodOptions {
+                reach,
+                ..MethodOptions::default()
+            };
+            for method in ["projection", "projection-scaled", "piper", "tweak", "quadric"] {
+                let planar = matches!(method, "tweak" | "quadric");
+                if planar && reach == Reach::FourNinths {
+                    continue;
+                }
+                let m = method_by_name(method, &options).unwrap();
+                let f = fit_scheme(mesh, scheme.as_ref(), m.as_ref()).unwrap();
+                let g1 = measure_g1(mesh, &f, 9);
+                eprintln!(
+                    "{name}/{method}/{reach:?}: G1 exterior {:.3e}, interior {:.3e} rad; \
+                     fallback curves {}, shortened {}, clamped {}, fallback faces {}",
+                    g1.exterior_max,
+                    g1.interior_max,
+                    f.fallbacks,
+                    f.shortened_curves,
+                    f.clamped_tangents,
+                    f.face_fallbacks.len()
+                );
+                let what = format!("{name}/{method}/{reach:?}: {g1:?}");
+                assert!(f.face_fallbacks.is_empty(), "{what}");
+                assert_eq!(f.fallbacks, 0, "{what}");
+                assert_eq!(f.clamped_tangents, 0, "{what}");
+                assert!(g1.exterior_max <= G1_TOL, "{what}");
+                assert!(g1.interior_max <= G1_TOL, "{what}");
+                assert!(g1.position_error < INTERPOLATION, "{what}");
+                // Every curve leaves and enters its ends in the vertex's tangent plane.
+                for (e, c) in mesh.edges().iter().zip(&f.curves) {
+                    let [a, b] = e.vertices.map(|v| mesh.vertices()[v].data.n.normalize());
+                    let [p0, p1, p2, p3] = c.points;
+                    assert!((p1 - p0).normalize().dot(&a).abs() < IN_PLANE, "{what}");
+                    assert!((p3 - p2).normalize().dot(&b).abs() < IN_PLANE, "{what}");
+                }
+            }
+        }
+    }
+}
