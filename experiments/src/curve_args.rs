@@ -38,7 +38,7 @@ pub struct CurveOptions {
     /// The parameter t of `tweak`: its inner control points t of the way from each end to the
     /// end tangents' intersection, 0 < t ≤ 1 (`quadric` is t = 2/3).
     #[arg(long, default_value_t = curves::tweak::DEFAULT_TWEAK_T, value_name = "T",
-          value_parser = parse_tweak_t)]
+          value_parser = parse_tweak_t, allow_hyphen_values = true)]
     pub tweak_t: f64,
     /// The four-ninths variants of `projection`, `projection-scaled` and `piper`: the point
     /// five ninths along the chord, (4/9) V_a + (5/9) V_b, projected instead of the third.

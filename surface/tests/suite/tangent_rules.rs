@@ -17,12 +17,18 @@ const INTERPOLATION: f64 = 1e-12;
 /// `|t̂ · n|` of a projected tangent: one projection and one normalization.
 const IN_PLANE: f64 = 1e-14;
 
+/// The angle between two tangents along the same unit vector at different lengths (the planar
+/// rules and chord both take the problem's tangents): rounding of the scaling.
+const SAME_DIRECTION: f64 = 1e-14;
+
 #[test]
 fn ring_and_sphere_stay_g1_on_every_tangent_rule() {
     let scheme = scheme_by_name("shirman-sequin", &SchemeOptions::default()).unwrap();
     for name in ["ring", "sphere"] {
         let data = dataset_by_name(name, None).unwrap();
         let mesh = &data.mesh;
+        let chord = method_by_name("chord", &MethodOptions::default()).unwrap();
+        let furth = fit_scheme(mesh, scheme.as_ref(), chord.as_ref()).unwrap();
         for reach in [Reach::Third, Reach::FourNinths] {
             let options = MethodOptions {
                 reach,
@@ -36,13 +42,29 @@ fn ring_and_sphere_stay_g1_on_every_tangent_rule() {
                 let m = method_by_name(method, &options).unwrap();
                 let f = fit_scheme(mesh, scheme.as_ref(), m.as_ref()).unwrap();
                 let g1 = measure_g1(mesh, &f, 9);
+                // How far the rule's tangents turn from Furth's (= chord's): the largest angle
+                // between the two fits' leaving tangents over the edges.
+                let turn = f
+                    .curves
+                    .iter()
+                    .zip(&furth.curves)
+                    .map(|(c, k)| {
+                        let (u, v) = (c.points[1] - c.points[0], k.points[1] - k.points[0]);
+                        u.cross(&v).norm().atan2(u.dot(&v))
+                    })
+                    .fold(0.0, f64::max);
+                if planar {
+                    assert!(turn < SAME_DIRECTION, "{name}/{method}: {turn}");
+                }
                 eprintln!(
                     "{name}/{method}/{reach:?}: G1 exterior {:.3e}, interior {:.3e} rad; \
-                     fallback curves {}, shortened {}, clamped {}, fallback faces {}",
+                     tangents up to {turn:.3e} rad from Furth's; \
+                     fallback curves {}, shortened {} of {}, clamped {}, fallback faces {}",
                     g1.exterior_max,
                     g1.interior_max,
                     f.fallbacks,
                     f.shortened_curves,
+                    f.curves.len(),
                     f.clamped_tangents,
                     f.face_fallbacks.len()
                 );
