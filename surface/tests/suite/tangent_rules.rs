@@ -1,7 +1,8 @@
 //! The original testbed's tangent rules (`curves::projection`, `curves::tweak`) through the
 //! surface fit: the `ring` and `sphere` data sets fitted by `shirman-sequin` on each rule's
 //! curves (the projection family at both reaches), G1 measured on every regular edge, no face
-//! refused; the projection's space curves keep their tangents in the tangent planes.
+//! refused; the projection's space curves keep their tangents in the tangent planes, and leave
+//! Furth's (chord's) plane where the data is not coplanar with the chord.
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
@@ -16,6 +17,10 @@ const INTERPOLATION: f64 = 1e-12;
 
 /// `|t̂ · n|` of a projected tangent: one projection and one normalization.
 const IN_PLANE: f64 = 1e-14;
+
+/// A turn from Furth's tangent that is no rounding: far above [`SAME_DIRECTION`], far below
+/// the 0.096 rad measured on the ring.
+const LEAVES_THE_PLANE: f64 = 1e-3;
 
 /// The angle between two tangents along the same unit vector at different lengths (the planar
 /// rules and chord both take the problem's tangents): rounding of the scaling.
@@ -53,8 +58,15 @@ fn ring_and_sphere_stay_g1_on_every_tangent_rule() {
                         u.cross(&v).norm().atan2(u.dot(&v))
                     })
                     .fold(0.0, f64::max);
-                if planar {
+                if planar || name == "sphere" {
+                    // The planar rules take the problem's tangents; on the sphere every edge's
+                    // normals lie in its great circle's plane, where the projected chord is
+                    // the plane's tangent.
                     assert!(turn < SAME_DIRECTION, "{name}/{method}: {turn}");
+                } else {
+                    // The ring's diagonal edges are not coplanar with their normals: the
+                    // projection rules' tangents leave the curve plane (0.096 rad measured).
+                    assert!(turn > LEAVES_THE_PLANE, "{name}/{method}: {turn}");
                 }
                 eprintln!(
                     "{name}/{method}/{reach:?}: G1 exterior {:.3e}, interior {:.3e} rad; \
