@@ -47,9 +47,9 @@ pub use method::{
     MethodOptions, SpaceCurve, UnknownMethod, REGISTRY,
 };
 pub use optimized::Optimized;
-pub use projection::{Projection, Reach, Scaling};
 pub use problem::{
     BoundaryProblem, Degeneracy, EdgeError, End, PlaneFrame, UnitProblem, UnitProblemError,
     VertexData, DEGENERATE_SINE,
 };
+pub use projection::{Projection, Reach, Scaling};
 pub use tweak::{BadTweakT, Quadric, Tweak};

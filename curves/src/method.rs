@@ -317,8 +317,8 @@ mod tests {
         let err = method_by_name("bogus", &MethodOptions::default())
             .err()
             .expect("unknown");
-        assert!(err
-            .to_string()
-            .contains("chord, dbhs, optimized, projection, projection-scaled, piper, tweak, quadric"));
+        assert!(err.to_string().contains(
+            "chord, dbhs, optimized, projection, projection-scaled, piper, tweak, quadric"
+        ));
     }
 }

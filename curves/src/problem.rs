@@ -463,7 +463,10 @@ impl BoundaryProblem {
     /// position up to rounding; the same bits for every construction, so curves of one edge
     /// built by different constructions share their end points).
     pub fn ends(&self) -> [Point3<f64>; 2] {
-        [self.frame.origin, self.frame.to_world(&Point2::new(1.0, 0.0))]
+        [
+            self.frame.origin,
+            self.frame.to_world(&Point2::new(1.0, 0.0)),
+        ]
     }
 
     /// The world cubic for a unit solution `alpha = [α0, α1]`:

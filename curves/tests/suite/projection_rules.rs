@@ -78,7 +78,10 @@ fn a_circle_sampled_by_chords_gets_each_rule_s_closed_form() {
             assert!(!planar.fallback && !space.choice.fallback, "{m:?}");
             for i in 0..2 {
                 assert!((planar.alpha[i] - want).abs() < ROUNDING, "{m:?} ψ {psi}");
-                assert!((space.choice.alpha[i] - want).abs() < ROUNDING, "{m:?} ψ {psi}");
+                assert!(
+                    (space.choice.alpha[i] - want).abs() < ROUNDING,
+                    "{m:?} ψ {psi}"
+                );
             }
             // The fit's bound: α c summed over both ends at most 3.
             let (bounded, shortened) = p.unit.bounded_alpha(planar.alpha);
@@ -88,8 +91,8 @@ fn a_circle_sampled_by_chords_gets_each_rule_s_closed_form() {
             for (q, r) in space.curve.points.iter().zip(same.points.iter()) {
                 assert!((q - r).norm() < ROUNDING, "{m:?} ψ {psi}: {q} vs {r}");
             }
-            for i in 0..2 {
-                assert!((space.alpha[i] - bounded[i]).abs() < ROUNDING);
+            for (a, b) in space.alpha.iter().zip(bounded) {
+                assert!((a - b).abs() < ROUNDING, "{m:?} ψ {psi}");
             }
         }
     }
@@ -107,8 +110,14 @@ fn a_circle_sampled_by_chords_gets_each_rule_s_closed_form() {
 fn normals_coplanar_with_the_chord_give_furth_s_directions() {
     // Both normals in the xz-plane, which contains the chord: the curve plane; the projected
     // chord is the plane's tangent, i.e. the problem's (Furth's) direction.
-    let a = vertex([0.0, 0.0, 0.0], Vector3::new(-(0.3f64.sin()), 0.0, 0.3f64.cos()));
-    let b = vertex([1.0, 0.0, 0.0], Vector3::new(0.7f64.sin(), 0.0, 0.7f64.cos()));
+    let a = vertex(
+        [0.0, 0.0, 0.0],
+        Vector3::new(-(0.3f64.sin()), 0.0, 0.3f64.cos()),
+    );
+    let b = vertex(
+        [1.0, 0.0, 0.0],
+        Vector3::new(0.7f64.sin(), 0.0, 0.7f64.cos()),
+    );
     let p = BoundaryProblem::new((0, 1), &a, &b).unwrap();
     assert_eq!(p.clamped, [false, false]);
     for m in members() {

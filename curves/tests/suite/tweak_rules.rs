@@ -110,7 +110,16 @@ fn lines_that_do_not_meet_in_front_fall_back_to_the_chord() {
 
 #[test]
 fn t_outside_zero_to_one_is_refused_with_a_clear_error() {
-    for bad in [0.0, -1e-12, -3.0, 1.0 + 1e-9, 2.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+    for bad in [
+        0.0,
+        -1e-12,
+        -3.0,
+        1.0 + 1e-9,
+        2.0,
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ] {
         let e = check_t(bad).unwrap_err();
         assert!(e.to_string().contains("outside (0, 1]"), "{e}");
         assert!(Tweak::new(bad).is_err());
@@ -134,7 +143,10 @@ fn the_registry_passes_t_and_quadric_is_two_thirds() {
             tweak_t: t,
             ..MethodOptions::default()
         };
-        method_by_name("tweak", &options).unwrap().construct(&u).alpha
+        method_by_name("tweak", &options)
+            .unwrap()
+            .construct(&u)
+            .alpha
     };
     let (half, one) = (at(0.5), at(1.0));
     // Linear in t.

@@ -986,7 +986,10 @@ mod tests {
         let (file, json) = (Grid::new(file).unwrap(), Grid::new(json).unwrap());
         assert_eq!(file, json);
         // 2 data × 2 β × every construction (optimized with 3 solvers: two more) × 2 segments.
-        assert_eq!(json.count(), 2 * 2 * (curves::REGISTRY.len() as u128 + 2) * 2);
+        assert_eq!(
+            json.count(),
+            2 * 2 * (curves::REGISTRY.len() as u128 + 2) * 2
+        );
         // Every refusal of a grid file, with its message after the line.
         for (toml, v) in [
             ("betta = 0.2", json!({"betta": 0.2})),

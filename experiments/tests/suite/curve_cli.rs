@@ -293,7 +293,11 @@ fn the_testbed_tangent_rules_and_their_options_reach_the_curve_command() {
     // An arc with tangents at 60° to its chord: cos θ = ½.
     let s = 0.75f64.sqrt();
     let input = format!(r#"{{"t0":[0.5,{s}],"t1":[0.5,-{s}],"k0":0,"k1":0}}"#) + "\n";
-    let args = ["curve", "--curves", "projection,piper,tweak,quadric,projection-scaled"];
+    let args = [
+        "curve",
+        "--curves",
+        "projection,piper,tweak,quadric,projection-scaled",
+    ];
     let (code, out, err) = run(&args, &input);
     assert_eq!(code, 0, "{err}");
     let line: serde_json::Value = serde_json::from_str(out.trim()).expect("JSON line");
@@ -331,6 +335,9 @@ fn the_testbed_tangent_rules_and_their_options_reach_the_curve_command() {
         let (code, out, err) = run(&["curve", "--tweak-t", bad], &input);
         assert_eq!(code, 2, "{bad}: {err}");
         assert!(out.is_empty());
-        assert!(err.contains("outside (0, 1]") || err.contains("not a number"), "{err}");
+        assert!(
+            err.contains("outside (0, 1]") || err.contains("not a number"),
+            "{err}"
+        );
     }
 }

@@ -39,7 +39,13 @@ fn ring_and_sphere_stay_g1_on_every_tangent_rule() {
                 reach,
                 ..MethodOptions::default()
             };
-            for method in ["projection", "projection-scaled", "piper", "tweak", "quadric"] {
+            for method in [
+                "projection",
+                "projection-scaled",
+                "piper",
+                "tweak",
+                "quadric",
+            ] {
                 let planar = matches!(method, "tweak" | "quadric");
                 if planar && reach == Reach::FourNinths {
                     continue;
