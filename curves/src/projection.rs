@@ -29,7 +29,11 @@
 //! ≤ 3f (10/9)`: at the third the polygon is always monotone along the chord
 //! ([`crate::problem::monotone_bound`] never shortens), at five ninths it may be shortened like
 //! any construction's. The tangents are never clamped ([`crate::problem::MAX_TANGENT_ANGLE`]):
-//! they stay in the tangent plane, so no G1 scheme refuses a face for them.
+//! they stay in the tangent plane, so no G1 scheme refuses a face for them. Measured through
+//! the Shirman–Séquin fit on `dragon_res4` (hybrid estimates): `chord` clamps 54 tangents and
+//! has 316 fallback faces and 142 folded ones; `projection` clamps none, 286 fallback faces and
+//! 26 folded (`projection-scaled` 286 / 27, `piper` 286 / 30). On the bunny: 0 / 0 for chord
+//! and projection-scaled, 0 / 1 for projection and piper.
 //!
 //! # Not planar, and not Furth
 //!

@@ -51,7 +51,11 @@
 //!   reported as a fallback.
 //!
 //! Lines that meet far in front give long tangents; in a fit they are bounded like any
-//! construction's ([`UnitProblem::bounded_alpha`]). The tangents are the planar problem's, so
+//! construction's ([`UnitProblem::bounded_alpha`]). On scans both happen often: through the
+//! Shirman–Séquin fit (hybrid estimates) the bunny's curves fall back on 1585 of 5511 edges and
+//! 146 of its 3674 faces fold (128 for `quadric`; 0 for `chord`), `dragon_res4`'s on 5615 of
+//! 16522 with 793 folded faces (726; 142 for `chord`); on the ring and the sphere no curve falls
+//! back and no face is refused. The tangents are the planar problem's, so
 //! its clamp ([`crate::problem::MAX_TANGENT_ANGLE`]) applies as for `chord`. Curvature is not
 //! read.
 
