@@ -10,7 +10,14 @@
 //! * [`dbhs`] — de Boor–Höllig–Sabin, matching end curvatures, with every positive solution
 //!   enumerated and one chosen by a named [`DbhsPick`] policy;
 //! * [`optimized`] — Mann's trade-off between tangent length and end curvature, minimized by any
-//!   adapter of the `solver` crate (objective in the `cost` crate).
+//!   adapter of the `solver` crate (objective in the `cost` crate);
+//! * [`projection`] — the original testbed's projection rules (`projection`,
+//!   `projection-scaled`, `piper`, each at a third or five ninths of the chord): the chord
+//!   projected into the tangent plane, a space curve ([`CurveMethod::space_curve`]);
+//! * [`tweak`] — the original testbed's `tweak` and `quadric`: inner points part of the way to
+//!   the end tangents' intersection.
+//!
+//! The original testbed's Furth rule is [`chord`] (see there).
 //!
 //! A crease edge's curve runs along the crease, in both sectors' tangent planes ([`crease`]).
 //!
@@ -27,18 +34,22 @@ pub mod method;
 pub mod optimized;
 pub mod poly;
 pub mod problem;
+pub mod projection;
 pub mod quadrature;
+pub mod tweak;
 
 pub use chord::Chord;
 pub use crease::{apply_tangents, crease_end, CreaseEnd};
 pub use cubicbez::{cross2, CubicBez, CubicBez2, CubicBez3, CurvatureSample, QuarticBez};
 pub use dbhs::{Dbhs, DbhsPick, DbhsSolution, DbhsSolutions};
 pub use method::{
-    method_by_name, Candidates, CurveChoice, CurveMethod, MethodEntry, MethodOptions,
-    UnknownMethod, REGISTRY,
+    method_by_name, planar_space_curve, Candidates, CurveChoice, CurveMethod, MethodEntry,
+    MethodOptions, SpaceCurve, UnknownMethod, REGISTRY,
 };
 pub use optimized::Optimized;
 pub use problem::{
     BoundaryProblem, Degeneracy, EdgeError, End, PlaneFrame, UnitProblem, UnitProblemError,
     VertexData, DEGENERATE_SINE,
 };
+pub use projection::{Projection, Reach, Scaling};
+pub use tweak::{BadTweakT, Quadric, Tweak};

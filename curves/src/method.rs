@@ -1,10 +1,22 @@
 //! The boundary-curve construction trait and the registry of constructions by name.
 //!
 //! A construction turns a [`UnitProblem`] into end-derivative lengths `(α0, α1)`; the world
-//! curve follows from [`crate::BoundaryProblem::curve`]. Adding a construction means one file
-//! implementing [`CurveMethod`] and one line in [`REGISTRY`].
+//! curve follows from [`crate::BoundaryProblem::curve`] — or, for the constructions whose curve
+//! is not planar (the original testbed's projection rules, [`crate::projection`]), from
+//! [`CurveMethod::space_curve`], which every fit calls and which by default is the planar
+//! curve of [`CurveMethod::construct`]'s `α`. Adding a construction means one file implementing
+//! [`CurveMethod`] and one line in [`REGISTRY`].
 
-use crate::{chord::Chord, dbhs::Dbhs, dbhs::DbhsPick, optimized::Optimized, problem::UnitProblem};
+use nalgebra::Vector3;
+
+use crate::crease::apply_tangents;
+use crate::cubicbez::CubicBez3;
+use crate::projection::{Projection, Reach, Scaling};
+use crate::tweak::{Quadric, Tweak, DEFAULT_TWEAK_T};
+use crate::{
+    chord::Chord, dbhs::Dbhs, dbhs::DbhsPick, optimized::Optimized, problem::BoundaryProblem,
+    problem::UnitProblem,
+};
 use cost::Weights;
 use solver::{SolveOptions, SolveReport, SolverKind};
 
@@ -71,6 +83,44 @@ impl CurveChoice {
     }
 }
 
+/// The world cubic a construction built for a [`BoundaryProblem`], with what a fit reports
+/// about it ([`CurveMethod::space_curve`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpaceCurve {
+    /// The cubic from `a` to `b`, ending at [`BoundaryProblem::ends`].
+    pub curve: CubicBez3,
+    /// Its end-derivative lengths in unit-chord form, `α0 = 3|P1 − P0|/|d|`,
+    /// `α1 = 3|P3 − P2|/|d|`, after the monotone-polygon bound.
+    pub alpha: [f64; 2],
+    /// The construction's choice (fallback, candidates, solver report), its `alpha` before the
+    /// bound.
+    pub choice: CurveChoice,
+    /// True if the lengths were shortened so the control polygon does not run back along the
+    /// chord ([`UnitProblem::bounded_alpha`]).
+    pub shortened: bool,
+    /// True at an end whose tangent is the planar problem's clamped one
+    /// ([`BoundaryProblem::clamped`]), off the vertex's tangent plane.
+    pub clamped: [bool; 2],
+}
+
+/// The default [`CurveMethod::space_curve`]: the planar problem's curve for `choice.alpha`
+/// bounded by [`UnitProblem::bounded_alpha`], with its end tangents turned to `lines` where
+/// given ([`apply_tangents`]: a crease end's tangent, keeping the length).
+pub fn planar_space_curve(
+    problem: &BoundaryProblem,
+    choice: CurveChoice,
+    lines: [Option<Vector3<f64>>; 2],
+) -> SpaceCurve {
+    let (alpha, shortened) = problem.unit.bounded_alpha(choice.alpha);
+    SpaceCurve {
+        curve: apply_tangents(&problem.curve(alpha), lines),
+        alpha,
+        choice,
+        shortened,
+        clamped: problem.clamped,
+    }
+}
+
 /// A way to build the cubic boundary curve of an edge.
 pub trait CurveMethod: Send + Sync {
     /// The registered name (`"chord"`, `"dbhs"`, …).
@@ -92,6 +142,23 @@ pub trait CurveMethod: Send + Sync {
     fn enumerates_solutions(&self) -> bool {
         false
     }
+
+    /// The world cubic of an edge: what a surface fit calls for every edge curve. `lines` are
+    /// the tangents the curve must take at its ends where the mesh fixes them (a crease end's
+    /// line, unit, along the direction of travel: leaving `a`, arriving at `b`).
+    ///
+    /// The default is planar, via α: [`CurveMethod::construct`] on the problem's unit problem,
+    /// bounded and mapped back ([`planar_space_curve`]). A construction whose curve leaves the
+    /// problem's plane (its end tangents are not the plane's: [`crate::projection`]) overrides
+    /// it and builds the cubic from the problem's end positions and normals; its
+    /// [`CurveMethod::construct`] then gives the same rule's meaning on a planar problem.
+    fn space_curve(
+        &self,
+        problem: &BoundaryProblem,
+        lines: [Option<Vector3<f64>>; 2],
+    ) -> SpaceCurve {
+        planar_space_curve(problem, self.construct(&problem.unit), lines)
+    }
 }
 
 /// Settings the registered constructions read; each ignores what it does not use.
@@ -107,6 +174,11 @@ pub struct MethodOptions {
     pub alpha_min: f64,
     /// Solver settings for `optimized`.
     pub solve_options: SolveOptions,
+    /// The parameter `t` of `tweak`, in `(0, 1]` ([`crate::tweak::check_t`]; default 0.5858).
+    pub tweak_t: f64,
+    /// Where the projection family takes its point: the chord's third, or five ninths (the
+    /// "four-ninths" variants, [`crate::projection`]).
+    pub reach: Reach,
 }
 
 impl Default for MethodOptions {
@@ -120,6 +192,8 @@ impl Default for MethodOptions {
                 record_history: false,
                 ..SolveOptions::default()
             },
+            tweak_t: DEFAULT_TWEAK_T,
+            reach: Reach::Third,
         }
     }
 }
@@ -168,6 +242,46 @@ pub const REGISTRY: &[MethodEntry] = &[
             })
         },
     },
+    MethodEntry {
+        name: "projection",
+        summary: "original testbed: the chord's third (or five ninths) projected into the tangent plane",
+        build: |o| {
+            Box::new(Projection {
+                scaling: Scaling::Projected,
+                reach: o.reach,
+            })
+        },
+    },
+    MethodEntry {
+        name: "projection-scaled",
+        summary: "original testbed: the projected chord's direction at a third (or five ninths) of its length",
+        build: |o| {
+            Box::new(Projection {
+                scaling: Scaling::Rescaled,
+                reach: o.reach,
+            })
+        },
+    },
+    MethodEntry {
+        name: "piper",
+        summary: "original testbed's Piper boundaries: the projected point lengthened by a ninth",
+        build: |o| {
+            Box::new(Projection {
+                scaling: Scaling::Piper,
+                reach: o.reach,
+            })
+        },
+    },
+    MethodEntry {
+        name: "tweak",
+        summary: "original testbed: inner points a fraction t of the way to the tangents' intersection",
+        build: |o| Box::new(Tweak { t: o.tweak_t }),
+    },
+    MethodEntry {
+        name: "quadric",
+        summary: "original testbed: the degree-raised quadratic through the tangents' intersection",
+        build: |_| Box::new(Quadric),
+    },
 ];
 
 /// Looks a construction up by name.
@@ -203,6 +317,8 @@ mod tests {
         let err = method_by_name("bogus", &MethodOptions::default())
             .err()
             .expect("unknown");
-        assert!(err.to_string().contains("chord, dbhs, optimized"));
+        assert!(err.to_string().contains(
+            "chord, dbhs, optimized, projection, projection-scaled, piper, tweak, quadric"
+        ));
     }
 }

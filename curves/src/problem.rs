@@ -84,6 +84,21 @@ const MAX_TANGENT_SIN: f64 = 0.984_807_753_012_208;
 /// monotone along the chord ([`UnitProblem::bounded_alpha`]).
 pub const MONOTONE_POLYGON: f64 = 3.0;
 
+/// [`UnitProblem::bounded_alpha`] for end tangents whose components along the unit chord are
+/// `c = [c0, c1]`: `alpha` scaled by `3/(α0 c0 + α1 c1)` when both `c_i > 0` and the sum
+/// exceeds [`MONOTONE_POLYGON`], and whether it was. The derivation there holds for a cubic in
+/// space too: it reads only the control polygon's components along the chord, so the space
+/// constructions (`crate::projection`) bound their lengths with it as well.
+pub fn monotone_bound(alpha: [f64; 2], c: [f64; 2]) -> ([f64; 2], bool) {
+    let along = alpha[0] * c[0] + alpha[1] * c[1];
+    if c[0] > 0.0 && c[1] > 0.0 && along > MONOTONE_POLYGON {
+        let k = MONOTONE_POLYGON / along;
+        ([alpha[0] * k, alpha[1] * k], true)
+    } else {
+        (alpha, false)
+    }
+}
+
 /// Which end of an edge a degeneracy concerns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum End {
@@ -242,14 +257,7 @@ impl UnitProblem {
     /// arc angle `ψ < 180°`). Tangents with `c_i ≤ 0` (not produced by [`BoundaryProblem`])
     /// leave `alpha` as it is: the bound is about running along the chord.
     pub fn bounded_alpha(&self, alpha: [f64; 2]) -> ([f64; 2], bool) {
-        let (c0, c1) = (self.t0.x, self.t1.x);
-        let along = alpha[0] * c0 + alpha[1] * c1;
-        if c0 > 0.0 && c1 > 0.0 && along > MONOTONE_POLYGON {
-            let k = MONOTONE_POLYGON / along;
-            ([alpha[0] * k, alpha[1] * k], true)
-        } else {
-            (alpha, false)
-        }
+        monotone_bound(alpha, [self.t0.x, self.t1.x])
     }
 
     /// End curvatures `[κ(0), κ(1)]` of [`UnitProblem::curve`] in closed form.
@@ -338,6 +346,10 @@ pub struct BoundaryProblem {
     pub clamped: [bool; 2],
     /// The scaled problem on the unit chord.
     pub unit: UnitProblem,
+    /// The unit normals at `a` and `b` the problem was built from (at a crease end the
+    /// bisector normal, [`crate::crease`]): what the constructions that build their curve in
+    /// space read ([`crate::CurveMethod::space_curve`], [`crate::projection`]).
+    pub normals: [Vector3<f64>; 2],
 }
 
 impl BoundaryProblem {
@@ -442,15 +454,26 @@ impl BoundaryProblem {
             flipped,
             clamped,
             unit,
+            normals: [na, nb],
         })
+    }
+
+    /// The world positions of `a` and `b` as every curve of this problem ends there: `a` the
+    /// frame's origin, `b` the unit problem's `(1, 0)` mapped back (equal to the data's
+    /// position up to rounding; the same bits for every construction, so curves of one edge
+    /// built by different constructions share their end points).
+    pub fn ends(&self) -> [Point3<f64>; 2] {
+        [
+            self.frame.origin,
+            self.frame.to_world(&Point2::new(1.0, 0.0)),
+        ]
     }
 
     /// The world cubic for a unit solution `alpha = [α0, α1]`:
     /// `P1 = p_a + α0 |d| t_a / 3`, `P2 = p_b − α1 |d| t_b / 3`.
     pub fn curve(&self, alpha: [f64; 2]) -> CubicBez3 {
         let s = self.frame.scale / 3.0;
-        let pa = self.frame.origin;
-        let pb = self.frame.to_world(&Point2::new(1.0, 0.0));
+        let [pa, pb] = self.ends();
         CubicBez3::new([
             pa,
             pa + self.tangents[0] * (alpha[0] * s),

@@ -401,7 +401,7 @@ fn write_plots(
     let mut md = String::new();
     md.push_str("# Boundary curves for unit-chord problems\n\n");
     md.push_str(&format!(
-        "Written by `cargo run --release -p experiments -- curve{}{} --curves {} --dbhs-pick {} --solver {} --plot {} --plot-limit {}`.\n\n",
+        "Written by `cargo run --release -p experiments -- curve{}{} --curves {} --dbhs-pick {} --solver {} --tweak-t {}{} --plot {} --plot-limit {}`.\n\n",
         args.input
             .as_ref()
             .map(|p| format!(" --input {}", p.display()))
@@ -413,6 +413,8 @@ fn write_plots(
         args.curves.join(","),
         args.curve.dbhs_pick,
         args.curve.solver,
+        args.curve.tweak_t,
+        if args.curve.four_ninths { " --four-ninths" } else { "" },
         args.plot.as_deref().unwrap_or(dir).display(),
         args.plot_limit
     ));

@@ -4,7 +4,7 @@
 //!
 //! | group | flags | taken by |
 //! |---|---|---|
-//! | [`CurveOptions`] | `--solver`, `--dbhs-pick` | `curve`, `ring`, `fit` (in [`FitOptions`]) |
+//! | [`CurveOptions`] | `--solver`, `--dbhs-pick`, `--tweak-t`, `--four-ninths` | `curve`, `ring`, `fit` (in [`FitOptions`]) |
 //! | [`InteriorOption`] | `--interior` | `sweep`, `ring`, `fit` (in [`FitOptions`]) |
 //! | `fitjob::cli::SchemeArgs` | `--scheme` and one option a scheme parameter (`--beta`, `--c`, `--phong-alpha`, …), generated from the scheme registry | `ring`, `fit` (in [`FitOptions`]), the pipeline's `fit` (`sweep` takes each as a list, a grid axis: `sweep::ParameterLists`) |
 //! | [`FitOptions`] | `--curves` (one construction), [`CurveOptions`], [`InteriorOption`], `SchemeArgs` | `fit` |
@@ -24,7 +24,7 @@ use curves::{DbhsPick, MethodOptions};
 use solver::SolverKind;
 use surface::fairing::InteriorChoice;
 
-/// `--solver` and `--dbhs-pick`.
+/// `--solver`, `--dbhs-pick`, `--tweak-t` and `--four-ninths`.
 #[derive(clap::Args, Debug, Clone, Copy)]
 pub struct CurveOptions {
     /// Solver of the optimized construction (and of `--interior` fairing); the names come from
@@ -35,6 +35,24 @@ pub struct CurveOptions {
     /// tangent), or a solution index in order of increasing α0.
     #[arg(long, default_value_t = DbhsPick::Closest)]
     pub dbhs_pick: DbhsPick,
+    /// The parameter t of `tweak`: its inner control points t of the way from each end to the
+    /// end tangents' intersection, 0 < t ≤ 1 (`quadric` is t = 2/3).
+    #[arg(long, default_value_t = curves::tweak::DEFAULT_TWEAK_T, value_name = "T",
+          value_parser = parse_tweak_t, allow_hyphen_values = true)]
+    pub tweak_t: f64,
+    /// The four-ninths variants of `projection`, `projection-scaled` and `piper`: the point
+    /// five ninths along the chord, (4/9) V_a + (5/9) V_b, projected instead of the third.
+    #[arg(long)]
+    pub four_ninths: bool,
+}
+
+/// `--tweak-t`'s value: a number in (0, 1] (`curves::tweak::check_t`).
+fn parse_tweak_t(s: &str) -> Result<f64, String> {
+    let t: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number"))?;
+    curves::tweak::check_t(t).map_err(|e| e.to_string())
 }
 
 /// The registered solvers as the values `--solver` accepts (`--help` lists them).
@@ -50,6 +68,12 @@ impl CurveOptions {
         MethodOptions {
             dbhs_pick: self.dbhs_pick,
             solver: self.solver,
+            tweak_t: self.tweak_t,
+            reach: if self.four_ninths {
+                curves::Reach::FourNinths
+            } else {
+                curves::Reach::Third
+            },
             ..MethodOptions::default()
         }
     }
@@ -106,6 +130,30 @@ pub fn all_methods() -> &'static str {
 mod tests {
     use super::*;
     use clap::builder::TypedValueParser as _;
+
+    #[derive(clap::Parser, Debug)]
+    struct Cli {
+        #[command(flatten)]
+        curve: CurveOptions,
+    }
+
+    #[test]
+    fn tweak_t_and_four_ninths_reach_the_method_options() {
+        use clap::Parser as _;
+        let o = Cli::try_parse_from(["x", "--tweak-t", "0.25", "--four-ninths"])
+            .unwrap()
+            .curve
+            .method_options();
+        assert_eq!(o.tweak_t, 0.25);
+        assert_eq!(o.reach, curves::Reach::FourNinths);
+        let d = Cli::try_parse_from(["x"]).unwrap().curve.method_options();
+        assert_eq!(d.tweak_t, curves::tweak::DEFAULT_TWEAK_T);
+        assert_eq!(d.reach, curves::Reach::Third);
+        for bad in ["0", "-1", "1.5", "nan", "inf", "x"] {
+            let e = Cli::try_parse_from(["x", "--tweak-t", bad]).unwrap_err();
+            assert!(e.to_string().contains("tweak-t"), "{bad}: {e}");
+        }
+    }
 
     #[test]
     fn every_registered_construction_is_offered_and_builds() {

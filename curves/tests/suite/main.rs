@@ -5,3 +5,5 @@ mod boundary_problem;
 mod dbhs;
 mod extreme_problems;
 mod optimized;
+mod projection_rules;
+mod tweak_rules;

@@ -15,8 +15,9 @@
 //! scheme that reads β) is refused: the options record what was run, exactly.
 //!
 //! The task order is data × resolution × scheme × parameter values (in the registry's order
-//! of parameters) × curves (registry order) × solver × segments, so the default grid is the
-//! twenty tasks of the ring study's sweep in their old order. A task's id names its data and
+//! of parameters) × curves (registry order) × solver × segments, so the default grid holds the
+//! twenty tasks of the ring study's sweep in their old order (with the constructions added to
+//! the registry since between them). A task's id names its data and
 //! construction and only the parameters that differ from their defaults (`ring/optimized/lm`,
 //! `sphere@3/phong/alpha=0.5`, `bunny.ply/chord/s=8`): a function of the task alone, the same
 //! in every grid that holds it.
@@ -866,11 +867,14 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_default_grid_is_the_twenty_tasks_of_old() {
+    fn the_default_grid_is_every_construction_on_every_data_set() {
         let grid = Grid::new(Axes::default()).unwrap();
         let tasks = grid.tasks().unwrap();
-        assert_eq!(tasks.len(), 20);
-        assert_eq!(grid.count(), 20);
+        // Four data sets × every registered construction, `optimized` once per solver (3):
+        // the twenty tasks of old (chord, dbhs, optimized) and the original testbed's rules.
+        let per_set = curves::REGISTRY.len() + 2;
+        assert_eq!(tasks.len(), 4 * per_set);
+        assert_eq!(grid.count(), 4 * per_set as u128);
         let ids: Vec<&str> = tasks.iter().map(|t| t.id.as_str()).collect();
         assert_eq!(
             &ids[..5],
@@ -882,7 +886,8 @@ mod tests {
                 "ring/optimized/lm"
             ]
         );
-        assert_eq!(ids[19], "octa/optimized/lm");
+        assert_eq!(ids[3 * per_set + 4], "octa/optimized/lm");
+        assert_eq!(ids[4 * per_set - 1], "octa/quadric");
         // The options record the axes run: β and c (read by the scheme), not φ's α.
         let o = grid.json();
         assert!(o.get("beta").is_some() && o.get("c").is_some(), "{o}");
@@ -980,8 +985,11 @@ mod tests {
         .unwrap();
         let (file, json) = (Grid::new(file).unwrap(), Grid::new(json).unwrap());
         assert_eq!(file, json);
-        // 2 data × 2 β × 3 constructions (optimized with 3 solvers: 5) × 2 segments.
-        assert_eq!(json.count(), 2 * 2 * 5 * 2);
+        // 2 data × 2 β × every construction (optimized with 3 solvers: two more) × 2 segments.
+        assert_eq!(
+            json.count(),
+            2 * 2 * (curves::REGISTRY.len() as u128 + 2) * 2
+        );
         // Every refusal of a grid file, with its message after the line.
         for (toml, v) in [
             ("betta = 0.2", json!({"betta": 0.2})),

@@ -87,13 +87,17 @@ fn ring_study_runs_small_and_reports_g1() {
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).expect("report"))
             .expect("JSON");
-    for m in ["chord", "dbhs", "optimized"] {
+    for m in curves::REGISTRY.iter().map(|e| e.name) {
         let g1 = report["methods"][m]["g1_defect_exterior_radians"]
             .as_f64()
             .expect("number");
         assert!(g1 < 1e-9, "{m}: {g1}");
     }
-    assert_eq!(report["surfaces"].as_array().map(Vec::len), Some(5));
+    // The true ring, the flat triangles, and one surface per registered construction.
+    assert_eq!(
+        report["surfaces"].as_array().map(Vec::len),
+        Some(2 + curves::REGISTRY.len())
+    );
     for f in [
         "shaded.png",
         "kcolor.png",
@@ -119,7 +123,13 @@ fn merge_refuses_an_incomplete_set_of_shards() {
         code, 1,
         "an incomplete set of shards is an input error: {err}"
     );
-    assert!(err.contains("19 of 20 tasks missing"), "{err}");
+    // The default grid: four data sets × every construction, `optimized` once per solver (3).
+    let tasks = 4 * (curves::REGISTRY.len() + 2);
+    let held = tasks.div_ceil(20);
+    assert!(
+        err.contains(&format!("{} of {tasks} tasks missing", tasks - held)),
+        "{err}"
+    );
     let (code, _, err) = run(&["sweep", "--shard", "3/2", "-o", out], "");
     assert_eq!(code, 2, "{err}");
 }
@@ -266,4 +276,68 @@ fn a_line_that_is_not_utf8_gets_its_own_error_and_the_others_answers() {
         .expect("error")
         .contains("not UTF-8"));
     assert!(lines[2]["methods"]["chord"].is_object());
+}
+
+/// `alpha` of construction `m` in a `curve` answer line.
+fn alpha_of(line: &serde_json::Value, m: &str) -> [f64; 2] {
+    let a = &line["methods"][m]["alpha"];
+    [a[0].as_f64().expect("α0"), a[1].as_f64().expect("α1")]
+}
+
+/// The original testbed's tangent rules through the command line: `--curves` takes their
+/// registered names, `--tweak-t` and `--four-ninths` reach them, bad values are usage errors.
+#[test]
+fn the_testbed_tangent_rules_and_their_options_reach_the_curve_command() {
+    /// The answers are written with shortest-round-trip digits: closed forms to rounding.
+    const ROUNDING: f64 = 1e-12;
+    // An arc with tangents at 60° to its chord: cos θ = ½.
+    let s = 0.75f64.sqrt();
+    let input = format!(r#"{{"t0":[0.5,{s}],"t1":[0.5,-{s}],"k0":0,"k1":0}}"#) + "\n";
+    let args = [
+        "curve",
+        "--curves",
+        "projection,piper,tweak,quadric,projection-scaled",
+    ];
+    let (code, out, err) = run(&args, &input);
+    assert_eq!(code, 0, "{err}");
+    let line: serde_json::Value = serde_json::from_str(out.trim()).expect("JSON line");
+    let want = [
+        ("projection", 0.5),
+        ("piper", 5.0 / 9.0),
+        ("projection-scaled", 1.0),
+        // 3t/(2 cos θ) at the default t = 0.5858, and 1/cos θ for the quadric.
+        ("tweak", 3.0 * 0.5858),
+        ("quadric", 2.0),
+    ];
+    for (m, a) in want {
+        for got in alpha_of(&line, m) {
+            assert!((got - a).abs() < ROUNDING, "{m}: {got} vs {a}");
+        }
+    }
+    let (code, out, err) = run(
+        &[&args[..], &["--tweak-t", "0.5", "--four-ninths"]].concat(),
+        &input,
+    );
+    assert_eq!(code, 0, "{err}");
+    let line: serde_json::Value = serde_json::from_str(out.trim()).expect("JSON line");
+    for (m, a) in [
+        ("projection", 5.0 / 6.0),
+        ("piper", 25.0 / 27.0),
+        ("projection-scaled", 5.0 / 3.0),
+        ("tweak", 1.5),
+        ("quadric", 2.0),
+    ] {
+        for got in alpha_of(&line, m) {
+            assert!((got - a).abs() < ROUNDING, "{m}: {got} vs {a}");
+        }
+    }
+    for bad in ["0", "-0.5", "1.5", "nan"] {
+        let (code, out, err) = run(&["curve", "--tweak-t", bad], &input);
+        assert_eq!(code, 2, "{bad}: {err}");
+        assert!(out.is_empty());
+        assert!(
+            err.contains("outside (0, 1]") || err.contains("not a number"),
+            "{err}"
+        );
+    }
 }

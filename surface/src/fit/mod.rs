@@ -546,15 +546,17 @@ pub fn fit_curves_into(
             let ends = edge_ends(mesh, ei);
             match BoundaryProblem::new((a, b), &ends.data[0], &ends.data[1]) {
                 Ok(p) => {
-                    let choice = method.construct(&p.unit);
-                    // A construction's lengths, shortened where the control polygon would run
-                    // back along the chord (`UnitProblem::bounded_alpha`).
-                    let (bounded, shortened) = p.unit.bounded_alpha(choice.alpha);
-                    *curve = curves::apply_tangents(&p.curve(bounded), ends.tangents);
-                    *alpha = bounded;
+                    // The construction's world cubic (planar via α for most, built in space by
+                    // the projection rules), its lengths shortened where the control polygon
+                    // would run back along the chord (`UnitProblem::bounded_alpha`), its ends
+                    // turned to the crease lines.
+                    let built = method.space_curve(&p, ends.tangents);
+                    let (choice, shortened) = (&built.choice, built.shortened);
+                    *curve = built.curve;
+                    *alpha = built.alpha;
                     let unconverged = choice.report.as_ref().is_some_and(|r| !r.converged());
                     let flipped = p.flipped.iter().filter(|f| **f).count() as u16;
-                    let clamped = p.clamped.iter().filter(|f| **f).count() as u16;
+                    let clamped = built.clamped.iter().filter(|f| **f).count() as u16;
                     *flag = u16::from(choice.fallback)
                         | (u16::from(unconverged) << 1)
                         | (flipped << 2)

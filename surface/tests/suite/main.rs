@@ -17,3 +17,4 @@ mod scheme_side_vertex;
 mod schemes;
 mod sharp;
 mod shirman_sequin;
+mod tangent_rules;
