@@ -30,12 +30,15 @@ use crate::curve_args::{CurveOptions, InteriorOption};
 use crate::error::ExperimentError;
 use crate::output::{pretty_json, write_result, Staged};
 
-/// The constructions the study compares: every registered one, in registry order
-/// (`curves::REGISTRY`: `chord`, `dbhs`, `optimized` — the order of the seeds' Figure 5); a
-/// construction added to the registry joins the study, its tables and its pictures (one column
-/// a surface). `estimation` rebuilds the study with the same ones.
+/// The constructions the study compares by default: the seeds' three, in the order of their
+/// Figure 5 (`chord` — Shirman–Séquin's, which is also the original testbed's Furth rule —,
+/// `dbhs`, `optimized`). `--curves` takes any registered ones; the `sweep` compares every
+/// registered construction on every data set. `estimation` rebuilds the study with these.
+pub const SEED_METHODS: &str = "chord,dbhs,optimized";
+
+/// [`SEED_METHODS`] one by one.
 pub fn methods() -> impl Iterator<Item = &'static str> {
-    curves::REGISTRY.iter().map(|e| e.name)
+    SEED_METHODS.split(',')
 }
 
 /// Options of the `ring` experiment.
@@ -48,6 +51,11 @@ pub struct RingArgs {
     /// Tessellation density: segments per patch edge (the testbed's `Tess -s`).
     #[arg(short = 's', long, default_value_t = 4)]
     segments: usize,
+    /// Comma-separated curve constructions to compare, each once (one surface a construction;
+    /// default the seeds' three).
+    #[arg(long, value_delimiter = ',', default_value = SEED_METHODS,
+          value_parser = fitjob::cli::curve_method_names())]
+    curves: Vec<String>,
     /// The curve constructions' options.
     #[command(flatten)]
     curve: CurveOptions,
@@ -104,7 +112,18 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     stage("data", t);
 
     // Fits.
+    if let Some(twice) = args
+        .curves
+        .iter()
+        .enumerate()
+        .find_map(|(i, m)| args.curves[..i].contains(m).then_some(m))
+    {
+        return Err(ExperimentError::Usage(format!(
+            "--curves: `{twice}` is listed twice"
+        )));
+    }
     let fits = surfaces::fit_methods(
+        &args.curves,
         args.resolution,
         &args.scheme,
         &problems,

@@ -104,10 +104,11 @@ fn flat_triangles(mesh: &Mesh, s: usize) -> Result<Tessellation, ExperimentError
     })
 }
 
-/// The ring at `resolution` fitted with every registered curve construction
-/// (`curves::REGISTRY`) by the fit job (`fitjob::run`, the fit and G1 every front end gets),
+/// The ring at `resolution` fitted with each curve construction of `methods` (registered names)
+/// by the fit job (`fitjob::run`, the fit and G1 every front end gets),
 /// interior parameters as `interior` chooses them (`--interior`, the solver of `options`).
 pub(super) fn fit_methods(
+    methods: &[String],
     resolution: usize,
     scheme: &fitjob::cli::SchemeArgs<fitjob::cli::PatchesOnly>,
     problems: &[BoundaryProblem],
@@ -115,8 +116,13 @@ pub(super) fn fit_methods(
     interior: InteriorChoice,
 ) -> Result<Vec<FittedMethod>, ExperimentError> {
     let mut fits = Vec::new();
-    for entry in curves::REGISTRY {
-        let name = entry.name;
+    for asked in methods {
+        // The registry's own `&'static str` (the parser admits registered names only).
+        let Some(name) = curves::REGISTRY.iter().map(|e| e.name).find(|n| n == asked) else {
+            return Err(ExperimentError::Usage(format!(
+                "--curves: unknown construction `{asked}`"
+            )));
+        };
         let crate::input::KeptFit {
             fit: f,
             g1,
