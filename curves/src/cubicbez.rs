@@ -196,6 +196,39 @@ impl CubicBez<2> {
 }
 
 impl CubicBez<3> {
+    /// `dκ/ds`, the arc-length derivative of the unsigned curvature `κ = |c|/|f'|³` with
+    /// `c = f' × f''`. As `c' = f' × f'''` (`f'' × f''` vanishes),
+    /// `dκ/dt = (c·c')/(|c| |f'|³) − 3 |c| (f'·f'')/|f'|⁵`, and `dκ/ds = (dκ/dt)/|f'|`. Where
+    /// `c = 0` (an inflection, a straight curve) the first term's one-sided limits are
+    /// `±|c'|/|f'|³`; the `+` one is taken (its square is what
+    /// [`CubicBez3::curvature_variation`] reads). On a planar curve this is the signed
+    /// curvature's derivative ([`CubicBez2::curvature_derivative`]) up to sign.
+    pub fn curvature_derivative(&self, t: f64) -> f64 {
+        let d1 = self.deriv(t);
+        let d2 = self.deriv2(t);
+        let c = d1.cross(&d2);
+        let dc = d1.cross(&self.deriv3());
+        let n = d1.norm();
+        let cn = c.norm();
+        let first = if cn > 0.0 { c.dot(&dc) / cn } else { dc.norm() };
+        (first / n.powi(3) - 3.0 * cn * d1.dot(&d2) / n.powi(5)) / n
+    }
+
+    /// Curvature variation `∫ (dκ/ds)² ds = ∫₀¹ (dκ/ds)² |f'| dt` of the space curve (the
+    /// same number as [`CubicBez2::curvature_variation`] of a planar curve's plane image), by
+    /// adaptive quadrature.
+    pub fn curvature_variation(&self) -> f64 {
+        quadrature::integrate(
+            |t| {
+                let k = self.curvature_derivative(t);
+                k * k * self.deriv(t).norm()
+            },
+            0.0,
+            1.0,
+            QUADRATURE_TOL,
+        )
+    }
+
     /// Curvature vector `k(t) = (f' × f'') × f' / |f'|⁴`, pointing to the centre of the
     /// osculating circle with length `1/radius`.
     pub fn curvature_vector(&self, t: f64) -> Vector3<f64> {
@@ -283,6 +316,36 @@ mod tests {
         assert!((c.arc_length() - 9.0).abs() < 1e-12);
         assert!(c.curvature(0.3) < EXACT);
         assert!(c.curvature_vector(0.7).norm() < EXACT);
+    }
+
+    /// A twisted cubic (not planar): [`CubicBez3::curvature_derivative`] against central
+    /// differences of the curvature over arc length, and the variation of a planar curve
+    /// lifted into space (rotated out of every coordinate plane) equal to the plane's.
+    #[test]
+    fn space_curvature_derivative_and_variation() {
+        let twisted = CubicBez::new([
+            Point3::new(0.0, 0.0, 0.0),
+            Point3::new(0.3, 0.4, 0.1),
+            Point3::new(0.8, -0.1, 0.4),
+            Point3::new(1.0, 0.2, -0.1),
+        ]);
+        for i in 1..10 {
+            let t = i as f64 / 10.0;
+            let fdk =
+                (twisted.curvature(t + FD_STEP) - twisted.curvature(t - FD_STEP)) / (2.0 * FD_STEP);
+            let got = twisted.curvature_derivative(t);
+            let want = fdk / twisted.deriv(t).norm();
+            assert!(
+                (got - want).abs() < 1e-5 * want.abs().max(1.0),
+                "t {t}: {got} vs {want}"
+            );
+        }
+        let c2 = sample();
+        let rot = nalgebra::Rotation3::from_euler_angles(0.3, -0.7, 1.1);
+        let lift = |p: Point2<f64>| rot * Point3::new(p.x, p.y, 0.0) + Vector3::new(0.2, -1.0, 3.0);
+        let c3 = CubicBez::new(c2.points.map(lift));
+        let (v2, v3) = (c2.curvature_variation(), c3.curvature_variation());
+        assert!((v2 - v3).abs() < 1e-8 * v2, "{v2} vs {v3}");
     }
 
     #[test]

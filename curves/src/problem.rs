@@ -31,7 +31,7 @@
 //!   tangents are directions and stay unit, curvatures multiply by `|d|`. A unit solution
 //!   `(α0, α1)` maps back to `P1 = p_a + α0 |d| t_a / 3`, `P2 = p_b − α1 |d| t_b / 3`.
 
-use nalgebra::{Point2, Point3, Vector2, Vector3};
+use nalgebra::{Matrix3, Point2, Point3, Vector2, Vector3};
 
 use crate::cubicbez::{cross2, CubicBez2, CubicBez3};
 pub use mesh::VertexData;
@@ -350,6 +350,9 @@ pub struct BoundaryProblem {
     /// bisector normal, [`crate::crease`]): what the constructions that build their curve in
     /// space read ([`crate::CurveMethod::space_curve`], [`crate::projection`]).
     pub normals: [Vector3<f64>; 2],
+    /// The shape tensors at `a` and `b` the target curvatures were read from (`κn(d) = dᵀ S d`),
+    /// for measures of curves whose tangents are not the plane's (`surface::curve_stats`).
+    pub shapes: [Matrix3<f64>; 2],
 }
 
 impl BoundaryProblem {
@@ -455,6 +458,7 @@ impl BoundaryProblem {
             clamped,
             unit,
             normals: [na, nb],
+            shapes: [a.shape, b.shape],
         })
     }
 
