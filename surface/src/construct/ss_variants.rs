@@ -99,7 +99,9 @@
 //! the nets agree to rounding. It degenerates at both ends of `α₂ > 0`: as `α₂ → 0` the points
 //! `S`, `P` leave to infinity (`~1/α₂`), as `α₂ → ∞` the interior edges' end derivatives
 //! `3(S − V)` vanish (`~1/α₂`) and with them `k_0, k_1`. [`ALPHA2_RANGE`] keeps the factor
-//! within that of Mann's β range.
+//! within that of Mann's β range. On planar data every control point stays in the plane for
+//! every `α₂`, but the parametrization is the linear one (linear precision) only at `9/4`:
+//! elsewhere `S` sits `3/(4α₂)` rather than ⅓ of the way along the edge points' sum.
 //!
 //! # The testbed's modified fitter ([`testbed_modified`])
 //!
@@ -209,10 +211,18 @@ fn twists(
             },
         ];
         out[e] = chiyokura_kimura(&edges[e], &ends, 1.0).map_err(|f| match f {
-            CrossFailure::ZeroDerivative(0) => SchemeError::ZeroEndDerivative { edge: e, corner: a },
-            CrossFailure::ZeroDerivative(_) => SchemeError::ZeroEndDerivative { edge: e, corner: b },
-            CrossFailure::NoCrossComponent(0) => SchemeError::NoCrossComponent { edge: e, corner: a },
-            CrossFailure::NoCrossComponent(_) => SchemeError::NoCrossComponent { edge: e, corner: b },
+            CrossFailure::ZeroDerivative(0) => {
+                SchemeError::ZeroEndDerivative { edge: e, corner: a }
+            }
+            CrossFailure::ZeroDerivative(_) => {
+                SchemeError::ZeroEndDerivative { edge: e, corner: b }
+            }
+            CrossFailure::NoCrossComponent(0) => {
+                SchemeError::NoCrossComponent { edge: e, corner: a }
+            }
+            CrossFailure::NoCrossComponent(_) => {
+                SchemeError::NoCrossComponent { edge: e, corner: b }
+            }
         })?;
     }
     Ok(out)
@@ -291,12 +301,7 @@ pub fn shirman_sequin_1987(
         3.0 / (2.0 * alpha2),
     );
     let p: [Point3<f64>; 3] = std::array::from_fn(|a| {
-        affine(&[
-            (s0, v[a]),
-            (s1, s[a]),
-            (s2, lk[a][0]),
-            (s2, lk[prev(a)][1]),
-        ])
+        affine(&[(s0, v[a]), (s1, s[a]), (s2, lk[a][0]), (s2, lk[prev(a)][1])])
     });
     let z = affine(&[(1.0 / 3.0, p[0]), (1.0 / 3.0, p[1]), (1.0 / 3.0, p[2])]);
     // Step 4 (m = 2): N_e.

@@ -14,6 +14,7 @@ mod scheme_phong;
 mod scheme_pn_triangles;
 mod scheme_powell_sabin;
 mod scheme_side_vertex;
+mod scheme_ss_variants;
 mod schemes;
 mod sharp;
 mod shirman_sequin;
