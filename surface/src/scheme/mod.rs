@@ -22,6 +22,7 @@
 pub mod clough_tocher;
 pub mod discrete_side_vertex;
 pub mod flat;
+pub mod gregory_charrot;
 pub mod nielson;
 pub mod phong;
 pub mod pn_triangles;
@@ -474,6 +475,12 @@ pub const REGISTRY: &[SchemeEntry] = &[
         summary: "the testbed's modified Shirman–Séquin (UW 1990): split cubic macro patch, Chiyokura–Kimura twists, C1 inside by averaging (G1)",
         parameters: &[],
         build: |_| Box::new(shirman_sequin_testbed::ShirmanSequinTestbed),
+    },
+    SchemeEntry {
+        name: "gregory-charrot",
+        summary: "Gregory–Charrot 1980: three corner interpolants (Boolean sums, rational twist) blended by b_i²/Σb_j² on cubic edge curves, Chiyokura–Kimura cross-boundary data (G1; evaluated, not Bézier)",
+        parameters: &[],
+        build: |_| Box::new(gregory_charrot::GregoryCharrot),
     },
 ];
 
