@@ -10,6 +10,7 @@ mod octa;
 mod patch_io;
 mod scheme_clough_tocher;
 mod scheme_flat;
+mod scheme_gregory_charrot;
 mod scheme_phong;
 mod scheme_pn_triangles;
 mod scheme_powell_sabin;
