@@ -178,7 +178,7 @@ fn refuse(
     for (edge, c) in edges.iter().enumerate() {
         let [va, p1, p2, vb] = c.points;
         for (corner, t) in [(edge, p1 - va), (next(edge), vb - p2)] {
-            if !(t.norm() > 0.0) {
+            if t.norm() == 0.0 || t.norm().is_nan() {
                 return Err(SchemeError::ZeroEndDerivative { edge, corner });
             }
             if t.dot(&n[corner]).abs() > DEGENERATE * t.norm() {
@@ -366,8 +366,8 @@ fn split_at_centroid(patch: &BezierTriangle) -> [BezierTriangle; 3] {
         let sub = CENTROID_SPLIT[s];
         BezierTriangle::from_fn(patch.degree(), |i, j, k| {
             let mut args = vec![sub[0]; i];
-            args.extend(std::iter::repeat(sub[1]).take(j));
-            args.extend(std::iter::repeat(sub[2]).take(k));
+            args.extend(std::iter::repeat_n(sub[1], j));
+            args.extend(std::iter::repeat_n(sub[2], k));
             Point3::from(patch.blossom(&args))
         })
     })

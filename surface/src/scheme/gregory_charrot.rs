@@ -266,11 +266,14 @@ impl VJ {
 // ---------------------------------------------------------------------------------------------
 // Edge data.
 
+/// An edge's Chiyokura–Kimura coefficients: `k_0, k_1`, `A_0, A_1`, `h_0, h_1`.
+type CkEnds = ([f64; 2], [Vector3<f64>; 2], [f64; 2]);
+
 /// One edge's curve and Chiyokura–Kimura transversal (module docs).
 struct Edge {
     c: [Vector3<f64>; 4],
-    /// `k_0, k_1`, `A_0, A_1`, `h_0, h_1`; `None`: the linear transversal `x0 … x1`.
-    ck: Option<([f64; 2], [Vector3<f64>; 2], [f64; 2])>,
+    /// `None`: the linear transversal between the ends.
+    ck: Option<CkEnds>,
     x_ends: [Vector3<f64>; 2],
 }
 

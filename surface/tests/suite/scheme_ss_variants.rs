@@ -337,7 +337,7 @@ fn the_testbed_fitter_is_no_choice_of_manns_beta_and_c() {
 #[test]
 fn a_bad_alpha2_is_an_error_not_a_panic() {
     let data = dataset_by_name("sphere", None).unwrap();
-    let face = data.mesh.faces()[0].map(|i| data.mesh.vertices()[i].data.clone());
+    let face = data.mesh.faces()[0].map(|i| data.mesh.vertices()[i].data);
     let edges = std::array::from_fn(|e| {
         let (a, b) = (&face[e], &face[(e + 1) % 3]);
         curves::CubicBez3::new([a.p, a.p + (b.p - a.p) / 3.0, b.p - (b.p - a.p) / 3.0, b.p])
