@@ -172,7 +172,10 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         .map(|s| (s.label.clone(), &s.tess))
         .collect();
     glyphs.push((
-        "sphere, Shirman–Séquin, optimized curves (umbilic)".into(),
+        format!(
+            "sphere, {} (umbilic)",
+            surfaces::fit_label(sphere_fit.fit.scheme, "optimized")
+        ),
         &sphere_tess,
     ));
     let principal_picture = principal::write(&out, &glyphs)?;
@@ -187,7 +190,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
                 source,
             })?;
         views.push(crate::pages::fit_view(
-            &format!("Shirman–Séquin, {} curves", m.name),
+            &surfaces::fit_label(m.fit.scheme, m.name),
             &tess,
             Some((mesh, &surface::Frame::identity())),
             None,

@@ -201,16 +201,22 @@ pub(super) fn measure_surfaces(
         let errors = compare_with_truth(&tess, truth);
         surfaces.push(Surface {
             name,
-            label: match f.scheme {
-                "shirman-sequin" => format!("Shirman–Séquin, {name} curves"),
-                other => format!("{other}, {name} curves"),
-            },
+            label: fit_label(f.scheme, name),
             tess,
             flat: false,
             errors,
         });
     }
     Ok(surfaces)
+}
+
+/// The label of a surface fitted by `scheme` on `curves` curves: Mann's scheme by its authors'
+/// names (the seeds' pictures), any other (`ring --scheme`) by its registered name.
+pub(super) fn fit_label(scheme: &str, curves: &str) -> String {
+    match scheme {
+        "shirman-sequin" => format!("Shirman–Séquin, {curves} curves"),
+        other => format!("{other}, {curves} curves"),
+    }
 }
 
 /// What the renderer needs of a surface.

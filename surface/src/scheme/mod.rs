@@ -22,11 +22,14 @@
 pub mod clough_tocher;
 pub mod discrete_side_vertex;
 pub mod flat;
+pub mod gregory_charrot;
 pub mod nielson;
 pub mod phong;
 pub mod pn_triangles;
 pub mod powell_sabin;
 pub mod shirman_sequin;
+pub mod shirman_sequin_1987;
+pub mod shirman_sequin_testbed;
 
 use curves::{CubicBez3, VertexData};
 use nalgebra::{Point3, Vector3};
@@ -456,6 +459,28 @@ pub const REGISTRY: &[SchemeEntry] = &[
         summary: "side-vertex interpolant with discrete (vertex-only) cross-boundary data on cubic edge curves (C0; evaluated, not Bézier)",
         parameters: &[],
         build: |_| Box::new(discrete_side_vertex::DiscreteSideVertex),
+    },
+    SchemeEntry {
+        name: "shirman-sequin-1987",
+        summary: "the original Shirman–Séquin 1987 construction: three quartics per face on cubic edge curves, parameter α₂ (G1; C1 inside at α₂ = 9/4)",
+        parameters: shirman_sequin_1987::PARAMETERS,
+        build: |o| {
+            Box::new(shirman_sequin_1987::ShirmanSequin1987 {
+                alpha2: o.value(&shirman_sequin_1987::ALPHA2),
+            })
+        },
+    },
+    SchemeEntry {
+        name: "shirman-sequin-testbed",
+        summary: "the testbed's modified Shirman–Séquin (UW 1990): split cubic macro patch, Chiyokura–Kimura twists, C1 inside by averaging (G1)",
+        parameters: &[],
+        build: |_| Box::new(shirman_sequin_testbed::ShirmanSequinTestbed),
+    },
+    SchemeEntry {
+        name: "gregory-charrot",
+        summary: "Gregory–Charrot 1980: three corner interpolants (Boolean sums, rational twist) blended by b_i²/Σb_j² on cubic edge curves, Chiyokura–Kimura cross-boundary data (G1; evaluated, not Bézier)",
+        parameters: &[],
+        build: |_| Box::new(gregory_charrot::GregoryCharrot),
     },
 ];
 

@@ -3,6 +3,7 @@
 
 mod bzp;
 mod examples;
+mod kcolor_map;
 mod library;
 mod numerics;
 mod pipeline;
