@@ -135,21 +135,48 @@ pub fn cross_boundary_point(
     i1a: &Point3<f64>,
     i1b: &Point3<f64>,
 ) -> Point3<f64> {
+    cross_boundary_point_along(curve, i1a, i1b, 0.5)
+}
+
+/// The cross-boundary point `C_e` that makes the derivative of sub-patch `e` along the domain
+/// direction from `H = (1 − τ) V_a + τ V_b` to `S` linear along the edge. That derivative is the
+/// quadratic with Bézier coefficients `D_m = 3(b_{1,m} − (1 − τ) b_{0,m} − τ b_{0,m+1})` (row 1
+/// `I¹_a, C_e, I¹_b`, row 0 the edge curve), so linear means `D_1 = (D_0 + D_2)/2`:
+///
+/// ```text
+/// C_e = (1 − τ) E¹ + τ E² + ½ [(I¹_a − (1 − τ) V_a − τ E¹) + (I¹_b − (1 − τ) E² − τ V_b)]
+/// ```
+///
+/// `τ = ½` is the median rule of the parametric scheme; the functional scheme takes the foot of
+/// the perpendicular from `S`, so that the *normal* derivative is linear
+/// ([`super::functional::clough_tocher`]).
+pub fn cross_boundary_point_along(
+    curve: &[Point3<f64>; 4],
+    i1a: &Point3<f64>,
+    i1b: &Point3<f64>,
+    tau: f64,
+) -> Point3<f64> {
     let [va, e1, e2, vb] = curve;
-    // (E¹ + E²)/2 + [I¹_a − (V_a + E¹)/2 + I¹_b − (E² + V_b)/2]/2
+    let s = 1.0 - tau;
     comb(&[
-        (0.25, e1),
-        (0.25, e2),
+        (s - 0.5 * tau, e1),
+        (tau - 0.5 * s, e2),
         (0.5, i1a),
         (0.5, i1b),
-        (-0.25, va),
-        (-0.25, vb),
+        (-0.5 * s, va),
+        (-0.5 * tau, vb),
     ])
 }
 
 /// The three cubic nets of one face from its oriented edge curves `curves[e]`
 /// (`V_e → V_{e+1}`), in the order of the layout.
 pub fn macro_patch(curves: &[[Point3<f64>; 4]; 3]) -> [[Point3<f64>; NP]; 3] {
+    macro_patch_along(curves, [0.5; 3])
+}
+
+/// [`macro_patch`] with the cross-boundary point of edge `e` from
+/// [`cross_boundary_point_along`] at `taus[e]`; the C1 rules inside the face are the same.
+pub fn macro_patch_along(curves: &[[Point3<f64>; 4]; 3], taus: [f64; 3]) -> [[Point3<f64>; NP]; 3] {
     let prev = |i: usize| (i + 2) % 3;
     let next = |i: usize| (i + 1) % 3;
     let v: [Point3<f64>; 3] = std::array::from_fn(|i| curves[i][0]);
@@ -160,8 +187,9 @@ pub fn macro_patch(curves: &[[Point3<f64>; 4]; 3]) -> [[Point3<f64>; NP]; 3] {
             (1.0 / 3.0, &curves[prev(i)][2]),
         ])
     });
-    let c: [Point3<f64>; 3] =
-        std::array::from_fn(|e| cross_boundary_point(&curves[e], &i1[e], &i1[next(e)]));
+    let c: [Point3<f64>; 3] = std::array::from_fn(|e| {
+        cross_boundary_point_along(&curves[e], &i1[e], &i1[next(e)], taus[e])
+    });
     let i2: [Point3<f64>; 3] = std::array::from_fn(|i| {
         comb(&[
             (1.0 / 3.0, &i1[i]),
@@ -226,6 +254,12 @@ impl Scheme for CloughTocher {
 
     fn uses_curves(&self) -> bool {
         true
+    }
+
+    /// The functional form on height fields ([`super::functional`]): C1.
+    fn on_height_field(&self, mesh: &crate::mesh::Mesh) -> Option<Box<dyn super::Scheme>> {
+        let _ = mesh;
+        Some(Box::new(super::functional::clough_tocher::FunctionalCloughTocher))
     }
 
     fn build(

@@ -22,6 +22,7 @@
 pub mod clough_tocher;
 pub mod discrete_side_vertex;
 pub mod flat;
+pub mod functional;
 pub mod nielson;
 pub mod phong;
 pub mod pn_triangles;
@@ -151,6 +152,10 @@ pub enum Continuity {
     C0WithNormals,
     /// Position continuity only; the normal jump is measured and reported.
     C0,
+    /// On height-field data `z = f(x, y)`: `f` continuously differentiable across every
+    /// boundary (value and both partials `z_x`, `z_y`), so G1 too (measured below 1e-9 rad);
+    /// the functional schemes ([`functional`]).
+    C1,
 }
 
 impl std::fmt::Display for Continuity {
@@ -159,6 +164,7 @@ impl std::fmt::Display for Continuity {
             Continuity::G1 => "G1",
             Continuity::C0WithNormals => "C0 + normal field",
             Continuity::C0 => "C0",
+            Continuity::C1 => "C1",
         })
     }
 }
@@ -273,6 +279,16 @@ pub trait Scheme: Send + Sync {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason>;
+
+    /// This scheme's functional form for `mesh`, when the mesh is a height field
+    /// ([`functional::detect`]: the caller has checked) and the scheme has one: the C1
+    /// interpolant of `z = f(x, y)` the parametric scheme is named after
+    /// (`clough-tocher`, `powell-sabin`). `None` (the default): the scheme fits height fields as
+    /// it fits anything.
+    fn on_height_field(&self, mesh: &crate::mesh::Mesh) -> Option<Box<dyn Scheme>> {
+        let _ = mesh;
+        None
+    }
 
     /// The C0 patch of a face [`Scheme::build`] cannot fit, meeting its neighbours along the
     /// shared boundaries. The default is the face's flat triangle over the layout, which is C0

@@ -200,6 +200,13 @@ impl Scheme for PowellSabin {
         false
     }
 
+    /// The functional form on height fields ([`super::functional`]): C1.
+    fn on_height_field(&self, mesh: &crate::mesh::Mesh) -> Option<Box<dyn super::Scheme>> {
+        Some(Box::new(
+            super::functional::powell_sabin::FunctionalPowellSabin::new(mesh),
+        ))
+    }
+
     fn build(
         &self,
         input: &FaceInput<'_>,
