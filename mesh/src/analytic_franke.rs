@@ -299,22 +299,37 @@ mod tests {
     #[test]
     fn gradients_and_hessians_match_finite_differences() {
         for f in Franke::ALL {
-            for (x, y) in [(0.1, 0.2), (0.5, 0.5), (0.73, 0.31), (0.9, 0.95), (0.33, 0.66)] {
+            for (x, y) in [
+                (0.1, 0.2),
+                (0.5, 0.5),
+                (0.73, 0.31),
+                (0.9, 0.95),
+                (0.33, 0.66),
+            ] {
                 let j = f.jet(x, y);
                 let fd = |dx: f64, dy: f64| f.jet(x + dx, y + dy);
                 let gx = (fd(FD, 0.0).f - fd(-FD, 0.0).f) / (2.0 * FD);
                 let gy = (fd(0.0, FD).f - fd(0.0, -FD).f) / (2.0 * FD);
                 let scale = 1.0 + j.grad.norm();
                 assert!(
-                    (gx - j.grad.x).abs() < FD_TOL * scale && (gy - j.grad.y).abs() < FD_TOL * scale,
+                    (gx - j.grad.x).abs() < FD_TOL * scale
+                        && (gy - j.grad.y).abs() < FD_TOL * scale,
                     "F{} gradient at ({x}, {y})",
                     f.number()
                 );
                 let hx = (fd(FD, 0.0).grad - fd(-FD, 0.0).grad) / (2.0 * FD);
                 let hy = (fd(0.0, FD).grad - fd(0.0, -FD).grad) / (2.0 * FD);
                 let hs = 1.0 + j.hess.norm();
-                assert!((hx - j.hess.column(0)).norm() < FD_TOL * hs, "F{} f_x·", f.number());
-                assert!((hy - j.hess.column(1)).norm() < FD_TOL * hs, "F{} f_y·", f.number());
+                assert!(
+                    (hx - j.hess.column(0)).norm() < FD_TOL * hs,
+                    "F{} f_x·",
+                    f.number()
+                );
+                assert!(
+                    (hy - j.hess.column(1)).norm() < FD_TOL * hs,
+                    "F{} f_y·",
+                    f.number()
+                );
             }
         }
     }

@@ -40,8 +40,10 @@
 //! of Franke's six test functions over `[0, 1]²` ([`crate::analytic_franke`]) with exact
 //! values, normals and shape tensors, in the two usual samplings (Franke 1982): `frankeK` the
 //! `N × N` grid (resolution `N`, default 33, each square split along its rising diagonal
-//! `(i, j)–(i+1, j+1)`), `frankeK@scattered` `N` points (default 100: the square's four corners
-//! and `N − 4` uniform points from `rng::SplitMix64` seeded with [`FRANKE_SEED`]) with their
+//! `(i, j)–(i+1, j+1)`), `frankeK@scattered` `N` points (default 100: the square's four corners,
+//! `s = ⌊√(N − 4)⌋/2` uniform points on each side (4 at the default: four corners alone leave
+//! slivers along the sides) and the rest uniform inside, from `rng::SplitMix64` seeded with
+//! [`FRANKE_SEED`]) with their
 //! Delaunay triangulation ([`crate::delaunay`]). Franke's own 100-point set is not available
 //! here, so the scattered sampling is this seeded one, not his. They are height fields:
 //! `clough-tocher` and `powell-sabin` fit them with their functional C1 forms. They are not in
@@ -612,8 +614,8 @@ pub fn franke_grid(
     Ok(franke_set(function, name, n, Mesh::new(vertices, faces)?))
 }
 
-/// The Franke function's graph on `n` scattered points of `[0, 1]²` (the corners and `n − 4`
-/// seeded uniform points) with their Delaunay triangulation (module docs).
+/// The Franke function's graph on `n` scattered points of `[0, 1]²` (the corners, seeded
+/// uniform points on the sides and inside) with their Delaunay triangulation (module docs).
 pub fn franke_scattered(
     function: crate::analytic_franke::Franke,
     name: &'static str,
@@ -626,6 +628,20 @@ pub fn franke_scattered(
         nalgebra::Vector2::new(1.0, 1.0),
         nalgebra::Vector2::new(0.0, 1.0),
     ];
+    // `s` points on each side, so that the hull's edges are not the square's whole sides (four
+    // corners alone leave slivers along every side).
+    let s = (((n - 4) as f64).sqrt() as usize / 2).min((n - 4) / 4);
+    for side in 0..4 {
+        for _ in 0..s {
+            let t = rng.next_f64();
+            points.push(match side {
+                0 => nalgebra::Vector2::new(t, 0.0),
+                1 => nalgebra::Vector2::new(1.0, t),
+                2 => nalgebra::Vector2::new(t, 1.0),
+                _ => nalgebra::Vector2::new(0.0, t),
+            });
+        }
+    }
     while points.len() < n {
         points.push(nalgebra::Vector2::new(rng.next_f64(), rng.next_f64()));
     }

@@ -77,9 +77,9 @@ pub fn delaunay(points: &[Vector2<f64>]) -> Result<Vec<[usize; 3]>, DelaunayErro
         for t in &bad {
             for k in 0..3 {
                 let e = [t[k], t[(k + 1) % 3]];
-                let shared = bad.iter().any(|u| {
-                    u != t && (0..3).any(|m| u[m] == e[1] && u[(m + 1) % 3] == e[0])
-                });
+                let shared = bad
+                    .iter()
+                    .any(|u| u != t && (0..3).any(|m| u[m] == e[1] && u[(m + 1) % 3] == e[0]));
                 if !shared {
                     boundary.push(e);
                 }

@@ -259,7 +259,9 @@ impl Scheme for CloughTocher {
     /// The functional form on height fields ([`super::functional`]): C1.
     fn on_height_field(&self, mesh: &crate::mesh::Mesh) -> Option<Box<dyn super::Scheme>> {
         let _ = mesh;
-        Some(Box::new(super::functional::clough_tocher::FunctionalCloughTocher))
+        Some(Box::new(
+            super::functional::clough_tocher::FunctionalCloughTocher,
+        ))
     }
 
     fn build(

@@ -12,8 +12,8 @@ use nalgebra::{Matrix2, Matrix3, Point3, Vector2, Vector3};
 use surface::scheme::functional::{self, detect, HeightFieldMode, NotHeightField};
 use surface::scheme::Scheme;
 use surface::{
-    dataset_by_name, fit_scheme, measure_g1, scheme_by_name, BezierTriangle, Continuity, Fit,
-    Mesh, SchemeOptions, Vertex, VertexData,
+    dataset_by_name, fit_scheme, measure_g1, scheme_by_name, BezierTriangle, Continuity, Fit, Mesh,
+    SchemeOptions, Vertex, VertexData,
 };
 
 /// C1 across edges: values and partials from both sides agree to rounding (the patches'
@@ -49,7 +49,10 @@ fn grid(n: usize, jitter: f64, f: &Function) -> Mesh {
         for i in 0..n {
             let interior = i > 0 && j > 0 && i < n - 1 && j < n - 1;
             let (dx, dy) = if interior && jitter > 0.0 {
-                (rng.uniform(-jitter, jitter) * h, rng.uniform(-jitter, jitter) * h)
+                (
+                    rng.uniform(-jitter, jitter) * h,
+                    rng.uniform(-jitter, jitter) * h,
+                )
             } else {
                 (0.0, 0.0)
             };
@@ -114,7 +117,10 @@ fn locate(fit: &Fit, f: usize, q: &Vector2<f64>) -> (BezierTriangle, f64, f64) {
 fn value_and_gradient(fit: &Fit, f: usize, q: &Vector2<f64>) -> (f64, Vector2<f64>) {
     let (patch, u, v) = locate(fit, f, q);
     let d = patch.derivatives(u, v);
-    assert!((Vector2::new(d.p.x, d.p.y) - q).norm() < 1e-12, "xy is affine");
+    assert!(
+        (Vector2::new(d.p.x, d.p.y) - q).norm() < 1e-12,
+        "xy is affine"
+    );
     let j = Matrix2::new(d.du.x, d.dv.x, d.du.y, d.dv.y);
     let g = j.transpose().try_inverse().unwrap() * Vector2::new(d.du.z, d.dv.z);
     (d.p.z, g)
@@ -150,8 +156,14 @@ fn assert_c1(label: &str, mesh: &Mesh, fit: &Fit) {
         g1.interior_max, g1.exterior_max
     );
     assert!(dz < C1_TOL && dg < C1_TOL, "{label}: {dz:e} {dg:e}");
-    assert!(g1.interior_max < G1_TOL && g1.exterior_max < G1_TOL, "{label}: {g1:?}");
-    assert!(g1.position_error < EXACT, "{label}: interpolates the values");
+    assert!(
+        g1.interior_max < G1_TOL && g1.exterior_max < G1_TOL,
+        "{label}: {g1:?}"
+    );
+    assert!(
+        g1.position_error < EXACT,
+        "{label}: interpolates the values"
+    );
 }
 
 #[test]
@@ -188,7 +200,16 @@ fn max_error(mesh: &Mesh, fit: &Fit, p: &Function) -> f64 {
             let q = mesh.vertices()[v].data.p;
             Vector2::new(q.x, q.y)
         });
-        for (i, j) in [(1, 1), (2, 1), (1, 2), (4, 1), (1, 4), (3, 3), (2, 5), (5, 2)] {
+        for (i, j) in [
+            (1, 1),
+            (2, 1),
+            (1, 2),
+            (4, 1),
+            (1, 4),
+            (3, 3),
+            (2, 5),
+            (5, 2),
+        ] {
             let (a, b) = (i as f64 / 10.0, j as f64 / 10.0);
             let q = c[0] * (1.0 - a - b) + c[1] * a + c[2] * b;
             let (z, _) = value_and_gradient(fit, f, &q);
@@ -211,7 +232,10 @@ fn planes_and_quadratics_are_reproduced_cubics_are_not() {
     for name in ["clough-tocher", "powell-sabin"] {
         for jitter in [0.0, 0.3] {
             let m = grid(5, jitter, &plane);
-            assert!(max_error(&m, &fit(name, &m), &plane) < EXACT, "{name} plane");
+            assert!(
+                max_error(&m, &fit(name, &m), &plane) < EXACT,
+                "{name} plane"
+            );
             let m = grid(5, jitter, &quadratic);
             let e = max_error(&m, &fit(name, &m), &quadratic);
             assert!(e < EXACT, "{name} quadratic {e:e}");
@@ -238,7 +262,10 @@ fn detection_accepts_height_fields_and_names_why_not() {
     // A vertex dragged across its neighbours folds the projection: a flipped face.
     let mut folded = grid(6, 0.0, &smooth);
     folded.vertices_mut()[14].data.p.x += 0.5;
-    assert!(matches!(detect(&folded), Err(NotHeightField::Flipped { .. })));
+    assert!(matches!(
+        detect(&folded),
+        Err(NotHeightField::Flipped { .. })
+    ));
     // Two sheets over the same square: every face is fine locally, they overlap.
     let a = grid(3, 0.0, &smooth);
     let mut vertices: Vec<Vertex> = a.vertices().to_vec();
@@ -280,7 +307,10 @@ fn the_parametric_schemes_are_c0_on_the_same_height_field() {
         let s = scheme_by_name(name, &SchemeOptions::default()).unwrap();
         let f = fit_scheme(&mesh, s.as_ref(), method.as_ref()).unwrap();
         let g1 = measure_g1(&mesh, &f, 9);
-        println!("parametric {name}: exterior normal jump {:.3e} rad", g1.exterior_max);
+        println!(
+            "parametric {name}: exterior normal jump {:.3e} rad",
+            g1.exterior_max
+        );
         assert_eq!(f.continuity, Continuity::C0);
         assert!(g1.exterior_max > 100.0 * G1_TOL);
     }

@@ -37,6 +37,7 @@
 //! [`clough_tocher`] and [`powell_sabin`] have the constructions and their derivations.
 
 pub mod clough_tocher;
+pub mod graph;
 pub mod powell_sabin;
 
 use nalgebra::{Point3, Vector2};
@@ -156,7 +157,9 @@ pub enum NotHeightField {
         relative_area: f64,
     },
     /// An interior vertex's fan does not cover its neighbourhood once.
-    #[error("the faces around vertex {vertex} cover its xy neighbourhood {turns:.3} times, not once")]
+    #[error(
+        "the faces around vertex {vertex} cover its xy neighbourhood {turns:.3} times, not once"
+    )]
     Fan {
         /// The vertex.
         vertex: usize,
@@ -181,7 +184,9 @@ pub fn detect(mesh: &Mesh) -> Result<HeightField, NotHeightField> {
     let mut max_slope: f64 = 0.0;
     for (f, face) in faces.iter().enumerate() {
         for (c, &vertex) in face.iter().enumerate() {
-            let data = mesh.corner_data(f, c).unwrap_or(mesh.vertices()[vertex].data);
+            let data = mesh
+                .corner_data(f, c)
+                .unwrap_or(mesh.vertices()[vertex].data);
             let n = data.n.try_normalize(0.0).unwrap_or_default();
             let node = Node::of(&data);
             match node {
@@ -220,7 +225,10 @@ pub fn detect(mesh: &Mesh) -> Result<HeightField, NotHeightField> {
             });
         }
         for (i, &v) in [a, b, c].iter().enumerate() {
-            let (p, q) = (pts[[a, b, c][(i + 1) % 3]] - pts[v], pts[[a, b, c][(i + 2) % 3]] - pts[v]);
+            let (p, q) = (
+                pts[[a, b, c][(i + 1) % 3]] - pts[v],
+                pts[[a, b, c][(i + 2) % 3]] - pts[v],
+            );
             angle[v] += p.perp(&q).atan2(p.dot(&q));
         }
     }
@@ -315,10 +323,11 @@ fn triangles_overlap(a: &[Vector2<f64>; 3], b: &[Vector2<f64>; 3], eps: f64) -> 
         }
         let axis = axis / n;
         let range = |t: &[Vector2<f64>; 3]| {
-            t.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
-                let d = p.dot(&axis);
-                (l.min(d), h.max(d))
-            })
+            t.iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                    let d = p.dot(&axis);
+                    (l.min(d), h.max(d))
+                })
         };
         let ((la, ha), (lb, hb)) = (range(a), range(b));
         ha <= lb + eps || hb <= la + eps

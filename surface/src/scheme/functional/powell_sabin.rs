@@ -113,11 +113,8 @@ impl FunctionalPowellSabin {
     /// which [`super::detect`] refuses) is replaced by the midpoint's.
     pub fn new(mesh: &Mesh) -> Self {
         let xy = |v: usize| super::xy(&mesh.vertices()[v].data.p);
-        let centres: Vec<Vector2<f64>> = mesh
-            .faces()
-            .iter()
-            .map(|f| incentre(&f.map(xy)))
-            .collect();
+        let centres: Vec<Vector2<f64>> =
+            mesh.faces().iter().map(|f| incentre(&f.map(xy))).collect();
         let edge_tau: Vec<f64> = mesh
             .edges()
             .iter()
