@@ -273,7 +273,8 @@ impl AnalyticSurface for FrankeSurface {
             let next = clamp(at - step);
             let moved = (next - at).norm();
             at = next;
-            if !(moved > 1e-15) {
+            // NaN stops too.
+            if moved.partial_cmp(&1e-15) != Some(std::cmp::Ordering::Greater) {
                 break;
             }
         }

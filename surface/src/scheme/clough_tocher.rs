@@ -107,6 +107,13 @@
 //!   functional scheme uses the edge normal of the planar domain; a parametric domain has no
 //!   metric, so the median direction is used: symmetric in the edge's two ends and affine
 //!   invariant.
+//!
+//! # On height fields
+//!
+//! On data `z = f(x, y)` (detected by the fit, or asked for with `fit --heightfield`) the fit
+//! uses this scheme's functional form instead ([`Scheme::on_height_field`]:
+//! [`super::functional::clough_tocher`]), which is C1 across every edge and claims
+//! [`Continuity::C1`]; what is said above is the parametric scheme on any other data.
 
 use nalgebra::{Point3, Vector3};
 

@@ -451,13 +451,13 @@ pub const REGISTRY: &[SchemeEntry] = &[
     },
     SchemeEntry {
         name: "clough-tocher",
-        summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, C1 inside, linear cross-boundary derivative (C0)",
+        summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, C1 inside, linear cross-boundary derivative (C0; the functional C1 interpolant on height fields)",
         parameters: &[],
         build: |_| Box::new(clough_tocher::CloughTocher),
     },
     SchemeEntry {
         name: "powell-sabin",
-        summary: "parametric Powell–Sabin 1977: six quadratics per face, boundaries from vertex tangent planes (C0)",
+        summary: "parametric Powell–Sabin 1977: six quadratics per face, boundaries from vertex tangent planes (C0; the functional C1 6-split at incentres on height fields)",
         parameters: &[],
         build: |_| Box::new(powell_sabin::PowellSabin),
     },

@@ -218,7 +218,7 @@ pub fn detect(mesh: &Mesh) -> Result<HeightField, NotHeightField> {
     for (f, &[a, b, c]) in faces.iter().enumerate() {
         let relative_area = 0.5 * cross2(&pts[a], &pts[b], &pts[c]) / box_area;
         // NaN fails too.
-        if !(relative_area > MIN_RELATIVE_AREA) {
+        if relative_area.partial_cmp(&MIN_RELATIVE_AREA) != Some(std::cmp::Ordering::Greater) {
             return Err(NotHeightField::Flipped {
                 face: f,
                 relative_area,
