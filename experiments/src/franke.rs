@@ -7,6 +7,11 @@
 //! `[0, 1]²` (`--grid`, default 101, Franke's error grid), and the largest gradient error.
 //! Writes `report.json` and `report.md` to `--output` (default `results/franke`).
 //!
+//! On the default 101 × 101 grid the table has scipy's `CloughTocher2DInterpolator` beside
+//! them (golden numbers of `scripts/golden_franke.py`, scipy 1.17.1, on the same points, checked
+//! by their coordinate sums; its own gradient estimate and Qhull's triangulation, which on the
+//! grid may choose other diagonals).
+//!
 //! The scattered sampling's Delaunay triangulation has slivers along the square's sides (a
 //! boundary triangle whose third point lies close to the side): there the cross-boundary
 //! derivative comes from tangent planes extrapolated over the sliver's small width, and the
@@ -43,10 +48,62 @@ pub struct FrankeArgs {
     estimate: String,
 }
 
+/// scipy's Clough–Tocher interpolant on the same points, from `scripts/golden_franke.py`
+/// (scipy 1.17.1 pinned in `scripts/requirements-franke.txt`): its own gradients (a global
+/// curvature-minimizing estimate) and its own (Qhull) Delaunay triangulation.
+const SCIPY_GOLDEN: &str = include_str!("../../data/golden/franke-scipy.json");
+
+/// The scattered points' coordinate sums must match the golden file's to rounding: it was
+/// made on the same points (the script regenerates them from the same SplitMix64).
+const SAME_POINTS: f64 = 1e-9;
+
+/// scipy's rows, checked to be of this study's scattered points.
+fn scipy_rows() -> Result<Vec<Row>, ExperimentError> {
+    let bad = |m: String| ExperimentError::Measure {
+        subject: "data/golden/franke-scipy.json".into(),
+        message: m,
+    };
+    let v: serde_json::Value =
+        serde_json::from_str(SCIPY_GOLDEN).map_err(|e| bad(e.to_string()))?;
+    let points = surface::dataset_by_name("franke1@scattered", None)?.mesh;
+    let sum = points
+        .vertices()
+        .iter()
+        .fold([0.0, 0.0], |s, v| [s[0] + v.data.p.x, s[1] + v.data.p.y]);
+    let golden = [0, 1].map(|i| v["scattered_sum"][i].as_f64().unwrap_or(f64::NAN));
+    if (0..2).any(|i| (golden[i] - sum[i]).abs() > SAME_POINTS) {
+        return Err(bad(format!(
+            "made on other scattered points (coordinate sums {golden:?}, these {sum:?}): run scripts/golden_franke.py again"
+        )));
+    }
+    let version = v["scipy"].as_str().unwrap_or("?").to_string();
+    let rows = v["rows"].as_array().cloned().unwrap_or_default();
+    rows.iter()
+        .map(|r| {
+            let num = |k: &str| r[k].as_f64().ok_or_else(|| bad(format!("row without {k}")));
+            Ok(Row {
+                function: num("function")? as usize,
+                sampling: if r["sampling"].as_str() == Some("grid 33 × 33") {
+                    "grid 33 × 33"
+                } else {
+                    "scattered 100"
+                },
+                gradients: format!("estimated (scipy {version}, global)"),
+                scheme: "scipy CloughTocher2DInterpolator",
+                max: num("max_error")?,
+                rms: num("rms_error")?,
+                gradient_max: f64::NAN,
+                outside: num("points_outside")? as usize,
+            })
+        })
+        .collect()
+}
+
 /// The schemes compared.
 const SCHEMES: [&str; 2] = ["clough-tocher", "powell-sabin"];
 
 /// One measured fit.
+#[derive(Clone)]
 struct Row {
     function: usize,
     sampling: &'static str,
@@ -124,6 +181,23 @@ pub fn run(args: &FrankeArgs) -> Result<ExitCode, ExperimentError> {
             }
         }
     }
+    if g == 101 {
+        // The golden numbers are on the 101 × 101 grid.
+        let scipy = scipy_rows()?;
+        let at = |r: &Row| (r.function, r.sampling);
+        let mut merged = Vec::with_capacity(rows.len() + scipy.len());
+        for r in rows {
+            let next = merged.last().map(at);
+            if next.is_some_and(|n| n != at(&r)) {
+                let done = next.unwrap_or_default();
+                merged.extend(scipy.iter().filter(|s| at(s) == done).map(Row::clone));
+            }
+            merged.push(r);
+        }
+        let last = merged.last().map(at).unwrap_or_default();
+        merged.extend(scipy.iter().filter(|s| at(s) == last).map(Row::clone));
+        rows = merged;
+    }
     let staged = Staged::begin(&args.output)?;
     let out = staged.path().to_path_buf();
     let report = json!({
@@ -138,7 +212,7 @@ pub fn run(args: &FrankeArgs) -> Result<ExitCode, ExperimentError> {
             "scheme": r.scheme,
             "max_error": r.max,
             "rms_error": r.rms,
-            "max_gradient_error": r.gradient_max,
+            "max_gradient_error": r.gradient_max.is_finite().then_some(r.gradient_max),
             "points_outside": r.outside,
         })).collect::<Vec<_>>(),
     });
@@ -160,12 +234,35 @@ pub fn run(args: &FrankeArgs) -> Result<ExitCode, ExperimentError> {
     for r in &rows {
         let _ = writeln!(
             md,
-            "| F{} | {} | {} | {} | {:.3e} | {:.3e} | {:.3e} |",
-            r.function, r.sampling, r.gradients, r.scheme, r.max, r.rms, r.gradient_max
+            "| F{} | {} | {} | {} | {:.3e} | {:.3e} | {} |",
+            r.function,
+            r.sampling,
+            r.gradients,
+            r.scheme,
+            r.max,
+            r.rms,
+            if r.gradient_max.is_finite() {
+                format!("{:.3e}", r.gradient_max)
+            } else {
+                "—".into()
+            }
         );
     }
     write_result(Some(&out.join("report.md")), md.as_bytes())?;
     say!("franke: written to {}", args.output.display());
     staged.commit()?;
     Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    /// The committed golden numbers are of this workbench's scattered points, all twelve rows.
+    #[test]
+    fn the_scipy_golden_numbers_are_of_these_points() {
+        let rows = super::scipy_rows().expect("golden");
+        assert_eq!(rows.len(), 12);
+        assert!(rows
+            .iter()
+            .all(|r| r.max > 0.0 && r.rms > 0.0 && r.rms <= r.max));
+    }
 }

@@ -99,7 +99,10 @@ fn a_file_of_points_is_triangulated_in_xy_and_fitted_as_a_height_field() {
                     0.0
                 }
             };
-            let (x, y) = (i as f64 / 6.0 + jitter(&mut rng), j as f64 / 6.0 + jitter(&mut rng));
+            let (x, y) = (
+                i as f64 / 6.0 + jitter(&mut rng),
+                j as f64 / 6.0 + jitter(&mut rng),
+            );
             let z = mesh::analytic_franke::Franke::F4.jet(x, y).f;
             raw.positions.push(nalgebra::Point3::new(x, y, z));
         }
@@ -129,11 +132,16 @@ fn a_file_of_points_is_triangulated_in_xy_and_fitted_as_a_height_field() {
     .expect("fit")
     .report;
     assert!(
-        r.notes.iter().any(|n| n.starts_with("no faces in the file")),
+        r.notes
+            .iter()
+            .any(|n| n.starts_with("no faces in the file")),
         "{:?}",
         r.notes
     );
-    assert_eq!(r.faces, 72, "2V − h − 2 Delaunay triangles, 24 points on the hull");
+    assert_eq!(
+        r.faces, 72,
+        "2V − h − 2 Delaunay triangles, 24 points on the hull"
+    );
     assert_eq!(r.continuity, "C1");
     let g1 = r.g1.expect("measured");
     assert!(g1.exterior_max < G1_TOL, "{g1:?}");
