@@ -120,9 +120,28 @@ use nalgebra::{Point3, Vector3};
 use super::{Continuity, FaceInput, Layout, Scheme, CENTROID_SPLIT};
 use crate::fit::FaceFallbackReason;
 
-/// The parametric Clough–Tocher scheme (module docs).
+/// The parametric Clough–Tocher scheme (module docs); on height fields its functional form,
+/// whose cross-boundary rule blends in the least-squares cubic by [`CUBIC_WEIGHT`].
 #[derive(Clone, Copy, Debug, Default)]
-pub struct CloughTocher;
+pub struct CloughTocher {
+    /// [`CUBIC_WEIGHT`]'s value (read only by the functional form).
+    pub cubic_weight: f64,
+}
+
+/// The weight `w` of the least-squares cubic in the functional form's cross-boundary
+/// derivatives ([`super::functional::clough_tocher`], "Cubic precision"): 0 the classical
+/// linear normal derivative, 1 cubic precision on interior edges.
+pub const CUBIC_WEIGHT: super::ParameterSpec = super::ParameterSpec {
+    name: "ct-cubic",
+    symbol: "w",
+    default: 0.0,
+    range: (0.0, 1.0),
+    range_reason: "a blend of two cross-boundary derivatives: 0 the classical linear one, 1 the least-squares cubic's",
+    summary: "on height fields, `clough-tocher`'s cross-boundary normal derivative at edge midpoints: (1 − w) the classical linear rule + w the least-squares cubic of the edge's two faces (cubic precision at 1)",
+};
+
+/// The scheme's parameters.
+pub const PARAMETERS: &[super::ParameterSpec] = &[CUBIC_WEIGHT];
 
 /// Control points per cubic net.
 const NP: usize = 10;
@@ -184,6 +203,17 @@ pub fn macro_patch(curves: &[[Point3<f64>; 4]; 3]) -> [[Point3<f64>; NP]; 3] {
 /// [`macro_patch`] with the cross-boundary point of edge `e` from
 /// [`cross_boundary_point_along`] at `taus[e]`; the C1 rules inside the face are the same.
 pub fn macro_patch_along(curves: &[[Point3<f64>; 4]; 3], taus: [f64; 3]) -> [[Point3<f64>; NP]; 3] {
+    macro_patch_with(curves, |e, i1a, i1b| {
+        cross_boundary_point_along(&curves[e], i1a, i1b, taus[e])
+    })
+}
+
+/// [`macro_patch`] with the cross-boundary point of edge `e` given by `cross(e, I¹_a, I¹_b)`;
+/// the vertex rule and the C1 rules inside the face are the same.
+pub fn macro_patch_with(
+    curves: &[[Point3<f64>; 4]; 3],
+    cross: impl Fn(usize, &Point3<f64>, &Point3<f64>) -> Point3<f64>,
+) -> [[Point3<f64>; NP]; 3] {
     let prev = |i: usize| (i + 2) % 3;
     let next = |i: usize| (i + 1) % 3;
     let v: [Point3<f64>; 3] = std::array::from_fn(|i| curves[i][0]);
@@ -194,9 +224,7 @@ pub fn macro_patch_along(curves: &[[Point3<f64>; 4]; 3], taus: [f64; 3]) -> [[Po
             (1.0 / 3.0, &curves[prev(i)][2]),
         ])
     });
-    let c: [Point3<f64>; 3] = std::array::from_fn(|e| {
-        cross_boundary_point_along(&curves[e], &i1[e], &i1[next(e)], taus[e])
-    });
+    let c: [Point3<f64>; 3] = std::array::from_fn(|e| cross(e, &i1[e], &i1[next(e)]));
     let i2: [Point3<f64>; 3] = std::array::from_fn(|i| {
         comb(&[
             (1.0 / 3.0, &i1[i]),
@@ -265,9 +293,8 @@ impl Scheme for CloughTocher {
 
     /// The functional form on height fields ([`super::functional`]): C1.
     fn on_height_field(&self, mesh: &crate::mesh::Mesh) -> Option<Box<dyn super::Scheme>> {
-        let _ = mesh;
         Some(Box::new(
-            super::functional::clough_tocher::FunctionalCloughTocher,
+            super::functional::clough_tocher::FunctionalCloughTocher::new(mesh, self.cubic_weight),
         ))
     }
 

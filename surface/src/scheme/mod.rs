@@ -452,8 +452,12 @@ pub const REGISTRY: &[SchemeEntry] = &[
     SchemeEntry {
         name: "clough-tocher",
         summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, C1 inside, linear cross-boundary derivative (C0; the functional C1 interpolant on height fields)",
-        parameters: &[],
-        build: |_| Box::new(clough_tocher::CloughTocher),
+        parameters: clough_tocher::PARAMETERS,
+        build: |o| {
+            Box::new(clough_tocher::CloughTocher {
+                cubic_weight: o.value(&clough_tocher::CUBIC_WEIGHT),
+            })
+        },
     },
     SchemeEntry {
         name: "powell-sabin",

@@ -27,6 +27,9 @@ const EXACT: f64 = 1e-12;
 /// A cubic is not reproduced: the error is of the order of the cubic's third derivative times
 /// the cube of the grid step (1e-4 on a 5 × 5 grid), far above rounding.
 const NOT_REPRODUCED: f64 = 1e-6;
+/// Cubic precision of the least-squares cross-boundary rule: a 12 × 10 least-squares solve
+/// (condition ~1e2) and de Casteljau on values of order one, rounding only.
+const CUBIC_EXACT: f64 = 1e-10;
 /// Samples per interior edge of the C1 comparison.
 const EDGE_SAMPLES: usize = 16;
 
@@ -81,7 +84,11 @@ fn smooth(x: f64, y: f64) -> (f64, Vector2<f64>) {
 
 /// The scheme's functional form for `mesh`, checked to be detected.
 fn functional_scheme(name: &str, mesh: &Mesh) -> Box<dyn Scheme> {
-    let s = scheme_by_name(name, &SchemeOptions::default()).unwrap();
+    functional_scheme_with(name, &SchemeOptions::default(), mesh)
+}
+
+fn functional_scheme_with(name: &str, options: &SchemeOptions, mesh: &Mesh) -> Box<dyn Scheme> {
+    let s = scheme_by_name(name, options).unwrap();
     let (f, note) = functional::choose(s, mesh, HeightFieldMode::On).unwrap();
     assert!(note.unwrap().starts_with("detected a height field"));
     assert_eq!(f.continuity(), Continuity::C1);
@@ -89,7 +96,11 @@ fn functional_scheme(name: &str, mesh: &Mesh) -> Box<dyn Scheme> {
 }
 
 fn fit(name: &str, mesh: &Mesh) -> Fit {
-    let s = functional_scheme(name, mesh);
+    fit_with(name, &SchemeOptions::default(), mesh)
+}
+
+fn fit_with(name: &str, options: &SchemeOptions, mesh: &Mesh) -> Fit {
+    let s = functional_scheme_with(name, options, mesh);
     let method = curves::method_by_name("chord", &curves::MethodOptions::default()).unwrap();
     let f = fit_scheme(mesh, s.as_ref(), method.as_ref()).unwrap();
     assert!(f.face_fallbacks.is_empty(), "{:?}", f.face_fallbacks);
@@ -339,5 +350,60 @@ fn powell_sabin_splits_at_incentres_collinear_across_edges() {
         assert!((m1 - m2).norm() < EXACT, "shared edge split point");
         let collinear = (z1 - m1).perp(&(z2 - m1)).abs();
         assert!(collinear < EXACT, "Z, M, Z' collinear: {collinear:e}");
+    }
+}
+
+/// `clough-tocher` with the least-squares cubic's cross-boundary derivative blended in by `w`.
+fn ct_cubic(w: f64) -> SchemeOptions {
+    SchemeOptions::default().with(&surface::scheme::clough_tocher::CUBIC_WEIGHT, w)
+}
+
+#[test]
+fn the_least_squares_cubic_rule_is_c1_and_reproduces_cubics_inside() {
+    let cubic = |x: f64, y: f64| {
+        (
+            x * x * x - 2.0 * x * x * y + 0.5 * x * y * y + y * y * y + 0.3 * x * y - y,
+            Vector2::new(
+                3.0 * x * x - 4.0 * x * y + 0.5 * y * y + 0.3 * y,
+                -2.0 * x * x + x * y + 3.0 * y * y + 0.3 * x - 1.0,
+            ),
+        )
+    };
+    for jitter in [0.0, 0.3] {
+        let mesh = grid(6, jitter, &cubic);
+        // Faces whose three edges are interior.
+        let inner: Vec<usize> = (0..mesh.num_faces())
+            .filter(|&f| (0..3).all(|l| mesh.neighbour(f, l).unwrap().is_some()))
+            .collect();
+        assert!(inner.len() > 10);
+        let err_on = |fit: &Fit| {
+            let mut err = 0.0f64;
+            for &f in &inner {
+                let c = mesh.faces()[f].map(|v| {
+                    let q = mesh.vertices()[v].data.p;
+                    Vector2::new(q.x, q.y)
+                });
+                for (a, b) in [(0.1, 0.1), (0.2, 0.5), (0.45, 0.1), (0.3, 0.3), (0.6, 0.2)] {
+                    let q = c[0] * (1.0 - a - b) + c[1] * a + c[2] * b;
+                    err = err.max((value_and_gradient(fit, f, &q).0 - cubic(q.x, q.y).0).abs());
+                }
+            }
+            err
+        };
+        let classical = err_on(&fit("clough-tocher", &mesh));
+        let lsq = fit_with("clough-tocher", &ct_cubic(1.0), &mesh);
+        let e = err_on(&lsq);
+        println!("jitter {jitter}: cubic error inside, classical {classical:.3e}, least squares {e:.3e}");
+        assert!(classical > NOT_REPRODUCED);
+        assert!(e < CUBIC_EXACT, "{e:e}");
+        assert_c1(&format!("ct-cubic 1 jitter {jitter}"), &mesh, &lsq);
+    }
+    for w in [0.5, 1.0] {
+        let data = dataset_by_name("franke1@scattered", None).unwrap();
+        let f = fit_with("clough-tocher", &ct_cubic(w), &data.mesh);
+        assert_c1(&format!("ct-cubic {w} franke1@scattered"), &data.mesh, &f);
+        let mesh = grid(8, 0.3, &smooth);
+        let f = fit_with("clough-tocher", &ct_cubic(w), &mesh);
+        assert_c1(&format!("ct-cubic {w} jittered"), &mesh, &f);
     }
 }
