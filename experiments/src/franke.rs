@@ -1,5 +1,6 @@
-//! `experiments -- franke`: the functional schemes (`clough-tocher`, `powell-sabin` on height
-//! fields, `surface::scheme::functional`) on Franke's six test functions, at Franke's two
+//! `experiments -- franke`: the functional schemes (`clough-tocher` with the classical and the
+//! least-squares cubic cross-boundary rule, `--ct-cubic 0` and `1`, and `powell-sabin`, on
+//! height fields: `surface::scheme::functional`) on Franke's six test functions, at Franke's two
 //! samplings (the 33 × 33 grid and 100 scattered points with their Delaunay triangulation,
 //! `mesh::datasets`), with exact gradients and with gradients from the normals an estimator
 //! finds from the positions alone (`--estimate`, default the workbench's default estimator):
@@ -99,8 +100,12 @@ fn scipy_rows() -> Result<Vec<Row>, ExperimentError> {
         .collect()
 }
 
-/// The schemes compared.
-const SCHEMES: [&str; 2] = ["clough-tocher", "powell-sabin"];
+/// The schemes compared: name, label, `clough-tocher`'s cubic weight (`--ct-cubic`).
+const SCHEMES: [(&str, &str, f64); 3] = [
+    ("clough-tocher", "clough-tocher", 0.0),
+    ("clough-tocher", "clough-tocher --ct-cubic 1", 1.0),
+    ("powell-sabin", "powell-sabin", 0.0),
+];
 
 /// One measured fit.
 #[derive(Clone)]
@@ -134,8 +139,10 @@ pub fn run(args: &FrankeArgs) -> Result<ExitCode, ExperimentError> {
                 ("exact".to_string(), &exact),
                 (format!("estimated ({})", est.name()), &estimated),
             ] {
-                for scheme in SCHEMES {
-                    let s = surface::scheme_by_name(scheme, &surface::SchemeOptions::default())?;
+                for (scheme_name, scheme, w) in SCHEMES {
+                    let options = surface::SchemeOptions::default()
+                        .with(&surface::scheme::clough_tocher::CUBIC_WEIGHT, w);
+                    let s = surface::scheme_by_name(scheme_name, &options)?;
                     let subject = format!("{name} {scheme} {gradients}");
                     let (s, _) = functional::choose(s, mesh, HeightFieldMode::On).map_err(|e| {
                         ExperimentError::Measure {

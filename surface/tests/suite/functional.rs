@@ -393,7 +393,9 @@ fn the_least_squares_cubic_rule_is_c1_and_reproduces_cubics_inside() {
         let classical = err_on(&fit("clough-tocher", &mesh));
         let lsq = fit_with("clough-tocher", &ct_cubic(1.0), &mesh);
         let e = err_on(&lsq);
-        println!("jitter {jitter}: cubic error inside, classical {classical:.3e}, least squares {e:.3e}");
+        println!(
+            "jitter {jitter}: cubic error inside, classical {classical:.3e}, least squares {e:.3e}"
+        );
         assert!(classical > NOT_REPRODUCED);
         assert!(e < CUBIC_EXACT, "{e:e}");
         assert_c1(&format!("ct-cubic 1 jitter {jitter}"), &mesh, &lsq);
