@@ -82,11 +82,7 @@ fn smooth(x: f64, y: f64) -> (f64, Vector2<f64>) {
     (z, g)
 }
 
-/// The scheme's functional form for `mesh`, checked to be detected.
-fn functional_scheme(name: &str, mesh: &Mesh) -> Box<dyn Scheme> {
-    functional_scheme_with(name, &SchemeOptions::default(), mesh)
-}
-
+/// The scheme's functional form for `mesh` with `options`, checked to be detected.
 fn functional_scheme_with(name: &str, options: &SchemeOptions, mesh: &Mesh) -> Box<dyn Scheme> {
     let s = scheme_by_name(name, options).unwrap();
     let (f, note) = functional::choose(s, mesh, HeightFieldMode::On).unwrap();
