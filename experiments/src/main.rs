@@ -17,6 +17,7 @@ mod convert;
 mod curve;
 mod estimation;
 mod fit;
+mod franke;
 mod interior;
 mod output;
 mod pages;
@@ -75,6 +76,10 @@ enum Experiment {
     /// several resolutions, regular and irregular: errors, convergence orders, libigl's golden
     /// numbers, and the ring study rebuilt from estimated data.
     Estimation(estimation::EstimationArgs),
+    /// The functional C1 schemes (clough-tocher, powell-sabin on height fields) on Franke's six
+    /// test functions, 33 × 33 grid and 100 scattered points, exact and estimated gradients:
+    /// max and RMS error over a 101 × 101 grid.
+    Franke(franke::FrankeArgs),
     /// Every registered surface scheme on the data sets or the user's mesh files, side by side:
     /// G1 against the claimed continuity, errors against the true surface (data sets), shaded
     /// and KColor pictures.
@@ -144,6 +149,7 @@ fn main() -> ExitCode {
         Experiment::Estimation(args) => estimation::run(&args),
         Experiment::Realmesh(args) => realmesh::run(&args),
         Experiment::Schemes(args) => schemes::run(&args),
+        Experiment::Franke(args) => franke::run(&args),
         Experiment::View(args) => view::run(&args),
     };
     match result {

@@ -340,7 +340,7 @@ pub fn run(args: &SchemesArgs) -> Result<ExitCode, ExperimentError> {
                 .map_err(|source| ExperimentError::Tessellate { subject, source })?;
             let errors = truth.map(|t| compare_with_truth(&tess, t));
             let holds = match f.continuity {
-                Continuity::G1 => g1.max_angle() < G1_CLAIM,
+                Continuity::G1 | Continuity::C1 => g1.max_angle() < G1_CLAIM,
                 _ => true,
             };
             let _ = writeln!(

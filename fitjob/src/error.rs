@@ -69,6 +69,15 @@ pub enum JobError {
         /// Why.
         source: surface::FitError,
     },
+    /// `--heightfield` on data that is not a height field, or with a scheme that has no
+    /// functional form (`surface::scheme::functional`).
+    #[error("{subject}: cannot fit as a height field")]
+    HeightField {
+        /// What was being fitted.
+        subject: String,
+        /// Why.
+        source: surface::scheme::functional::HeightFieldError,
+    },
     /// A tessellation could not be made.
     #[error("{subject}: cannot tessellate")]
     Tessellate {

@@ -231,6 +231,7 @@ fn prepare(
     })?;
     let peak_read = crate::limits::peak_resident_bytes();
     let mut notes: Vec<String> = std::mem::take(&mut raw.notes);
+    triangulate_point_cloud(&mut raw, &mut notes);
     // The raw mesh is handed over and freed once repaired: a large file is not held twice.
     let prepared = estimate::prepare_with(raw, choice, options.replace_normals, options.creases)
         .map_err(|source| JobError::Prepare { path, source })?;
@@ -254,6 +255,34 @@ fn prepare(
             estimate_time: prepared.estimate_time_seconds,
         },
     })
+}
+
+/// A file with points and no faces is taken as a height field's samples: its faces are the
+/// Delaunay triangulation of the points' `(x, y)` (`mesh::delaunay`), said in a note. Points
+/// the triangulation cannot take (fewer than three, all on a line, too many) leave the file as
+/// it is, with the reason in a note (the repair then finds nothing to fit and says so).
+fn triangulate_point_cloud(raw: &mut meshio::RawMesh, notes: &mut Vec<String>) {
+    if !raw.polygons.is_empty() || raw.positions.is_empty() {
+        return;
+    }
+    let xy: Vec<nalgebra::Vector2<f64>> = raw
+        .positions
+        .iter()
+        .map(|p| nalgebra::Vector2::new(p.x, p.y))
+        .collect();
+    match mesh::delaunay::delaunay(&xy) {
+        Ok(tris) => {
+            notes.push(format!(
+                "no faces in the file: its {} points triangulated by the Delaunay triangulation of their (x, y) into {} triangles (a height field's samples)",
+                xy.len(),
+                tris.len()
+            ));
+            raw.polygons = meshio::Polygons::from_triangles(&tris);
+        }
+        Err(e) => notes.push(format!(
+            "no faces in the file, and its points cannot be triangulated in (x, y): {e}"
+        )),
+    }
 }
 
 /// A named data set.

@@ -58,6 +58,10 @@ pub struct FitOptions {
     pub mesh_out: Option<PathBuf>,
     /// How the mesh file is written (the up axis of formats that fix one).
     pub mesh_options: crate::output::MeshOutputOptions,
+    /// Height fields: detected and fitted with the scheme's functional (C1) form (`Auto`, the
+    /// default), required (`On`, `--heightfield`), or never (`Off`, `--no-heightfield`)
+    /// (`surface::scheme::functional`).
+    pub heightfield: surface::scheme::functional::HeightFieldMode,
     /// Keep the mesh, the fit (every net) and the tessellation in the outcome, for a caller
     /// that works on them in memory (the pipeline's `fit`, the Python package). The fit is then
     /// held whole instead of streamed: the same report, more memory.
@@ -82,6 +86,7 @@ impl Default for FitOptions {
             patches_out: None,
             mesh_out: None,
             mesh_options: crate::output::MeshOutputOptions::default(),
+            heightfield: Default::default(),
             keep: false,
         }
     }

@@ -300,7 +300,9 @@ impl FitReport {
         let g1 = self.g1.unwrap_or_default();
         lines.push(format!(
             "  {}: interior {:.3e} rad, exterior {:.3e} rad; interpolation: position {:.3e}, normal {:.3e} rad",
-            if self.continuity == surface::Continuity::G1.to_string() {
+            if self.continuity == surface::Continuity::G1.to_string()
+                || self.continuity == surface::Continuity::C1.to_string()
+            {
                 "G1 defect"
             } else {
                 "normal jump (the scheme claims only C0)"

@@ -147,6 +147,18 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         source,
     };
     let scheme = (entry.build)(&options.scheme_options);
+    // A height field gets the scheme's functional form (C1 for clough-tocher and powell-sabin),
+    // said in a note with the rule that detected it.
+    let (scheme, heightfield_note) =
+        surface::scheme::functional::choose(scheme, &mesh, options.heightfield).map_err(
+            |source| JobError::HeightField {
+                subject: label.clone(),
+                source,
+            },
+        )?;
+    if let Some(note) = &heightfield_note {
+        log(&format!("  {note}"));
+    }
     // Streamed when nothing needs the whole fit's nets afterwards (no interior optimization,
     // which refits from a first fit; nothing kept): the same report and file, bit for bit,
     // without the nets in memory (`surface::stream`). With a tessellation too, when the layout
@@ -393,7 +405,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         vertices: mesh.num_vertices(),
         edges: mesh.num_edges(),
         faces,
-        notes: loaded.notes,
+        notes: loaded.notes.into_iter().chain(heightfield_note).collect(),
         creases: loaded.creases,
         repaired,
         scheme: fitted.scheme.to_string(),

@@ -36,6 +36,19 @@
 //! vertex carries the **cylinder's** tensor `−(1/r) e_θ e_θᵀ`, as do the closest-point queries
 //! (a point belongs to a cap only when `|z| > h` strictly).
 //!
+//! **Franke** (`franke1` … `franke6`, `franke1@scattered` … `franke6@scattered`): the graphs
+//! of Franke's six test functions over `[0, 1]²` ([`crate::analytic_franke`]) with exact
+//! values, normals and shape tensors, in the two usual samplings (Franke 1982): `frankeK` the
+//! `N × N` grid (resolution `N`, default 33, each square split along its rising diagonal
+//! `(i, j)–(i+1, j+1)`), `frankeK@scattered` `N` points (default 100: the square's four corners,
+//! `s = ⌊√(N − 4)⌋/2` uniform points on each side (4 at the default: four corners alone leave
+//! slivers along the sides) and the rest uniform inside, from `rng::SplitMix64` seeded with
+//! [`FRANKE_SEED`]) with their
+//! Delaunay triangulation ([`crate::delaunay`]). Franke's own 100-point set is not available
+//! here, so the scattered sampling is this seeded one, not his. They are height fields:
+//! `clough-tocher` and `powell-sabin` fit them with their functional C1 forms. They are not in
+//! [`DATASET_NAMES`] (the surfaces the studies iterate over) but in [`FRANKE_NAMES`].
+//!
 //! **Octa**: Figure 2 as is; its vertices lie on the unit sphere, so they carry the sphere's
 //! tensor `−(I − n nᵀ)`.
 
@@ -52,6 +65,32 @@ use crate::testbed_format::{read_testbed, TestbedError};
 
 /// The names [`dataset_by_name`] knows, in a stable order.
 pub const DATASET_NAMES: [&str; 4] = ["sphere", "ring", "capsule", "octa"];
+
+/// The Franke data sets [`dataset_by_name`] knows besides [`DATASET_NAMES`]: `frankeK` on the
+/// grid, `frankeK@scattered` on scattered points (module docs).
+pub const FRANKE_NAMES: [&str; 12] = [
+    "franke1",
+    "franke2",
+    "franke3",
+    "franke4",
+    "franke5",
+    "franke6",
+    "franke1@scattered",
+    "franke2@scattered",
+    "franke3@scattered",
+    "franke4@scattered",
+    "franke5@scattered",
+    "franke6@scattered",
+];
+
+/// Default grid side of the Franke grid data sets (Franke's 33 × 33).
+pub const FRANKE_GRID_DEFAULT: usize = 33;
+/// Default point count of the scattered Franke data sets (Franke's 100).
+pub const FRANKE_SCATTERED_DEFAULT: usize = 100;
+/// Largest grid side of the Franke grids (2 · 1024² faces).
+pub const FRANKE_GRID_MAX: usize = 1025;
+/// The seed of the scattered Franke points ("FRANKE" in ASCII).
+pub const FRANKE_SEED: u64 = 0x4652_414E_4B45;
 
 /// Default subdivision level of `sphere`.
 pub const SPHERE_DEFAULT_LEVELS: usize = 2;
@@ -279,6 +318,10 @@ pub enum DataSetError {
     /// The built-in octahedron did not parse (a build defect, reported rather than hidden).
     #[error("built-in octa.m: {0}")]
     Builtin(#[from] TestbedError),
+    /// The scattered points could not be triangulated (a defect of this module: the seeded
+    /// points are in general position).
+    #[error("Delaunay triangulation: {0}")]
+    Delaunay(#[from] crate::delaunay::DelaunayError),
     /// A generated mesh was invalid (a defect of this module, reported rather than hidden).
     #[error("generated mesh: {0}")]
     Mesh(#[from] MeshError),
@@ -327,6 +370,29 @@ pub fn dataset_by_name(name: &str, resolution: Option<usize>) -> Result<DataSet,
                 return Err(bad("capsule", n, "3..=4096 meridians"));
             }
             capsule(n)
+        }
+        name if FRANKE_NAMES.contains(&name) => {
+            let k = name.as_bytes()[6] - b'0';
+            let function = crate::analytic_franke::Franke::by_number(usize::from(k))
+                .ok_or(DataSetError::UnknownName { name: name.into() })?;
+            let static_name = FRANKE_NAMES
+                .iter()
+                .find(|n| **n == name)
+                .copied()
+                .unwrap_or("franke");
+            if name.ends_with("@scattered") {
+                let n = resolution.unwrap_or(FRANKE_SCATTERED_DEFAULT);
+                if !(4..=crate::delaunay::MAX_POINTS).contains(&n) {
+                    return Err(bad(static_name, n, "4..=20000 points"));
+                }
+                franke_scattered(function, static_name, n)
+            } else {
+                let n = resolution.unwrap_or(FRANKE_GRID_DEFAULT);
+                if !(2..=FRANKE_GRID_MAX).contains(&n) {
+                    return Err(bad(static_name, n, "2..=1025 points a side"));
+                }
+                franke_grid(function, static_name, n)
+            }
         }
         "octa" => match resolution {
             None => octa(),
@@ -504,4 +570,85 @@ pub fn capsule(n: usize) -> Result<DataSet, DataSetError> {
         mesh: Mesh::new(vertices, faces)?,
         surface: Arc::new(surface),
     })
+}
+
+fn franke_vertex(function: crate::analytic_franke::Franke, x: f64, y: f64) -> Vertex {
+    Vertex::new(crate::analytic_franke::graph_data(x, y, &function.jet(x, y)).0)
+}
+
+fn franke_set(
+    function: crate::analytic_franke::Franke,
+    name: &'static str,
+    resolution: usize,
+    mesh: Mesh,
+) -> DataSet {
+    DataSet {
+        name,
+        resolution,
+        mesh,
+        surface: Arc::new(crate::analytic_franke::FrankeSurface { function }),
+    }
+}
+
+/// The Franke function's graph on the `n × n` grid of `[0, 1]²` (module docs).
+pub fn franke_grid(
+    function: crate::analytic_franke::Franke,
+    name: &'static str,
+    n: usize,
+) -> Result<DataSet, DataSetError> {
+    let h = 1.0 / (n - 1) as f64;
+    let mut vertices = Vec::with_capacity(n * n);
+    for j in 0..n {
+        for i in 0..n {
+            vertices.push(franke_vertex(function, i as f64 * h, j as f64 * h));
+        }
+    }
+    let mut faces = Vec::with_capacity(2 * (n - 1) * (n - 1));
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let a = j * n + i;
+            faces.push([a, a + 1, a + n + 1]);
+            faces.push([a, a + n + 1, a + n]);
+        }
+    }
+    Ok(franke_set(function, name, n, Mesh::new(vertices, faces)?))
+}
+
+/// The Franke function's graph on `n` scattered points of `[0, 1]²` (the corners, seeded
+/// uniform points on the sides and inside) with their Delaunay triangulation (module docs).
+pub fn franke_scattered(
+    function: crate::analytic_franke::Franke,
+    name: &'static str,
+    n: usize,
+) -> Result<DataSet, DataSetError> {
+    let mut rng = rng::SplitMix64::new(FRANKE_SEED);
+    let mut points = vec![
+        nalgebra::Vector2::new(0.0, 0.0),
+        nalgebra::Vector2::new(1.0, 0.0),
+        nalgebra::Vector2::new(1.0, 1.0),
+        nalgebra::Vector2::new(0.0, 1.0),
+    ];
+    // `s` points on each side, so that the hull's edges are not the square's whole sides (four
+    // corners alone leave slivers along every side).
+    let s = (((n - 4) as f64).sqrt() as usize / 2).min((n - 4) / 4);
+    for side in 0..4 {
+        for _ in 0..s {
+            let t = rng.next_f64();
+            points.push(match side {
+                0 => nalgebra::Vector2::new(t, 0.0),
+                1 => nalgebra::Vector2::new(1.0, t),
+                2 => nalgebra::Vector2::new(t, 1.0),
+                _ => nalgebra::Vector2::new(0.0, t),
+            });
+        }
+    }
+    while points.len() < n {
+        points.push(nalgebra::Vector2::new(rng.next_f64(), rng.next_f64()));
+    }
+    let faces = crate::delaunay::delaunay(&points)?;
+    let vertices = points
+        .iter()
+        .map(|p| franke_vertex(function, p.x, p.y))
+        .collect();
+    Ok(franke_set(function, name, n, Mesh::new(vertices, faces)?))
 }

@@ -13,6 +13,9 @@
 //! * [`frame`] — the working frame of a user's mesh (unit bounding box), and the way back;
 //! * [`analytic`] — points of analytic surfaces (sphere, torus) with exact normals and shape
 //!   tensors;
+//! * [`analytic_franke`] — Franke's six test functions with their derivatives, and their
+//!   graphs as analytic surfaces; [`delaunay`] — planar Delaunay triangulation (the scattered
+//!   Franke samplings);
 //! * [`datasets`] — analytic reference surfaces with exact closest points and curvatures, and
 //!   the named data sets sampled from them ([`dataset_by_name`]);
 //! * [`testbed_format`] — the testbed's mesh format (Lounsbery et al. 1990, Figure 2), read and
@@ -22,7 +25,9 @@
 //! shape tensors on it, `surface` fits patches to it, both on top of it.
 
 pub mod analytic;
+pub mod analytic_franke;
 pub mod datasets;
+pub mod delaunay;
 pub mod disjoint;
 mod edge_groups;
 pub mod features;

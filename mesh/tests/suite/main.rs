@@ -2,5 +2,6 @@
 //! file): a module a topic.
 
 mod datasets;
+mod franke;
 mod repair;
 mod repair_creases;

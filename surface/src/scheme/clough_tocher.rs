@@ -107,15 +107,41 @@
 //!   functional scheme uses the edge normal of the planar domain; a parametric domain has no
 //!   metric, so the median direction is used: symmetric in the edge's two ends and affine
 //!   invariant.
+//!
+//! # On height fields
+//!
+//! On data `z = f(x, y)` (detected by the fit, or asked for with `fit --heightfield`) the fit
+//! uses this scheme's functional form instead ([`Scheme::on_height_field`]:
+//! [`super::functional::clough_tocher`]), which is C1 across every edge and claims
+//! [`Continuity::C1`]; what is said above is the parametric scheme on any other data.
 
 use nalgebra::{Point3, Vector3};
 
 use super::{Continuity, FaceInput, Layout, Scheme, CENTROID_SPLIT};
 use crate::fit::FaceFallbackReason;
 
-/// The parametric Clough–Tocher scheme (module docs).
+/// The parametric Clough–Tocher scheme (module docs); on height fields its functional form,
+/// whose cross-boundary rule blends in the least-squares cubic by [`CUBIC_WEIGHT`].
 #[derive(Clone, Copy, Debug, Default)]
-pub struct CloughTocher;
+pub struct CloughTocher {
+    /// [`CUBIC_WEIGHT`]'s value (read only by the functional form).
+    pub cubic_weight: f64,
+}
+
+/// The weight `w` of the least-squares cubic in the functional form's cross-boundary
+/// derivatives ([`super::functional::clough_tocher`], "Cubic precision"): 0 the classical
+/// linear normal derivative, 1 cubic precision on interior edges.
+pub const CUBIC_WEIGHT: super::ParameterSpec = super::ParameterSpec {
+    name: "ct-cubic",
+    symbol: "w",
+    default: 0.0,
+    range: (0.0, 1.0),
+    range_reason: "a blend of two cross-boundary derivatives: 0 the classical linear one, 1 the least-squares cubic's",
+    summary: "on height fields, `clough-tocher`'s cross-boundary normal derivative at edge midpoints: (1 − w) the classical linear rule + w the least-squares cubic of the edge's two faces (cubic precision at 1)",
+};
+
+/// The scheme's parameters.
+pub const PARAMETERS: &[super::ParameterSpec] = &[CUBIC_WEIGHT];
 
 /// Control points per cubic net.
 const NP: usize = 10;
@@ -135,21 +161,59 @@ pub fn cross_boundary_point(
     i1a: &Point3<f64>,
     i1b: &Point3<f64>,
 ) -> Point3<f64> {
+    cross_boundary_point_along(curve, i1a, i1b, 0.5)
+}
+
+/// The cross-boundary point `C_e` that makes the derivative of sub-patch `e` along the domain
+/// direction from `H = (1 − τ) V_a + τ V_b` to `S` linear along the edge. That derivative is the
+/// quadratic with Bézier coefficients `D_m = 3(b_{1,m} − (1 − τ) b_{0,m} − τ b_{0,m+1})` (row 1
+/// `I¹_a, C_e, I¹_b`, row 0 the edge curve), so linear means `D_1 = (D_0 + D_2)/2`:
+///
+/// ```text
+/// C_e = (1 − τ) E¹ + τ E² + ½ [(I¹_a − (1 − τ) V_a − τ E¹) + (I¹_b − (1 − τ) E² − τ V_b)]
+/// ```
+///
+/// `τ = ½` is the median rule of the parametric scheme; the functional scheme takes the foot of
+/// the perpendicular from `S`, so that the *normal* derivative is linear
+/// ([`super::functional::clough_tocher`]).
+pub fn cross_boundary_point_along(
+    curve: &[Point3<f64>; 4],
+    i1a: &Point3<f64>,
+    i1b: &Point3<f64>,
+    tau: f64,
+) -> Point3<f64> {
     let [va, e1, e2, vb] = curve;
-    // (E¹ + E²)/2 + [I¹_a − (V_a + E¹)/2 + I¹_b − (E² + V_b)/2]/2
+    let s = 1.0 - tau;
     comb(&[
-        (0.25, e1),
-        (0.25, e2),
+        (s - 0.5 * tau, e1),
+        (tau - 0.5 * s, e2),
         (0.5, i1a),
         (0.5, i1b),
-        (-0.25, va),
-        (-0.25, vb),
+        (-0.5 * s, va),
+        (-0.5 * tau, vb),
     ])
 }
 
 /// The three cubic nets of one face from its oriented edge curves `curves[e]`
 /// (`V_e → V_{e+1}`), in the order of the layout.
 pub fn macro_patch(curves: &[[Point3<f64>; 4]; 3]) -> [[Point3<f64>; NP]; 3] {
+    macro_patch_along(curves, [0.5; 3])
+}
+
+/// [`macro_patch`] with the cross-boundary point of edge `e` from
+/// [`cross_boundary_point_along`] at `taus[e]`; the C1 rules inside the face are the same.
+pub fn macro_patch_along(curves: &[[Point3<f64>; 4]; 3], taus: [f64; 3]) -> [[Point3<f64>; NP]; 3] {
+    macro_patch_with(curves, |e, i1a, i1b| {
+        cross_boundary_point_along(&curves[e], i1a, i1b, taus[e])
+    })
+}
+
+/// [`macro_patch`] with the cross-boundary point of edge `e` given by `cross(e, I¹_a, I¹_b)`;
+/// the vertex rule and the C1 rules inside the face are the same.
+pub fn macro_patch_with(
+    curves: &[[Point3<f64>; 4]; 3],
+    cross: impl Fn(usize, &Point3<f64>, &Point3<f64>) -> Point3<f64>,
+) -> [[Point3<f64>; NP]; 3] {
     let prev = |i: usize| (i + 2) % 3;
     let next = |i: usize| (i + 1) % 3;
     let v: [Point3<f64>; 3] = std::array::from_fn(|i| curves[i][0]);
@@ -160,8 +224,7 @@ pub fn macro_patch(curves: &[[Point3<f64>; 4]; 3]) -> [[Point3<f64>; NP]; 3] {
             (1.0 / 3.0, &curves[prev(i)][2]),
         ])
     });
-    let c: [Point3<f64>; 3] =
-        std::array::from_fn(|e| cross_boundary_point(&curves[e], &i1[e], &i1[next(e)]));
+    let c: [Point3<f64>; 3] = std::array::from_fn(|e| cross(e, &i1[e], &i1[next(e)]));
     let i2: [Point3<f64>; 3] = std::array::from_fn(|i| {
         comb(&[
             (1.0 / 3.0, &i1[i]),
@@ -226,6 +289,13 @@ impl Scheme for CloughTocher {
 
     fn uses_curves(&self) -> bool {
         true
+    }
+
+    /// The functional form on height fields ([`super::functional`]): C1.
+    fn on_height_field(&self, mesh: &crate::mesh::Mesh) -> Option<Box<dyn super::Scheme>> {
+        Some(Box::new(
+            super::functional::clough_tocher::FunctionalCloughTocher::new(mesh, self.cubic_weight),
+        ))
     }
 
     fn build(

@@ -22,6 +22,7 @@
 pub mod clough_tocher;
 pub mod discrete_side_vertex;
 pub mod flat;
+pub mod functional;
 pub mod gregory_charrot;
 pub mod nielson;
 pub mod phong;
@@ -154,6 +155,10 @@ pub enum Continuity {
     C0WithNormals,
     /// Position continuity only; the normal jump is measured and reported.
     C0,
+    /// On height-field data `z = f(x, y)`: `f` continuously differentiable across every
+    /// boundary (value and both partials `z_x`, `z_y`), so G1 too (measured below 1e-9 rad);
+    /// the functional schemes ([`functional`]).
+    C1,
 }
 
 impl std::fmt::Display for Continuity {
@@ -162,6 +167,7 @@ impl std::fmt::Display for Continuity {
             Continuity::G1 => "G1",
             Continuity::C0WithNormals => "C0 + normal field",
             Continuity::C0 => "C0",
+            Continuity::C1 => "C1",
         })
     }
 }
@@ -276,6 +282,16 @@ pub trait Scheme: Send + Sync {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason>;
+
+    /// This scheme's functional form for `mesh`, when the mesh is a height field
+    /// ([`functional::detect`]: the caller has checked) and the scheme has one: the C1
+    /// interpolant of `z = f(x, y)` the parametric scheme is named after
+    /// (`clough-tocher`, `powell-sabin`). `None` (the default): the scheme fits height fields as
+    /// it fits anything.
+    fn on_height_field(&self, mesh: &crate::mesh::Mesh) -> Option<Box<dyn Scheme>> {
+        let _ = mesh;
+        None
+    }
 
     /// The C0 patch of a face [`Scheme::build`] cannot fit, meeting its neighbours along the
     /// shared boundaries. The default is the face's flat triangle over the layout, which is C0
@@ -438,13 +454,17 @@ pub const REGISTRY: &[SchemeEntry] = &[
     },
     SchemeEntry {
         name: "clough-tocher",
-        summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, C1 inside, linear cross-boundary derivative (C0)",
-        parameters: &[],
-        build: |_| Box::new(clough_tocher::CloughTocher),
+        summary: "parametric Clough–Tocher (Farin 1985): three cubics per face on cubic edge curves, C1 inside, linear cross-boundary derivative (C0; the functional C1 interpolant on height fields)",
+        parameters: clough_tocher::PARAMETERS,
+        build: |o| {
+            Box::new(clough_tocher::CloughTocher {
+                cubic_weight: o.value(&clough_tocher::CUBIC_WEIGHT),
+            })
+        },
     },
     SchemeEntry {
         name: "powell-sabin",
-        summary: "parametric Powell–Sabin 1977: six quadratics per face, boundaries from vertex tangent planes (C0)",
+        summary: "parametric Powell–Sabin 1977: six quadratics per face, boundaries from vertex tangent planes (C0; the functional C1 6-split at incentres on height fields)",
         parameters: &[],
         build: |_| Box::new(powell_sabin::PowellSabin),
     },

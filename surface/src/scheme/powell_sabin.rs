@@ -70,6 +70,13 @@
 //! planar data. Powell and Sabin's split point may be any interior point (the incentre in
 //! their second construction, for obtuse triangles); the layout fixes the centroid, and the
 //! edge split point at the midpoint, since the domain is barycentric, not metric.
+//!
+//! # On height fields
+//!
+//! On data `z = f(x, y)` (detected by the fit, or asked for with `fit --heightfield`) the fit
+//! uses this scheme's functional form instead ([`Scheme::on_height_field`]:
+//! [`super::functional::powell_sabin`]), which is C1 across every edge and claims
+//! [`Continuity::C1`]; what is said above is the parametric scheme on any other data.
 
 use nalgebra::{Point3, Vector3};
 
@@ -198,6 +205,13 @@ impl Scheme for PowellSabin {
 
     fn uses_curves(&self) -> bool {
         false
+    }
+
+    /// The functional form on height fields ([`super::functional`]): C1.
+    fn on_height_field(&self, mesh: &crate::mesh::Mesh) -> Option<Box<dyn super::Scheme>> {
+        Some(Box::new(
+            super::functional::powell_sabin::FunctionalPowellSabin::new(mesh),
+        ))
     }
 
     fn build(
