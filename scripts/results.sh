@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 cargo build -q --release -p experiments -p testbed
 E=./target/release/experiments
 run() { echo "== $*" >&2; "$@"; }
-all=(ring curve interior schemes solvers sweep estimation realmesh examples)
+all=(ring curve interior schemes solvers sweep estimation realmesh franke examples)
 for study in "${@:-${all[@]}}"; do
   case "$study" in
     ring) run $E ring > /dev/null ;;
@@ -24,6 +24,7 @@ for study in "${@:-${all[@]}}"; do
       run $E sweep --scheme loop --output results/sweep-loop ;;
     estimation) run $E estimation ;;
     realmesh) run $E realmesh ;;
+    franke) run $E franke ;;
     examples)
       for n in 1 2 3 4 5; do
         TESTBED=./target/release/testbed run bash "examples/example$n.sh"
