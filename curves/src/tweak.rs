@@ -52,10 +52,10 @@
 //!
 //! Lines that meet far in front give long tangents; in a fit they are bounded like any
 //! construction's ([`UnitProblem::bounded_alpha`]). On scans both happen often: through the
-//! Shirman–Séquin fit (hybrid estimates) the bunny's curves fall back on 1585 of 5511 edges and
-//! 146 of its 3674 faces fold (128 for `quadric`; 0 for `chord`), `dragon_res4`'s on 5615 of
-//! 16522 with 793 folded faces (726; 142 for `chord`); on the ring and the sphere no curve falls
-//! back and no face is refused. The tangents are the planar problem's, so
+//! Shirman–Séquin fit (hybrid estimates), with the lower bound [`MIN_TWEAK_ALPHA`], the bunny's
+//! curves fall back on 1663 of 5511 edges and 53 of its 3674 faces fold (43 for `quadric`; 0
+//! for `chord`), `dragon_res4`'s on 6013 of 16522 with 398 folded faces (358; 142 for
+//! `chord`); on the ring and the sphere no curve falls back and no face is refused. The tangents are the planar problem's, so
 //! its clamp ([`crate::problem::MAX_TANGENT_ANGLE`]) applies as for `chord`. Curvature is not
 //! read.
 
@@ -116,6 +116,16 @@ pub fn tangent_intersection(problem: &UnitProblem) -> Option<[f64; 2]> {
     (cross.abs() > DEGENERATE_SINE).then(|| [problem.t1.y / cross, -problem.t0.y / cross])
 }
 
+/// The shortest end derivative the rule keeps, in chord choices (`α`): the `optimized`
+/// construction's lower bound ([`crate::optimized::DEFAULT_ALPHA_MIN`], a twentieth). Where the
+/// tangent lines meet close to one end (one tangent along the chord, the other steep), `α`
+/// there tends to 0: the curve leaves the vertex with a vanishing derivative, the patches'
+/// tangent plane at the corner degenerates (their normals are undefined there) and G1 across
+/// the edges at that corner is lost (measured before this bound on the teapot: 1.3e-2 rad on a
+/// regular edge, with `chord` 6.7e-13). Such a curve falls back to Furth's (`chord`) and is
+/// counted as a fallback. The original testbed's sources state no such bound; it is ours.
+pub const MIN_TWEAK_ALPHA: f64 = crate::optimized::DEFAULT_ALPHA_MIN;
+
 /// The rule for fraction `t` (assumed checked).
 fn tweak_choice(t: f64, problem: &UnitProblem) -> CurveChoice {
     let fallback = CurveChoice {
@@ -123,7 +133,14 @@ fn tweak_choice(t: f64, problem: &UnitProblem) -> CurveChoice {
         ..CurveChoice::plain([1.0, 1.0])
     };
     match tangent_intersection(problem) {
-        Some([s, r]) if s > 0.0 && r > 0.0 => CurveChoice::plain([3.0 * t * s, 3.0 * t * r]),
+        Some([s, r]) if s > 0.0 && r > 0.0 => {
+            let alpha = [3.0 * t * s, 3.0 * t * r];
+            if alpha[0].min(alpha[1]) < MIN_TWEAK_ALPHA {
+                fallback
+            } else {
+                CurveChoice::plain(alpha)
+            }
+        }
         Some(_) => fallback,
         None if problem.t0.y.abs() <= DEGENERATE_SINE && problem.t1.y.abs() <= DEGENERATE_SINE => {
             CurveChoice::plain([1.0, 1.0])
@@ -195,6 +212,31 @@ mod tests {
         let c = Tweak { t: -1.0 }.construct(&u);
         assert!(c.fallback);
         assert_eq!(c.alpha, [1.0, 1.0]);
+    }
+
+    /// Lines meeting just in front of an end (t1 a hair off the chord, t0 steep) give an end
+    /// derivative below [`MIN_TWEAK_ALPHA`]: the curve falls back to the chord choice; a bit
+    /// farther off the chord it is kept.
+    #[test]
+    fn a_vanishing_end_derivative_falls_back() {
+        let steep = Vector2::new(0.6, 0.8);
+        let near =
+            UnitProblem::new(steep, Vector2::new(1.0, -1e-4).normalize(), 0.0, 0.0).expect("valid");
+        let [s, _] = tangent_intersection(&near).expect("meet");
+        assert!(
+            s > 0.0 && 3.0 * DEFAULT_TWEAK_T * s < MIN_TWEAK_ALPHA,
+            "s {s}"
+        );
+        let c = Tweak::default().construct(&near);
+        assert!(c.fallback);
+        assert_eq!(c.alpha, [1.0, 1.0]);
+        let off =
+            UnitProblem::new(steep, Vector2::new(1.0, -0.2).normalize(), 0.0, 0.0).expect("valid");
+        let c = Tweak::default().construct(&off);
+        assert!(
+            !c.fallback && c.alpha[0].min(c.alpha[1]) >= MIN_TWEAK_ALPHA,
+            "{c:?}"
+        );
     }
 
     #[test]
