@@ -49,10 +49,20 @@ const MIN_CHROMA: f64 = 0.02;
 /// (348.5°–357.6°).
 const HUE_TOL: f64 = 6.0;
 
+/// How far beyond the red half's hues (348.4°–357.6°) a dark pixel of its saturated end may
+/// read (see `check_curvature_colours`): 340.1° and 0.0° measured, so 8.3° and 2.4° beyond;
+/// 12.5° leaves room for rounding and stays far from every other hue of the picture.
+const DARK_END_HUE_TOL: f64 = 12.5;
+
 /// At least this fraction of a shaded object's pixels have a hue to check (chroma ≥
-/// [`MIN_CHROMA`]): measured 99.4% in Examples 1 and 5, 100% in Example 3; a check of the hues
-/// of a few pixels would say nothing.
+/// [`MIN_CHROMA`]): measured 99.4% in Examples 1 and 5; a check of the hues of a few pixels
+/// would say nothing.
 const MIN_CHROMATIC: f64 = 0.95;
+
+/// The same for Example 3's curvature colours: Piper's tangent rule (Examples 1, 3 and 4 since
+/// they run it) leaves the middle of each octant nearly flat, K ≈ 0, which the diverging map
+/// draws grey (no hue): measured 78.1% (100% with the `chord` curves they ran before).
+const MIN_CHROMATIC_K: f64 = 0.7;
 
 /// A shaded picture has at least this many distinct object colours: a curved surface under two
 /// lights and a highlight shades continuously (measured 812 in Example 1, 805 in Example 5,
@@ -75,17 +85,21 @@ const WIRE_CROSSINGS: usize = 4;
 
 /// The curvature colours spread over the map: the 5th percentile of the pixels' map coordinate
 /// (read from their saturation, below) is below [`SPREAD_LOW`] and the 95th above
-/// [`SPREAD_HIGH`]. Measured 0.164 and 0.934: the colour range is the 95% quantile of |K|
+/// [`SPREAD_HIGH`]. Measured 0.006 and 0.736 with Piper's tangent rule (0.164 and 0.934 with
+/// `chord` curves): the colour range is the 95% quantile of |K|
 /// (`render::colors::ROBUST_QUANTILE`), so the most curved parts reach the saturated end while
-/// the flatter face centres stay pale.
+/// the flatter face centres stay pale; Piper's curvature sits in narrow bands along the edges,
+/// so fewer pixels are saturated.
 const SPREAD_LOW: f64 = 0.3;
 /// See [`SPREAD_LOW`].
-const SPREAD_HIGH: f64 = 0.8;
+const SPREAD_HIGH: f64 = 0.65;
 
 /// Example 5's silhouette against Example 1's, intersection over union: both surfaces
-/// interpolate the octahedron's vertices and normals with G1 surfaces, so they nearly coincide
-/// (measured 0.991); a different object or framing would not.
-const SILHOUETTE_IOU: f64 = 0.97;
+/// interpolate the octahedron's vertices and normals with G1 surfaces, so they overlap closely;
+/// a different object or framing would not. Measured 0.991 when Example 1 ran `chord` curves,
+/// 0.883 with Piper's tangent rule, whose curves a ninth longer than the projection's round
+/// the octants differently from Nielson's.
+const SILHOUETTE_IOU: f64 = 0.85;
 
 /// At least this fraction of Example 5's object pixels differ from Example 1's: another surface,
 /// not Example 1 again (measured 66%).
@@ -171,9 +185,9 @@ fn colour_hcs(c: [f32; 3]) -> (f64, f64, f64) {
     hcs(c.map(f64::from))
 }
 
-/// The hue of pixels whose chroma is at least [`MIN_CHROMA`], after checking there are enough
-/// of them.
-fn hues(pic: &Picture) -> Vec<f64> {
+/// The hue of pixels whose chroma is at least [`MIN_CHROMA`], after checking that at least
+/// `min_fraction` of the object's pixels have one.
+fn hues(pic: &Picture, min_fraction: f64) -> Vec<f64> {
     let object = pic.object().count();
     let hues: Vec<f64> = pic
         .object()
@@ -182,7 +196,7 @@ fn hues(pic: &Picture) -> Vec<f64> {
         .map(|(h, _, _)| h)
         .collect();
     assert!(
-        hues.len() as f64 >= MIN_CHROMATIC * object as f64,
+        hues.len() as f64 >= min_fraction * object as f64,
         "{}: only {} of {object} object pixels have a hue",
         pic.name,
         hues.len()
@@ -215,7 +229,7 @@ fn check_object_size(pic: &Picture) {
 fn check_material_shading(pic: &Picture) {
     check_object_size(pic);
     let want = colour_hcs(render::colors::MATERIAL).0;
-    for h in hues(pic) {
+    for h in hues(pic, MIN_CHROMATIC) {
         assert!(
             hue_distance(h, want) <= HUE_TOL,
             "{}: hue {h:.1}° is not the material's {want:.1}°",
@@ -268,7 +282,8 @@ fn check_curvature_colours(pic: &Picture) {
     let on = |h: f64, (lo, hi): (f64, f64)| h >= lo - HUE_TOL && h <= hi + HUE_TOL;
     let material = colour_hcs(render::colors::MATERIAL).0;
     let (mut reds, mut blues) = (0, 0);
-    for h in hues(pic) {
+    let mut off = Vec::new();
+    for h in hues(pic, MIN_CHROMATIC_K) {
         assert!(
             hue_distance(h, material) > HUE_TOL,
             "{}: hue {h:.1}° is the uniform material's",
@@ -279,12 +294,29 @@ fn check_curvature_colours(pic: &Picture) {
         } else if on(h, blue) {
             blues += 1;
         } else {
-            panic!(
-                "{}: hue {h:.1}° is off the diverging map ({red:?}, {blue:?})",
-                pic.name
-            );
+            off.push(h);
         }
     }
+    // The map's saturated red end shaded dark: its small green and blue parts round in 8 bits
+    // and turn the hue by up to 12° either way (measured 340.1°–0.0° on 2 039 of 36 258 pixels
+    // of Piper's octahedron, whose curvature reaches the clamp along the edges); nothing else
+    // may be off the map.
+    let centre = 0.5 * (red.0 + red.1);
+    let dark_end = |h: f64| hue_distance(h, centre) <= 0.5 * (red.1 - red.0) + DARK_END_HUE_TOL;
+    let stray: Vec<f64> = off.iter().copied().filter(|h| !dark_end(*h)).collect();
+    eprintln!(
+        "{}: {} pixels at the map's dark red end, {} off the map",
+        pic.name,
+        off.len() - stray.len(),
+        stray.len()
+    );
+    assert!(
+        stray.is_empty(),
+        "{}: {} hues off the diverging map ({red:?}, {blue:?}), e.g. {:?}",
+        pic.name,
+        stray.len(),
+        stray.first()
+    );
     // The surface over the octahedron is convex: K > 0, the red half only (measured: no
     // pixel of the blue half).
     assert_eq!(blues, 0, "{}: {reds} red, {blues} blue", pic.name);
