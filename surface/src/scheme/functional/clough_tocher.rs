@@ -299,18 +299,6 @@ pub fn macro_patch_blended(
     })
 }
 
-/// The corner data of a face, with a gradient of zero where a normal does not point up (only
-/// for the fallback: [`super::detect`] admits no such data).
-fn nodes_or_flat(input: &FaceInput<'_>) -> [Node; 3] {
-    input.vertices.map(|v| {
-        Node::of(v).unwrap_or(Node {
-            xy: Vector2::new(v.p.x, v.p.y),
-            z: v.p.z,
-            grad: Vector2::zeros(),
-        })
-    })
-}
-
 impl Scheme for FunctionalCloughTocher {
     fn name(&self) -> &'static str {
         "clough-tocher"
@@ -334,14 +322,7 @@ impl Scheme for FunctionalCloughTocher {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
-        let mut nodes = [Node {
-            xy: Vector2::zeros(),
-            z: 0.0,
-            grad: Vector2::zeros(),
-        }; 3];
-        for (corner, (slot, v)) in nodes.iter_mut().zip(input.vertices).enumerate() {
-            *slot = Node::of(v).ok_or(FaceFallbackReason::Folded { corner })?;
-        }
+        let nodes = super::face_nodes(input)?;
         let deltas = self.deltas.get(input.face).copied().unwrap_or([None; 3]);
         let nets = macro_patch_blended(&nodes, deltas, self.cubic_weight);
         for (chunk, net) in out.chunks_exact_mut(NP).zip(&nets) {
@@ -352,7 +333,7 @@ impl Scheme for FunctionalCloughTocher {
 
     /// C0 on the shared Hermite boundaries ([`fallback_patch`] on them).
     fn fallback(&self, input: &FaceInput<'_>, out: &mut [Point3<f64>]) {
-        let nodes = nodes_or_flat(input);
+        let nodes = super::nodes_or_flat(input);
         let curves: [[Point3<f64>; 4]; 3] =
             std::array::from_fn(|e| boundary(&nodes[e], &nodes[(e + 1) % 3]));
         let nets = fallback_patch(&curves);

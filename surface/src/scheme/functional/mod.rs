@@ -42,8 +42,9 @@ pub mod powell_sabin;
 
 use nalgebra::{Point3, Vector2};
 
+use crate::fit::FaceFallbackReason;
 use crate::mesh::Mesh;
-use crate::scheme::Scheme;
+use crate::scheme::{FaceInput, Scheme};
 use crate::VertexData;
 
 /// Smallest xy area of a face, relative to the area of the mesh's xy bounding box, for the face
@@ -91,6 +92,32 @@ impl Node {
     pub fn point(&self) -> Point3<f64> {
         point(&self.xy, self.z)
     }
+}
+
+/// The corner data of a face, or the fallback reason naming the first corner whose normal does
+/// not point up ([`Node::of`]).
+pub fn face_nodes(input: &FaceInput<'_>) -> Result<[Node; 3], FaceFallbackReason> {
+    let mut nodes = [Node {
+        xy: Vector2::zeros(),
+        z: 0.0,
+        grad: Vector2::zeros(),
+    }; 3];
+    for (corner, (slot, v)) in nodes.iter_mut().zip(input.vertices).enumerate() {
+        *slot = Node::of(v).ok_or(FaceFallbackReason::Folded { corner })?;
+    }
+    Ok(nodes)
+}
+
+/// The corner data of a face, with a gradient of zero where a normal does not point up (only
+/// for the fallback patches: [`detect`] admits no such data).
+pub fn nodes_or_flat(input: &FaceInput<'_>) -> [Node; 3] {
+    input.vertices.map(|v| {
+        Node::of(v).unwrap_or(Node {
+            xy: Vector2::new(v.p.x, v.p.y),
+            z: v.p.z,
+            grad: Vector2::zeros(),
+        })
+    })
 }
 
 /// The 3D point over `xy` at height `z`.

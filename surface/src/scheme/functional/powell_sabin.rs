@@ -220,14 +220,7 @@ impl Scheme for FunctionalPowellSabin {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
-        let mut nodes = [Node {
-            xy: Vector2::zeros(),
-            z: 0.0,
-            grad: Vector2::zeros(),
-        }; 3];
-        for (corner, (slot, v)) in nodes.iter_mut().zip(input.vertices).enumerate() {
-            *slot = Node::of(v).ok_or(FaceFallbackReason::Folded { corner })?;
-        }
+        let nodes = super::face_nodes(input)?;
         let nets = macro_patch(&nodes, self.face_taus(input.face));
         for (chunk, net) in out.chunks_exact_mut(NP).zip(&nets) {
             chunk.copy_from_slice(net);
@@ -238,13 +231,7 @@ impl Scheme for FunctionalPowellSabin {
     /// The same construction with a zero gradient where a normal does not point up: C0 with
     /// neighbours built from the same data (only reached on data [`super::detect`] refuses).
     fn fallback(&self, input: &FaceInput<'_>, out: &mut [Point3<f64>]) {
-        let nodes = input.vertices.map(|v| {
-            Node::of(v).unwrap_or(Node {
-                xy: Vector2::new(v.p.x, v.p.y),
-                z: v.p.z,
-                grad: Vector2::zeros(),
-            })
-        });
+        let nodes = super::nodes_or_flat(input);
         let nets = macro_patch(&nodes, self.face_taus(input.face));
         for (chunk, net) in out.chunks_exact_mut(NP).zip(&nets) {
             chunk.copy_from_slice(net);
