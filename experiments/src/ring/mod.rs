@@ -14,6 +14,7 @@
 //! the terminal summary.
 
 mod figures;
+mod generations;
 mod principal;
 mod render;
 mod report;
@@ -212,12 +213,27 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
     let t = Instant::now();
     let figure2 = figures::figure2(&out, &problems, &fits)?;
     stage("figure2", t);
+
+    let t = Instant::now();
+    let (generations_json, generations_md) = generations::run(
+        &out,
+        mesh,
+        truth,
+        &surfaces[0],
+        args.resolution,
+        args.segments,
+        &args.curve.method_options(),
+    )?;
+    stage("generations", t);
     times.insert(
         "total_time_seconds".into(),
         json!(t_all.elapsed().as_secs_f64()),
     );
 
-    let report = report::report_json(args, mesh, &surfaces, &fits, figure2, pictures, times);
+    let mut report = report::report_json(args, mesh, &surfaces, &fits, figure2, pictures, times);
+    if let Some(map) = report.as_object_mut() {
+        map.insert("generations".into(), generations_json);
+    }
     let text = pretty_json(&report, "the ring report")?;
     write_result(Some(&out.join("report.json")), text.as_bytes())?;
     let mut md = report::markdown(args, &report, &surfaces, &fits);
@@ -225,6 +241,7 @@ pub fn run(args: &RingArgs) -> Result<ExitCode, ExperimentError> {
         "\nInteractive: [ring.html](ring.html) ({:.1} MB, works offline): the surfaces of every construction side by side with linked cameras; shaded, K, H, κ1, κ2, reflection lines, isophotes, distance to the torus; patch boundaries and the data mesh.\n",
         page_bytes as f64 / 1e6
     ));
+    md.push_str(&generations_md);
     md.push_str(&format!(
         "\n## Principal directions\n\nShort glyphs on the shaded surfaces along each sample's principal directions (red: κ1, the larger principal curvature; blue: κ2; from the tessellations' exact shape tensors). On the true ring they follow the meridians and the parallels; the sphere is umbilic, so its fit's glyphs point wherever its small departures from the sphere send them.\n\n![principal directions]({principal_picture})\n"
     ));
