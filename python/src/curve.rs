@@ -15,26 +15,39 @@ use serde_json::{json, Value};
 use crate::arrays;
 use crate::errors::{failed, usage};
 
-/// The construction `method` with `solver` and `dbhs_pick`; `history`: the solver reports
-/// keep the cost at every iteration (as the command line's `curve` asks, for its plots).
-fn method(
-    name: &str,
+/// The curve constructions' options of the keyword arguments, as the command line's
+/// `--solver`, `--dbhs-pick`, `--tweak-t` (checked to lie in `(0, 1]`) and `--four-ninths`.
+pub fn method_options(
     solver: &str,
     dbhs_pick: Option<&str>,
-    history: bool,
-) -> PyResult<Box<dyn CurveMethod>> {
-    let defaults = MethodOptions::default();
+    tweak_t: f64,
+    four_ninths: bool,
+) -> PyResult<MethodOptions> {
     let mut options = MethodOptions {
         solver: solver::SolverKind::from_str(solver).map_err(|e| usage(e.to_string()))?,
-        solve_options: solver::SolveOptions {
-            record_history: history,
-            ..defaults.solve_options
+        tweak_t: ::curves::tweak::check_t(tweak_t)
+            .map_err(|e| usage(format!("tweak_t: {e}")))?,
+        reach: if four_ninths {
+            ::curves::Reach::FourNinths
+        } else {
+            ::curves::Reach::Third
         },
-        ..defaults
+        ..MethodOptions::default()
     };
     if let Some(p) = dbhs_pick {
         options.dbhs_pick = ::curves::DbhsPick::from_str(p).map_err(usage)?;
     }
+    Ok(options)
+}
+
+/// The construction `method` with `options`; `history`: the solver reports keep the cost at
+/// every iteration (as the command line's `curve` asks, for its plots).
+fn method(
+    name: &str,
+    mut options: MethodOptions,
+    history: bool,
+) -> PyResult<Box<dyn CurveMethod>> {
+    options.solve_options.record_history = history;
     ::curves::method_by_name(name, &options).map_err(|e| usage(e.to_string()))
 }
 
@@ -64,7 +77,8 @@ fn to_python(py: Python<'_>, v: &Value) -> PyResult<Py<PyAny>> {
 /// `solutions`, `optimized`'s solver `report` with its cost history), the record the command
 /// line's `curve` writes.
 #[pyfunction]
-#[pyo3(signature = (t0, t1, k0, k1, method="optimized", *, solver="exact-penalty", dbhs_pick=None))]
+#[pyo3(signature = (t0, t1, k0, k1, method="optimized", *, solver="exact-penalty", dbhs_pick=None,
+    tweak_t=::curves::tweak::DEFAULT_TWEAK_T, four_ninths=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn curve(
     py: Python<'_>,
@@ -75,8 +89,14 @@ pub fn curve(
     method: &str,
     solver: &str,
     dbhs_pick: Option<&str>,
+    tweak_t: f64,
+    four_ninths: bool,
 ) -> PyResult<Py<PyAny>> {
-    let m = self::method(method, solver, dbhs_pick, true)?;
+    let m = self::method(
+        method,
+        method_options(solver, dbhs_pick, tweak_t, four_ninths)?,
+        true,
+    )?;
     let problem = UnitProblem::new(Vector2::from(t0), Vector2::from(t1), k0, k1)
         .map_err(|e| usage(e.to_string()))?;
     let input = json!({"t0": t0, "t1": t1, "k0": k0, "k1": k1});
@@ -93,15 +113,22 @@ pub fn curve(
 /// without one). The work runs
 /// without the GIL.
 #[pyfunction]
-#[pyo3(signature = (problems, method="optimized", *, solver="exact-penalty", dbhs_pick=None))]
+#[pyo3(signature = (problems, method="optimized", *, solver="exact-penalty", dbhs_pick=None,
+    tweak_t=::curves::tweak::DEFAULT_TWEAK_T, four_ninths=false))]
 pub fn curves<'py>(
     py: Python<'py>,
     problems: &Bound<'py, PyAny>,
     method: &str,
     solver: &str,
     dbhs_pick: Option<&str>,
+    tweak_t: f64,
+    four_ninths: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let m = self::method(method, solver, dbhs_pick, false)?;
+    let m = self::method(
+        method,
+        method_options(solver, dbhs_pick, tweak_t, four_ninths)?,
+        false,
+    )?;
     let mut list = Vec::new();
     let mut bad = None;
     let rows = {

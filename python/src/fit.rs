@@ -54,6 +54,12 @@ pub struct JobArgs<'a> {
     pub solver: &'a str,
     /// `--dbhs-pick`.
     pub dbhs_pick: Option<&'a str>,
+    /// `--tweak-t`.
+    pub tweak_t: f64,
+    /// `--four-ninths`.
+    pub four_ninths: bool,
+    /// `--heightfield` (`Some(true)`), `--no-heightfield` (`Some(false)`), or detected (`None`).
+    pub heightfield: Option<bool>,
     /// `--interior`.
     pub interior: &'a str,
     /// Samples per boundary of the G1 measurement.
@@ -114,14 +120,12 @@ pub fn job_options(
     input: fitjob::InputOptions,
     args: &JobArgs<'_>,
 ) -> PyResult<fitjob::FitOptions> {
-    let solver = solver::SolverKind::from_str(args.solver).map_err(|e| usage(e.to_string()))?;
-    let mut method_options = ::curves::MethodOptions {
-        solver,
-        ..::curves::MethodOptions::default()
-    };
-    if let Some(p) = args.dbhs_pick {
-        method_options.dbhs_pick = ::curves::DbhsPick::from_str(p).map_err(usage)?;
-    }
+    let method_options = crate::curve::method_options(
+        args.solver,
+        args.dbhs_pick,
+        args.tweak_t,
+        args.four_ninths,
+    )?;
     let interior = surface::fairing::InteriorChoice::from_str(args.interior).map_err(usage)?;
     let up = meshio::UpAxis::from_str(args.up).map_err(usage)?;
     Ok(fitjob::FitOptions {
@@ -131,6 +135,11 @@ pub fn job_options(
         curves: args.curves.to_string(),
         method_options,
         interior,
+        heightfield: match args.heightfield {
+            None => surface::scheme::functional::HeightFieldMode::Auto,
+            Some(true) => surface::scheme::functional::HeightFieldMode::On,
+            Some(false) => surface::scheme::functional::HeightFieldMode::Off,
+        },
         tess: args.segments,
         g1_samples: args.g1_samples,
         measure_g1: true,
@@ -158,7 +167,10 @@ fn is_name(obj: &Bound<'_, PyAny>) -> bool {
 /// is fitted exactly as `experiments fit --data NAME` fits it.
 ///
 /// Options, with the command line's defaults: `scheme` (`schemes()`), `curves`
-/// (`curve_methods()`), `solver` (`solvers()`, for `optimized`), `dbhs_pick`, `interior`
+/// (`curve_methods()`), `solver` (`solvers()`, for `optimized`), `dbhs_pick`, `tweak_t` (for
+/// `tweak`), `four_ninths` (the projection family's five-ninths point), `heightfield` (`True`:
+/// the functional form required, as `--heightfield`; `False`: never, `--no-heightfield`;
+/// `None`: detected), `interior`
 /// (`default`, `thin-plate`, `membrane`), `estimate` (`estimators()`, or `none`),
 /// `replace_normals`, `crease_angle` / `no_creases`, `g1_samples`, and the scheme's own
 /// parameters as keyword arguments (`beta=0.3, c=1.0`, `phong_alpha=0.75`). `patches_out` and
@@ -169,6 +181,7 @@ fn is_name(obj: &Bound<'_, PyAny>) -> bool {
 #[pyfunction]
 #[pyo3(signature = (V, F=None, *, normals=None, shape=None, creases=None, resolution=None,
     scheme="shirman-sequin", curves="chord", solver="exact-penalty", dbhs_pick=None,
+    tweak_t=::curves::tweak::DEFAULT_TWEAK_T, four_ninths=false, heightfield=None,
     interior="default", estimate="hybrid", replace_normals=false, crease_angle=None,
     no_creases=false, g1_samples=fitjob::options::DEFAULT_G1_SAMPLES,
     segments=fitjob::options::DEFAULT_TESS, patches_out=None, mesh_out=None, up="z",
@@ -186,6 +199,9 @@ pub fn fit(
     curves: &str,
     solver: &str,
     dbhs_pick: Option<&str>,
+    tweak_t: f64,
+    four_ninths: bool,
+    heightfield: Option<bool>,
     interior: &str,
     estimate: &str,
     replace_normals: bool,
@@ -238,6 +254,9 @@ pub fn fit(
             curves,
             solver,
             dbhs_pick,
+            tweak_t,
+            four_ninths,
+            heightfield,
             interior,
             g1_samples,
             segments,

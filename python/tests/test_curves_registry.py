@@ -90,3 +90,40 @@ def test_every_function_has_a_docstring():
         obj = getattr(triwb, name)
         if callable(obj):
             assert obj.__doc__ and len(obj.__doc__) > 20, name
+
+
+def test_tweak_t_and_four_ninths_equal_the_command_line(experiments, tmp_path):
+    # The same options as the command line's --tweak-t and --four-ninths, and they matter.
+    lines = [json.dumps({"t0": list(p[:2]), "t1": list(p[2:4]), "k0": p[4], "k1": p[5]}) for p in PROBLEMS]
+    (tmp_path / "in.jsonl").write_text("\n".join(lines) + "\n")
+    for method, cli_args, kwargs in [
+        ("tweak", ["--tweak-t", "0.3"], {"tweak_t": 0.3}),
+        ("piper", ["--four-ninths"], {"four_ninths": True}),
+    ]:
+        out = experiments("curve", "--input", tmp_path / "in.jsonl", "--curves", method, *cli_args).stdout
+        cli = [json.loads(l)["methods"][method] for l in out.splitlines() if l.strip()]
+        for p, theirs in zip(PROBLEMS, cli):
+            ours = triwb.curve(p[:2], p[2:4], p[4], p[5], method, **kwargs)
+            assert strip_times(ours) == strip_times(theirs)
+        default = triwb.curve(PROBLEMS[0][:2], PROBLEMS[0][2:4], PROBLEMS[0][4], PROBLEMS[0][5], method)
+        chosen = triwb.curve(PROBLEMS[0][:2], PROBLEMS[0][2:4], PROBLEMS[0][4], PROBLEMS[0][5], method, **kwargs)
+        assert default["alpha"] != chosen["alpha"], method
+
+
+def test_tweak_t_outside_its_range_is_a_usage_error():
+    with pytest.raises(triwb.UsageError, match="tweak_t"):
+        triwb.curve([1.0, 0.0], [1.0, 0.0], 0.0, 0.0, "tweak", tweak_t=1.5)
+
+
+def test_heightfield_is_required_or_refused_as_on_the_command_line():
+    # A Franke height field: the functional Clough–Tocher when asked (and when detected), the
+    # parametric one with heightfield=False; the ring is no height field, so True is refused.
+    on = triwb.fit("franke1", scheme="clough-tocher", heightfield=True)
+    auto = triwb.fit("franke1", scheme="clough-tocher")
+    off = triwb.fit("franke1", scheme="clough-tocher", heightfield=False)
+    assert any("detected a height field" in line for line in on.log)
+    assert np.array_equal(on.nets, auto.nets)
+    assert not any("height field" in line for line in off.log)
+    assert not np.array_equal(on.nets, off.nets) if on.nets.shape == off.nets.shape else True
+    with pytest.raises(triwb.WorkbenchError, match="height field"):
+        triwb.fit("ring", scheme="clough-tocher", heightfield=True)

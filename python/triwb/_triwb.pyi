@@ -150,6 +150,9 @@ def fit(
     curves: str = "chord",
     solver: str = "exact-penalty",
     dbhs_pick: Optional[str] = None,
+    tweak_t: float = 0.5858,
+    four_ninths: bool = False,
+    heightfield: Optional[bool] = None,
     interior: Literal["default", "thin-plate", "membrane"] = "default",
     estimate: str = "hybrid",
     replace_normals: bool = False,
@@ -173,6 +176,8 @@ def curve(
     *,
     solver: str = "exact-penalty",
     dbhs_pick: Optional[str] = None,
+    tweak_t: float = 0.5858,
+    four_ninths: bool = False,
 ) -> dict[str, Any]: ...
 def curves(
     problems: ArrayLike,
@@ -180,6 +185,8 @@ def curves(
     *,
     solver: str = "exact-penalty",
     dbhs_pick: Optional[str] = None,
+    tweak_t: float = 0.5858,
+    four_ninths: bool = False,
 ) -> CurveBatch: ...
 def schemes() -> list[dict[str, Any]]: ...
 def curve_methods() -> list[dict[str, Any]]: ...
