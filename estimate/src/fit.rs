@@ -130,6 +130,10 @@ pub struct Workspace {
     pub ring: Vec<usize>,
     /// Local coordinates `(x, y, z)/h`.
     pub local: Vec<[f64; 3]>,
+    /// Weights of the points of `local` in the least-squares sum (weighted least squares:
+    /// minimize `Σ wₖ (zₖ − p(xₖ, yₖ))²`, each row of the system scaled by `√wₖ`); empty for
+    /// unit weights. Must be empty or as long as `local`, with finite `wₖ ≥ 0`.
+    pub weights: Vec<f64>,
     /// Per point: the monomials of degree ≤ 4 in the order of [`fit_height`], then the height
     /// (entry [`MAX_COEFFS`]).
     rows: Vec<[f64; ROW]>,
@@ -158,6 +162,15 @@ pub fn fit_height(
     // read in one pass, the short stores of a row stall the wide loads that read it back.
     ws.rows.clear();
     ws.rows.extend(ws.local.iter().map(monomials));
+    if !ws.weights.is_empty() {
+        if ws.weights.len() != m || ws.weights.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
+            return Err(FitFailure::IllConditioned);
+        }
+        for (row, w) in ws.rows.iter_mut().zip(&ws.weights) {
+            let r = w.sqrt();
+            row.iter_mut().for_each(|c| *c *= r);
+        }
+    }
     let first = usize::from(!constant);
     let mut coeffs = [0.0; MAX_COEFFS];
     // Fast path: the equilibrated normal equations, accepted only when well conditioned.
@@ -192,7 +205,7 @@ pub fn fit_height(
         ws.a.clear();
         ws.a.resize(m * n, 0.0);
         ws.b.clear();
-        ws.b.extend(ws.local.iter().map(|p| p[2]));
+        ws.b.extend(ws.rows.iter().map(|r| r[MAX_COEFFS]));
         for (i, row) in ws.rows.iter().enumerate() {
             for (j, rj) in row[first..first + n].iter().enumerate() {
                 ws.a[j * m + i] = *rj;

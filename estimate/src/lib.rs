@@ -12,6 +12,10 @@
 //! * [`hybrid`] — the default ([`DEFAULT_ESTIMATOR`]): per vertex `jet4` where the sampling
 //!   resolves the surface, `rusinkiewicz` elsewhere.
 //!
+//! Gradients of functional data `z = f(x, y)` (height fields over a planar triangulation), the
+//! input of the functional Clough–Tocher and Powell–Sabin interpolants, have their own family in
+//! [`gradients`] (`cubic`, `minimum-norm`).
+//!
 //! Vertex normals alone (angle-, area- and Max-weighted) are in [`normals`]; they are the first
 //! normal estimate of the fitting estimators and the input of `rusinkiewicz`.
 //!
@@ -38,6 +42,7 @@ use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 
 pub mod fit;
+pub mod gradients;
 pub mod hybrid;
 pub mod jet;
 pub mod normals;
