@@ -7,7 +7,13 @@ Usage (from the repository root, after `cargo build --release -p experiments`):
 
     python3 -m venv /tmp/tess-venv
     /tmp/tess-venv/bin/pip install -r scripts/requirements-subdivision.txt
-    /tmp/tess-venv/bin/python scripts/compare_tessellation.py [NU NV]
+    /tmp/tess-venv/bin/python scripts/compare_tessellation.py [NU NV] [--experiments BINARY]
+
+`--quick` (what `scripts/run-quick` runs in CI, with the debug binary): a 24 × 12 torus, one run
+per timing, and checks instead of a table worth reading: every method's output triangle count is
+the one its lattice or subdivision gives, and our `pn-triangles` tessellation is the numpy PN
+triangles' surface (every sample of one within PN_AGREEMENT of a vertex of the other, both ways).
+Exit status 1 when a check fails.
 
 The mesh is a regular 16:8-proportioned torus grid (R = 1, r = 0.4; NU × NV quads split along
 one diagonal, default 320 × 160 = 102 400 triangles) with area-weighted vertex normals, written
@@ -15,8 +21,10 @@ as OBJ with its normals. Output counts match: Loop with L levels gives F·4^L tr
 tessellation at s segments per edge F·s², so s = 2^L (s = 4 ↔ L = 2, s = 8 ↔ L = 3).
 
 * ours: `experiments fit --data mesh.obj --estimate none --curves chord --scheme S --segments s
-  --mesh-output out.ply`; the time is the sum of the `fit` and `tessellate` stage times it prints
-  (reading, G1 measurement, conversion and writing are outside, as they are for the others). Our
+  --mesh-output out.ply --report report.json`; the time is the report's `time.fit` (the fit is
+  streamed: the curves) plus `time.sample` (the patches built again where they are sampled, and
+  sampled into the welded mesh); reading, G1 measurement, conversion and writing are outside, as
+  they are for the others. Our
   tessellation also computes normals, Gaussian and mean curvature and shape tensors per vertex,
   and welds the output into one mesh.
 * libigl: `igl.loop(V, F, L)` (positions and faces only).
@@ -28,7 +36,9 @@ Each timing is the median of five runs. The numbers in docs/performance.md were 
 script.
 """
 
-import re
+import argparse
+import json
+import os
 import statistics
 import subprocess
 import sys
@@ -39,6 +49,14 @@ from pathlib import Path
 import numpy as np
 
 RUNS = 5
+
+# Quick mode's torus (576 triangles) and its single run per timing: seconds in a debug build.
+QUICK_TORUS = (24, 12)
+
+# Our `pn-triangles` samples and numpy's are the same cubic Bézier points evaluated in another
+# order of floating-point operations: measured 6.8e-16 apart on the quick torus (radius 1.4);
+# 1e-12 is far above rounding and far below any real difference of construction.
+PN_AGREEMENT = 1e-12
 
 
 def torus(nu, nv, major=1.0, minor=0.4):
@@ -136,58 +154,103 @@ def pn_triangles(verts, faces, normals, s):
     return pos.reshape(-1, 3), nor.reshape(-1, 3), faces_out
 
 
-def median_time(f):
+def median_time(f, runs):
     times = []
     out = None
-    for _ in range(RUNS):
+    for _ in range(runs):
         t = time.perf_counter()
         out = f()
         times.append(time.perf_counter() - t)
     return statistics.median(times), out
 
 
-def ours(obj, scheme, s, tmp):
+def ours(exe, obj, scheme, s, tmp, runs, ext):
+    """Median of `runs` fit + sample times of our scheme, the output triangle count and the path
+    of the tessellation written (`ext` "obj" in quick mode: text, read back by its checks)."""
     times = []
     tris = None
-    for _ in range(RUNS):
-        r = subprocess.run(
-            ["target/release/experiments", "fit", "--data", str(obj), "--estimate", "none",
-             "--curves", "chord", "--scheme", scheme, "--segments", str(s),
-             "--mesh-output", str(Path(tmp) / "out.ply")],
+    out = Path(tmp) / f"out-{scheme}-{s}.{ext}"
+    report = Path(tmp) / "report.json"
+    for _ in range(runs):
+        subprocess.run(
+            [exe, "fit", "--data", str(obj), "--estimate", "none", "--curves", "chord",
+             "--scheme", scheme, "--segments", str(s), "--mesh-output", str(out),
+             "--report", str(report)],
             capture_output=True, text=True, check=True,
         )
-        err = r.stderr
-        fit = float(re.search(r"fit ([0-9.]+) s", err).group(1))
-        m = re.search(r"tessellation: s = \d+, \d+ vertices, (\d+) triangles, \d+ seam welds, in [0-9.]+ s \(tessellate ([0-9.]+) s", err)
-        tris = int(m.group(1))
-        times.append(fit + float(m.group(2)))
-    return statistics.median(times), tris
+        r = json.loads(report.read_text())
+        tris = r["tessellation"]["triangles"]
+        times.append(r["time"]["fit"] + r["time"]["sample"])
+    return statistics.median(times), tris, out
+
+
+def read_obj_positions(path):
+    return np.array(
+        [[float(x) for x in line.split()[1:4]]
+         for line in Path(path).read_text().splitlines() if line.startswith("v ")]
+    )
+
+
+def two_way_distance(a, b):
+    """The largest distance from a point of either set to the nearest point of the other."""
+    from scipy.spatial import cKDTree
+
+    return max(cKDTree(b).query(a)[0].max(), cKDTree(a).query(b)[0].max())
 
 
 def main():
-    nu, nv = (int(sys.argv[1]), int(sys.argv[2])) if len(sys.argv) > 2 else (320, 160)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("size", nargs="*", type=int, help="NU NV (default 320 160)")
+    parser.add_argument("--quick", action="store_true", help="small torus, one run, checks")
+    parser.add_argument("--experiments", default=os.environ.get("EXPERIMENTS",
+                        "target/release/experiments"), help="the experiments binary")
+    args = parser.parse_args()
+    if args.size and len(args.size) != 2:
+        parser.error("give both NU and NV")
+    nu, nv = args.size or (QUICK_TORUS if args.quick else (320, 160))
+    runs = 1 if args.quick else RUNS
     import igl
 
     verts, faces = torus(nu, nv)
     normals = vertex_normals(verts, faces)
-    print(f"torus {nu}×{nv}: {len(faces)} triangles")
+    nf = len(faces)
+    failures = []
+
+    def expect(what, got, want):
+        if got != want:
+            failures.append(f"{what}: {got} output triangles, expected {want}")
+
+    print(f"torus {nu}×{nv}: {nf} triangles")
     with tempfile.TemporaryDirectory() as tmp:
         obj = Path(tmp) / "mesh.obj"
         write_obj(obj, verts, faces, normals)
         print("| method | output triangles | time (s) | M triangles/s |")
         print("|---|---:|---:|---:|")
         for level, s in [(2, 4), (3, 8)]:
-            t, (_, f_out) = median_time(lambda: igl.loop(verts, faces, level))
+            t, (_, f_out) = median_time(lambda: igl.loop(verts, faces, level), runs)
+            expect(f"libigl loop {level}", len(f_out), nf * 4**level)
             print(f"| libigl `loop`, {level} levels | {len(f_out)} | {t:.3f} | {len(f_out) / t / 1e6:.1f} |")
-            t, (_, _, f_out) = median_time(lambda: pn_triangles(verts, faces, normals, s))
+            t, (pn_pos, _, f_out) = median_time(lambda: pn_triangles(verts, faces, normals, s), runs)
+            expect(f"numpy PN s = {s}", len(f_out), nf * s * s)
             print(f"| numpy PN triangles, s = {s} | {len(f_out)} | {t:.3f} | {len(f_out) / t / 1e6:.1f} |")
             for scheme in ["pn-triangles", "shirman-sequin", "nielson"]:
                 # Shirman–Séquin has three patches per face: s/2 per patch edge is the closest
                 # output count (3·(s/2)² = 0.75 s² per face); reported as measured.
                 ss = s // 2 if scheme == "shirman-sequin" else s
-                t, n = ours(obj, scheme, ss, tmp)
+                t, n, out = ours(args.experiments, obj, scheme, ss, tmp, runs, "obj" if args.quick else "ply")
+                patches = 3 if scheme == "shirman-sequin" else 1
+                expect(f"ours {scheme} s = {ss}", n, nf * patches * ss * ss)
                 print(f"| ours `{scheme}`, fit + tessellate s = {ss} | {n} | {t:.3f} | {n / t / 1e6:.1f} |")
+                if args.quick and scheme == "pn-triangles":
+                    d = two_way_distance(read_obj_positions(out), pn_pos)
+                    print(f"  ours `pn-triangles` against numpy's PN triangles, s = {s}: {d:.1e} apart")
+                    if not d <= PN_AGREEMENT:
+                        failures.append(f"pn-triangles s = {s}: ours and numpy's {d:.1e} apart "
+                                        f"(more than {PN_AGREEMENT:.0e})")
+    for f in failures:
+        print(f"compare_tessellation: {f}", file=sys.stderr)
+    return 1 if failures else 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

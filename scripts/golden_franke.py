@@ -9,6 +9,11 @@ Usage (from the repository root):
     python3 -m venv /tmp/venv-franke && /tmp/venv-franke/bin/pip install -r scripts/requirements-franke.txt
     /tmp/venv-franke/bin/python scripts/golden_franke.py data/golden/franke-scipy.json
 
+`--quick` (what `scripts/run-quick` runs in CI; about 2 s) writes nothing: it computes every row
+and fails unless the committed data/golden/franke-scipy.json holds the same numbers (floats
+within GOLDEN_REL_TOL relative, the rest equal), so the study's golden numbers are still what
+the pinned scipy computes on the point sets this script makes.
+
 The point sets are regenerated here as `mesh::datasets` makes them: the 33 x 33 grid of [0, 1]^2,
 and the 100 scattered points from the workbench's SplitMix64 (rng/src/lib.rs) seeded with
 FRANKE_SEED: the four corners, s = floor(sqrt(n - 4)) // 2 uniform points on each side (bottom,
@@ -32,6 +37,14 @@ FRANKE_SEED = 0x4652_414E_4B45
 GRID = 33
 SCATTERED = 100
 EVAL = 101
+
+COMMITTED = "data/golden/franke-scipy.json"
+
+# The same pinned scipy and numpy on the same points repeat their numbers bit for bit (measured:
+# the file is reproduced byte for byte); 1e-12 relative leaves room for another CPU's BLAS and
+# libm in Qhull and the gradient solve, and is far below what a changed point set or formula
+# moves (the errors are 1e-4 and up).
+GOLDEN_REL_TOL = 1e-12
 
 
 class SplitMix64:
@@ -88,7 +101,7 @@ def franke(k, x, y):
     return np.sqrt(64 - 81 * r2) / 9 - 0.5
 
 
-def main(out):
+def report():
     e = grid(EVAL)
     rows = []
     sc = scattered(SCATTERED)
@@ -105,7 +118,7 @@ def main(out):
                 "rms_error": float(np.sqrt(np.mean(err ** 2))),
                 "points_outside": int((~inside).sum()),
             })
-    report = {
+    return {
         "generator": "scripts/golden_franke.py",
         "scipy": scipy.__version__,
         "numpy": np.__version__,
@@ -115,10 +128,44 @@ def main(out):
         "scattered_sum": [float(sc[:, 0].sum()), float(sc[:, 1].sum())],
         "rows": rows,
     }
-    with open(out, "w") as f:
-        json.dump(report, f, indent=2)
+
+
+def differences(committed, now, path=""):
+    """Where two reports differ: floats beyond GOLDEN_REL_TOL, anything else unequal."""
+    if isinstance(committed, dict) and isinstance(now, dict):
+        out = [f"{path}: keys {sorted(set(committed) ^ set(now))}"] if set(committed) != set(now) else []
+        for k in sorted(set(committed) & set(now)):
+            out += differences(committed[k], now[k], f"{path}.{k}")
+        return out
+    if isinstance(committed, list) and isinstance(now, list):
+        out = [f"{path}: {len(committed)} items, now {len(now)}"] if len(committed) != len(now) else []
+        for i, (a, b) in enumerate(zip(committed, now)):
+            out += differences(a, b, f"{path}[{i}]")
+        return out
+    if isinstance(committed, float) and isinstance(now, float):
+        ok = abs(committed - now) <= GOLDEN_REL_TOL * abs(committed)
+    else:
+        ok = committed == now
+    return [] if ok else [f"{path}: committed {committed!r}, now {now!r}"]
+
+
+def main(argv):
+    if argv == ["--quick"]:
+        with open(COMMITTED) as f:
+            diffs = differences(json.load(f), report())
+        for d in diffs:
+            print(f"golden_franke --quick: {COMMITTED}{d}", file=sys.stderr)
+        if diffs:
+            return 1
+        print(f"golden_franke --quick: {COMMITTED} as computed (within {GOLDEN_REL_TOL:.0e})")
+        return 0
+    if len(argv) != 1:
+        sys.exit(__doc__)
+    with open(argv[0], "w") as f:
+        json.dump(report(), f, indent=2)
         f.write("\n")
+    return 0
 
 
 if __name__ == "__main__":
-    main(sys.argv[1])
+    sys.exit(main(sys.argv[1:]))

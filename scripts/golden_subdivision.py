@@ -31,11 +31,18 @@ compares the faces as cyclic vertex sequences under that matching.
 Timing (`--bench DIR`): reads the benchmark meshes the Rust example `export_bench_meshes` writes
 (OBJ) and times three levels of each scheme, the C++ call only (the Python-side conversion of the
 input arrays is outside the timer; the binding's own copy into its mesh type is inside).
+
+`--quick` (what `scripts/run-quick` runs in CI; about a second) writes nothing under data/: it
+makes the golden files in a temporary directory and fails unless they hold the committed
+files' meshes (faces equal, positions within GOLDEN_TOL), then times one run of each scheme on
+the closed and open meshes written as OBJ (the `--bench` path), failing unless each row has
+the mesh's counts and a positive time for every scheme that applies.
 """
 
 import json
 import math
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -43,6 +50,12 @@ import igl
 import numpy as np
 from compas_cgal import _subdivision as cgal_subdivision
 from compas_cgal import _types_std  # noqa: F401  (registers the list-of-lists face type)
+
+# The same pinned libigl and compas_cgal reproduce the committed files byte for byte (measured);
+# 1e-12 (the Rust test's own comparison tolerance; the meshes are of unit size) leaves room
+# for another CPU's libm in the jitter and the normalization, and is far below what a changed
+# rule moves (its weights are multiples of 1/64).
+GOLDEN_TOL = 1e-12
 
 VERSIONS = {"libigl": "2.6.3", "compas_cgal": "0.10.0", "numpy": np.__version__}
 
@@ -238,6 +251,64 @@ def best_of(runs, fn):
     return best
 
 
+def golden_differences(committed, now, path=""):
+    """Where two golden documents differ: positions (decimal strings) beyond GOLDEN_TOL,
+    anything else unequal."""
+    if isinstance(committed, dict) and isinstance(now, dict):
+        out = [f"{path}: keys {sorted(set(committed) ^ set(now))}"] if set(committed) != set(now) else []
+        for k in sorted(set(committed) & set(now)):
+            out += golden_differences(committed[k], now[k], f"{path}.{k}")
+        return out
+    if isinstance(committed, list) and isinstance(now, list):
+        out = [f"{path}: {len(committed)} items, now {len(now)}"] if len(committed) != len(now) else []
+        for i, (a, b) in enumerate(zip(committed, now)):
+            out += golden_differences(a, b, f"{path}[{i}]")
+        return out
+    if isinstance(committed, str) and isinstance(now, str) and ".positions" in path:
+        ok = abs(float(committed) - float(now)) <= GOLDEN_TOL
+    else:
+        ok = committed == now
+    return [] if ok else [f"{path}: committed {committed!r}, now {now!r}"]
+
+
+def write_obj(path, v, f):
+    lines = [f"v {float(x)!r} {float(y)!r} {float(z)!r}" for x, y, z in np.asarray(v)]
+    lines += ["f " + " ".join(str(i + 1) for i in face) for face in f]
+    Path(path).write_text("\n".join(lines) + "\n")
+
+
+def quick():
+    failures = []
+    with tempfile.TemporaryDirectory() as tmp:
+        golden(tmp)
+        for name in sorted(p.name for p in Path(tmp).glob("*.json")):
+            committed = json.loads((Path("data/golden") / name).read_text())
+            now = json.loads((Path(tmp) / name).read_text())
+            # The versions record numpy's too, which the pins fix; compared like the rest.
+            failures += [f"data/golden/{name}{d}" for d in golden_differences(committed, now)]
+        meshes = {"closed": irregular_triangles(), "open": open_triangles()}
+        bench_dir = Path(tmp) / "bench"
+        bench_dir.mkdir()
+        for name, (v, f) in meshes.items():
+            write_obj(bench_dir / f"{name}.obj", v, f)
+        result = bench(bench_dir, runs=1)
+        for name, (v, f) in meshes.items():
+            row = result.get(name, {})
+            if row.get("faces") != len(f) or row.get("vertices") != len(v):
+                failures.append(f"bench {name}: read {row.get('faces')} faces, "
+                                f"{row.get('vertices')} vertices of {len(f)}, {len(v)}")
+            for key in ("libigl_loop_warren", "cgal_loop", "cgal_catmull_clark"):
+                if not row.get(key, 0) > 0:
+                    failures.append(f"bench {name}: no time for {key}")
+    for f in failures:
+        print(f"golden_subdivision --quick: {f}", file=sys.stderr)
+    if failures:
+        return 1
+    print(f"golden_subdivision --quick: data/golden's three files as made (within {GOLDEN_TOL:.0e}); "
+          "the bench path timed both meshes")
+    return 0
+
+
 def bench(mesh_dir, runs=3):
     d = Path(mesh_dir)
     result = {"versions": VERSIONS, "levels": 3, "runs": runs, "statistic": "best of runs, seconds"}
@@ -257,10 +328,13 @@ def bench(mesh_dir, runs=3):
         result[name] = row
         print(name, row, flush=True)
     print(json.dumps(result, indent=1))
+    return result
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--bench":
+    if sys.argv[1:] == ["--quick"]:
+        sys.exit(quick())
+    elif len(sys.argv) == 3 and sys.argv[1] == "--bench":
         bench(sys.argv[2])
     elif len(sys.argv) == 2:
         golden(sys.argv[1])

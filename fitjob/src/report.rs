@@ -230,6 +230,10 @@ pub struct Timings {
     pub g1: f64,
     /// The tessellation and its writing.
     pub tessellate: f64,
+    /// The part of `tessellate` that samples the patches into the welded mesh, before its
+    /// conversion to the output format and writing (what `scripts/compare_tessellation.py`
+    /// times).
+    pub sample: f64,
 }
 
 /// Peak resident memory after a stage.

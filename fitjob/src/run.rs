@@ -301,6 +301,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
     let mut tessellation = None;
     let mut kept_tessellation = None;
     let mut t_tess = 0.0;
+    let mut t_sample = 0.0;
     if let (Some(path), Some(format)) = (&options.mesh_out, mesh_format) {
         check_memory(
             &format!("--segments {}", options.tess),
@@ -322,6 +323,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             source,
         })?;
         let tessellate_time = t3.elapsed().as_secs_f64();
+        t_sample = tessellate_time;
         tess.to_world(&frame);
         let raw = crate::output::tessellation_mesh(&tess, format);
         let write_options = options.mesh_options.write_options();
@@ -456,6 +458,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             fit: t_fit,
             g1: t_g1,
             tessellate: t_tess,
+            sample: t_sample,
         },
         peak_memory: peaks,
     };

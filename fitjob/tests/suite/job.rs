@@ -256,6 +256,13 @@ fn the_outputs_written_are_those_reported() {
     // 256 faces × 3 sub-patches × 3² triangles.
     assert_eq!(t.triangles, 256 * 3 * 9);
     assert!(std::fs::metadata(&patches).expect("patches").len() > 0);
+    // The sampling is timed on its own (scripts/compare_tessellation.py reads it), a part of
+    // the tessellation stage, which also converts and writes.
+    let time = outcome.report.time;
+    assert!(
+        time.sample > 0.0 && time.sample <= time.tessellate,
+        "{time:?}"
+    );
 }
 
 #[test]
