@@ -20,64 +20,10 @@
 use std::sync::LazyLock;
 
 use clap::builder::PossibleValuesParser;
-use curves::{DbhsPick, MethodOptions};
-use solver::SolverKind;
+
 use surface::fairing::InteriorChoice;
 
-/// `--solver`, `--dbhs-pick`, `--tweak-t` and `--four-ninths`.
-#[derive(clap::Args, Debug, Clone, Copy)]
-pub struct CurveOptions {
-    /// Solver of the optimized construction (and of `--interior` fairing); the names come from
-    /// the solver registry.
-    #[arg(long, default_value_t = SolverKind::ExactPenalty, value_parser = solver_names())]
-    pub solver: SolverKind,
-    /// Which dBHS solution to take: closest (to α = (1, 1)), longest-short (largest shorter
-    /// tangent), or a solution index in order of increasing α0.
-    #[arg(long, default_value_t = DbhsPick::Closest)]
-    pub dbhs_pick: DbhsPick,
-    /// The parameter t of `tweak`: its inner control points t of the way from each end to the
-    /// end tangents' intersection, 0 < t ≤ 1 (`quadric` is t = 2/3).
-    #[arg(long, default_value_t = curves::tweak::DEFAULT_TWEAK_T, value_name = "T",
-          value_parser = parse_tweak_t, allow_hyphen_values = true)]
-    pub tweak_t: f64,
-    /// The four-ninths variants of `projection`, `projection-scaled` and `piper`: the point
-    /// five ninths along the chord, (4/9) V_a + (5/9) V_b, projected instead of the third.
-    #[arg(long)]
-    pub four_ninths: bool,
-}
-
-/// `--tweak-t`'s value: a number in (0, 1] (`curves::tweak::check_t`).
-fn parse_tweak_t(s: &str) -> Result<f64, String> {
-    let t: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("`{s}` is not a number"))?;
-    curves::tweak::check_t(t).map_err(|e| e.to_string())
-}
-
-/// The registered solvers as the values `--solver` accepts (`--help` lists them).
-fn solver_names() -> impl clap::builder::TypedValueParser<Value = SolverKind> {
-    use clap::builder::TypedValueParser as _;
-    PossibleValuesParser::new(SolverKind::ALL.iter().map(|k| k.name()))
-        .try_map(|name| name.parse::<SolverKind>())
-}
-
-impl CurveOptions {
-    /// The constructions' options with these choices, the rest at their defaults.
-    pub fn method_options(&self) -> MethodOptions {
-        MethodOptions {
-            dbhs_pick: self.dbhs_pick,
-            solver: self.solver,
-            tweak_t: self.tweak_t,
-            reach: if self.four_ninths {
-                curves::Reach::FourNinths
-            } else {
-                curves::Reach::Third
-            },
-            ..MethodOptions::default()
-        }
-    }
-}
+pub use fitjob::cli::CurveOptions;
 
 /// `--interior`.
 #[derive(clap::Args, Debug, Clone, Copy)]
@@ -160,7 +106,7 @@ mod tests {
         let all: Vec<&str> = all_methods().split(',').collect();
         assert_eq!(all.len(), curves::REGISTRY.len());
         for name in &all {
-            assert!(curves::method_by_name(name, &MethodOptions::default()).is_ok());
+            assert!(curves::method_by_name(name, &curves::MethodOptions::default()).is_ok());
         }
         let offered: Vec<String> = method_names()
             .possible_values()

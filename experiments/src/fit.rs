@@ -70,17 +70,9 @@ pub struct FitArgs {
     /// is then held whole, not streamed (the same numbers).
     #[arg(long, value_name = "PAGE.html")]
     html: Option<PathBuf>,
-    /// Fit the data as a height field z = f(x, y): clough-tocher and powell-sabin then build
-    /// their functional C1 interpolants (values and gradients ∇f = (−n_x/n_z, −n_y/n_z) at the
-    /// vertices of the xy triangulation). An error when the data is not a height field (every
-    /// normal with n_z > 0, no creases, the xy projection a planar triangulation without
-    /// fold-overs) or the scheme has no functional form. Without it a height field is detected
-    /// by the same rule and said in a note.
-    #[arg(long, conflicts_with = "no_heightfield")]
-    heightfield: bool,
-    /// Never fit as a height field: the parametric schemes whatever the data.
-    #[arg(long)]
-    no_heightfield: bool,
+    /// `--heightfield`, `--no-heightfield`.
+    #[command(flatten)]
+    heightfield: fitjob::cli::HeightFieldArgs,
 }
 
 impl FitArgs {
@@ -100,13 +92,7 @@ impl FitArgs {
             patches_out: self.output.clone(),
             mesh_out: self.mesh_output.clone(),
             mesh_options: self.mesh_options,
-            heightfield: if self.heightfield {
-                surface::scheme::functional::HeightFieldMode::On
-            } else if self.no_heightfield {
-                surface::scheme::functional::HeightFieldMode::Off
-            } else {
-                surface::scheme::functional::HeightFieldMode::Auto
-            },
+            heightfield: self.heightfield.mode(),
             keep: self.html.is_some(),
         }
     }

@@ -302,3 +302,88 @@ mod tests {
         assert!(loop_refused.is_err());
     }
 }
+
+/// `--solver`, `--dbhs-pick`, `--tweak-t` and `--four-ninths`.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct CurveOptions {
+    /// Solver of the optimized construction (and of `--interior` fairing); the names come from
+    /// the solver registry.
+    #[arg(long, default_value_t = solver::SolverKind::ExactPenalty, value_parser = solver_names())]
+    pub solver: solver::SolverKind,
+    /// Which dBHS solution to take: closest (to α = (1, 1)), longest-short (largest shorter
+    /// tangent), or a solution index in order of increasing α0.
+    #[arg(long, default_value_t = curves::DbhsPick::Closest)]
+    pub dbhs_pick: curves::DbhsPick,
+    /// The parameter t of `tweak`: its inner control points t of the way from each end to the
+    /// end tangents' intersection, 0 < t ≤ 1 (`quadric` is t = 2/3).
+    #[arg(long, default_value_t = curves::tweak::DEFAULT_TWEAK_T, value_name = "T",
+          value_parser = parse_tweak_t, allow_hyphen_values = true)]
+    pub tweak_t: f64,
+    /// The four-ninths variants of `projection`, `projection-scaled` and `piper`: the point
+    /// five ninths along the chord, (4/9) V_a + (5/9) V_b, projected instead of the third.
+    #[arg(long)]
+    pub four_ninths: bool,
+}
+
+/// `--tweak-t`'s value: a number in (0, 1] (`curves::tweak::check_t`).
+fn parse_tweak_t(s: &str) -> Result<f64, String> {
+    let t: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number"))?;
+    curves::tweak::check_t(t).map_err(|e| e.to_string())
+}
+
+/// The registered solvers as the values `--solver` accepts (`--help` lists them).
+fn solver_names() -> impl clap::builder::TypedValueParser<Value = solver::SolverKind> {
+    use clap::builder::TypedValueParser as _;
+    PossibleValuesParser::new(solver::SolverKind::ALL.iter().map(|k| k.name()))
+        .try_map(|name| name.parse::<solver::SolverKind>())
+}
+
+impl CurveOptions {
+    /// The constructions' options with these choices, the rest at their defaults.
+    pub fn method_options(&self) -> curves::MethodOptions {
+        curves::MethodOptions {
+            dbhs_pick: self.dbhs_pick,
+            solver: self.solver,
+            tweak_t: self.tweak_t,
+            reach: if self.four_ninths {
+                curves::Reach::FourNinths
+            } else {
+                curves::Reach::Third
+            },
+            ..curves::MethodOptions::default()
+        }
+    }
+}
+
+/// `--heightfield` and `--no-heightfield`: whether the data is fitted as a height field.
+#[derive(clap::Args, Debug, Clone, Copy, Default)]
+pub struct HeightFieldArgs {
+    /// Fit the data as a height field z = f(x, y): clough-tocher and powell-sabin then build
+    /// their functional C1 interpolants (values and gradients ∇f = (−n_x/n_z, −n_y/n_z) at the
+    /// vertices of the xy triangulation). An error when the data is not a height field (every
+    /// normal with n_z > 0, no creases, the xy projection a planar triangulation without
+    /// fold-overs) or the scheme has no functional form. Without it a height field is detected
+    /// by the same rule and said in a note.
+    #[arg(long, conflicts_with = "no_heightfield")]
+    pub heightfield: bool,
+    /// Never fit as a height field: the parametric schemes whatever the data.
+    #[arg(long)]
+    pub no_heightfield: bool,
+}
+
+impl HeightFieldArgs {
+    /// The fit job's mode.
+    pub fn mode(&self) -> surface::scheme::functional::HeightFieldMode {
+        use surface::scheme::functional::HeightFieldMode;
+        if self.heightfield {
+            HeightFieldMode::On
+        } else if self.no_heightfield {
+            HeightFieldMode::Off
+        } else {
+            HeightFieldMode::Auto
+        }
+    }
+}

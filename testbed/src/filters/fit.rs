@@ -49,6 +49,13 @@ pub struct FitArgs {
     /// Boundary-curve construction (the registry's).
     #[arg(long, default_value = "chord", value_parser = fitjob::cli::curve_method_names())]
     pub curves: String,
+    /// The curve constructions' options (`--solver`, `--dbhs-pick`, `--tweak-t`,
+    /// `--four-ninths`), as `experiments fit` takes them.
+    #[command(flatten)]
+    pub curve: fitjob::cli::CurveOptions,
+    /// `--heightfield`, `--no-heightfield` (the functional Clough–Tocher and Powell–Sabin).
+    #[command(flatten)]
+    pub heightfield: fitjob::cli::HeightFieldArgs,
     /// Estimator for what the mesh lacks (the registry's, or `none`).
     #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR, value_parser = fitjob::cli::estimator_names())]
     pub estimate: String,
@@ -138,6 +145,8 @@ impl Filter for Fit {
             scheme: args.scheme.scheme,
             scheme_options: args.scheme.options,
             curves: args.curves,
+            method_options: args.curve.method_options(),
+            heightfield: args.heightfield.mode(),
             estimate: args.estimate,
             replace_normals: args.replace_normals,
             segments: args.segments,
@@ -172,8 +181,12 @@ pub struct FitOptions {
     pub scheme: String,
     /// The schemes' parameters.
     pub scheme_options: surface::SchemeOptions,
-    /// Boundary-curve method (`chord`, `dbhs`, `optimized`).
+    /// Boundary-curve construction (`curves::REGISTRY`).
     pub curves: String,
+    /// The constructions' options.
+    pub method_options: curves::MethodOptions,
+    /// Whether to fit as a height field.
+    pub heightfield: surface::scheme::functional::HeightFieldMode,
     /// Estimator for what the file lacks (`none` or an estimator's name).
     pub estimate: String,
     /// Estimate normals even where the file has them.
@@ -245,7 +258,7 @@ pub fn fit<W: std::io::Write>(
 ) -> Result<(), FilterError> {
     let scheme = surface::scheme_by_name(&options.scheme, &options.scheme_options)
         .map_err(|e| FilterError::Usage(e.to_string()))?;
-    curves::method_by_name(&options.curves, &curves::MethodOptions::default())
+    curves::method_by_name(&options.curves, &options.method_options)
         .map_err(|e| FilterError::Usage(e.to_string()))?;
     let layout = scheme.layout();
     let sample = match options.segments {
@@ -272,6 +285,8 @@ pub fn fit<W: std::io::Write>(
         scheme: options.scheme.clone(),
         scheme_options: options.scheme_options.clone(),
         curves: options.curves.clone(),
+        method_options: options.method_options,
+        heightfield: options.heightfield,
         measure_g1: false,
         keep: true,
         ..fitjob::FitOptions::default()

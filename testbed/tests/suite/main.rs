@@ -3,6 +3,7 @@
 
 mod bzp;
 mod examples;
+mod fit_options;
 mod kcolor_map;
 mod library;
 mod numerics;
