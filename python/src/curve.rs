@@ -25,8 +25,7 @@ pub fn method_options(
 ) -> PyResult<MethodOptions> {
     let mut options = MethodOptions {
         solver: solver::SolverKind::from_str(solver).map_err(|e| usage(e.to_string()))?,
-        tweak_t: ::curves::tweak::check_t(tweak_t)
-            .map_err(|e| usage(format!("tweak_t: {e}")))?,
+        tweak_t: ::curves::tweak::check_t(tweak_t).map_err(|e| usage(format!("tweak_t: {e}")))?,
         reach: if four_ninths {
             ::curves::Reach::FourNinths
         } else {
@@ -42,11 +41,7 @@ pub fn method_options(
 
 /// The construction `method` with `options`; `history`: the solver reports keep the cost at
 /// every iteration (as the command line's `curve` asks, for its plots).
-fn method(
-    name: &str,
-    mut options: MethodOptions,
-    history: bool,
-) -> PyResult<Box<dyn CurveMethod>> {
+fn method(name: &str, mut options: MethodOptions, history: bool) -> PyResult<Box<dyn CurveMethod>> {
     options.solve_options.record_history = history;
     ::curves::method_by_name(name, &options).map_err(|e| usage(e.to_string()))
 }

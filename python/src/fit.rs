@@ -120,12 +120,8 @@ pub fn job_options(
     input: fitjob::InputOptions,
     args: &JobArgs<'_>,
 ) -> PyResult<fitjob::FitOptions> {
-    let method_options = crate::curve::method_options(
-        args.solver,
-        args.dbhs_pick,
-        args.tweak_t,
-        args.four_ninths,
-    )?;
+    let method_options =
+        crate::curve::method_options(args.solver, args.dbhs_pick, args.tweak_t, args.four_ninths)?;
     let interior = surface::fairing::InteriorChoice::from_str(args.interior).map_err(usage)?;
     let up = meshio::UpAxis::from_str(args.up).map_err(usage)?;
     Ok(fitjob::FitOptions {
