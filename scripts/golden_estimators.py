@@ -25,11 +25,19 @@ normals). This script computes, for every mesh:
 
 and writes, per mesh and estimator, RMS and max of the normal error (degrees) and of |K − K_exact|
 and |H − H_exact|, to the JSON file given. The numbers are committed; the study reads them.
+
+`--quick` (what `scripts/run-quick` runs in CI) writes nothing: it exports the study's meshes with
+the `experiments` binary named by $EXPERIMENTS (default target/debug/experiments) into a temporary
+directory, recomputes the rows of the QUICK_MESHES smallest meshes with the committed H sign, and
+exits 1 unless they equal data/golden/libigl-estimators.json within GOLDEN_REL_TOL.
 """
 
 import json
 import math
+import os
+import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import igl
@@ -61,13 +69,20 @@ def normal_errors(n_est, n_exact):
     return np.degrees(np.arctan2(s, c))
 
 
-def main(src, out):
-    src = Path(src)
-    names = sorted(p.name[: -len(".exact.json")] for p in src.glob("*.exact.json"))
-    if not names:
-        sys.exit(f"no *.exact.json in {src}")
-    result = {"libigl_version": "2.6.3", "meshes": {}}
-    h_sign = None
+COMMITTED = Path(__file__).resolve().parent.parent / "data/golden/libigl-estimators.json"
+
+# The quick mode recomputes this many meshes (the smallest, by vertex count): a few seconds.
+QUICK_MESHES = 4
+
+# Same libigl, same meshes, same arithmetic: the rows reproduce to rounding of the sums (the
+# committed file is written with 17 significant digits); 1e-9 leaves room for a BLAS that sums
+# in another order.
+GOLDEN_REL_TOL = 1e-9
+
+
+def rows(src, names, h_sign=None):
+    """The rows of `names` in `src`, and the H sign used (fixed on the first when not given)."""
+    result = {}
     for name in names:
         v, f = read_obj(src / f"{name}.obj")
         exact = json.loads((src / f"{name}.exact.json").read_text())
@@ -97,14 +112,56 @@ def main(src, out):
         mass = igl.massmatrix(v, f, igl.MASSMATRIX_TYPE_VORONOI).diagonal()
         k = defect / np.maximum(mass, 1e-300)
         row["igl-angle-defect"] = {"K": stats(np.abs(k - k_exact))}
-        result["meshes"][name] = {"vertices": int(v.shape[0]), "faces": int(f.shape[0]), "estimators": row}
+        result[name] = {"vertices": int(v.shape[0]), "faces": int(f.shape[0]), "estimators": row}
         print(name, {e: {m: round(x["rms"], 6) for m, x in d.items() if isinstance(x, dict)} for e, d in row.items()})
-    result["h_sign"] = h_sign
+    return result, h_sign
+
+
+def differences(ours, theirs, path=""):
+    """Where two JSON values differ beyond GOLDEN_REL_TOL (numbers) or at all (the rest)."""
+    if isinstance(ours, dict) and isinstance(theirs, dict):
+        out = [f"{path}/{k}: missing" for k in sorted(set(ours) ^ set(theirs))]
+        for k in sorted(set(ours) & set(theirs)):
+            out += differences(ours[k], theirs[k], f"{path}/{k}")
+        return out
+    if isinstance(ours, (int, float)) and isinstance(theirs, (int, float)):
+        if abs(ours - theirs) > GOLDEN_REL_TOL * max(abs(ours), abs(theirs), 1e-300):
+            return [f"{path}: {ours!r} computed, {theirs!r} committed"]
+        return []
+    return [] if ours == theirs else [f"{path}: {ours!r} computed, {theirs!r} committed"]
+
+
+def quick():
+    committed = json.loads(COMMITTED.read_text())
+    exe = os.environ.get("EXPERIMENTS", "target/debug/experiments")
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run([exe, "estimation", "--export", tmp], check=True, stdout=subprocess.DEVNULL)
+        sizes = {n: m["vertices"] for n, m in committed["meshes"].items()}
+        names = sorted(sizes, key=lambda n: (sizes[n], n))[:QUICK_MESHES]
+        ours, _ = rows(Path(tmp), names, committed["h_sign"])
+    diff = differences(ours, {n: committed["meshes"][n] for n in names})
+    if diff:
+        for d in diff:
+            print(f"golden_estimators --quick: {COMMITTED}{d}", file=sys.stderr)
+        sys.exit(1)
+    print(f"golden_estimators --quick: {len(names)} meshes of {COMMITTED} as computed (within {GOLDEN_REL_TOL:.0e}): {', '.join(names)}")
+
+
+def main(src, out):
+    src = Path(src)
+    names = sorted(p.name[: -len(".exact.json")] for p in src.glob("*.exact.json"))
+    if not names:
+        sys.exit(f"no *.exact.json in {src}")
+    meshes, h_sign = rows(src, names)
+    result = {"libigl_version": "2.6.3", "meshes": meshes, "h_sign": h_sign}
     Path(out).parent.mkdir(parents=True, exist_ok=True)
     Path(out).write_text(json.dumps(result, indent=1, sort_keys=True) + "\n")
 
 
 if __name__ == "__main__":
+    if sys.argv[1:] == ["--quick"]:
+        quick()
+        sys.exit(0)
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     main(sys.argv[1], sys.argv[2])
