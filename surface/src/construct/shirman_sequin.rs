@@ -262,7 +262,7 @@ pub fn chiyokura_kimura(
 /// tangent off the vertex's tangent plane, `|t̂ · n| >` [`DEGENERATE`] (a clamped tangent:
 /// [`SchemeError::TangentOffPlane`]; unclamped tangents are perpendicular to rounding, 10⁻¹⁶,
 /// and a tangent within 10⁻⁸ of the plane moves the normal by no more than that).
-fn refuse_folding(
+pub(crate) fn refuse_folding(
     v: &[Point3<f64>; 3],
     n: &[Vector3<f64>; 3],
     edges: &[CubicBez3; 3],

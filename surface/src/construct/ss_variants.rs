@@ -129,9 +129,7 @@ use nalgebra::{Point3, Vector3};
 
 use crate::beztri::BezierTriangle;
 use crate::scheme::CENTROID_SPLIT;
-use crate::shirman_sequin::{
-    chiyokura_kimura, CrossEnd, CrossFailure, QuarticNet, SchemeError, DEGENERATE,
-};
+use crate::shirman_sequin::{chiyokura_kimura, CrossEnd, CrossFailure, QuarticNet, SchemeError};
 
 /// The default of the 1987 construction's free parameter: the C1 one (module docs).
 pub const DEFAULT_ALPHA2: f64 = 9.0 / 4.0;
@@ -160,29 +158,22 @@ fn affine(terms: &[(f64, Point3<f64>)]) -> Point3<f64> {
     )
 }
 
-/// The refusals of [`crate::shirman_sequin::macro_patch`], for the same reasons: a vertex
-/// normal at 90° or more from the face normal (the patch interpolates it and would fold) and
-/// an end tangent off its vertex's tangent plane (a clamped tangent: no G1 surface has it).
+/// The refusals of [`crate::shirman_sequin::macro_patch`], for the same reasons and by the same
+/// check (`shirman_sequin::refuse_folding`: a vertex normal at 90° or more from the face normal,
+/// an end tangent off its vertex's tangent plane), then an end derivative of zero length (or
+/// NaN), which these constructions divide by (Mann's does not). A face with several defects
+/// reports the first of that order.
 fn refuse(
     v: &[Point3<f64>; 3],
     n: &[Vector3<f64>; 3],
     edges: &[CubicBez3; 3],
 ) -> Result<(), SchemeError> {
-    let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
-    let area = e1.cross(&e2);
-    if area.norm() > DEGENERATE * e1.norm() * e2.norm() {
-        if let Some(corner) = (0..3).find(|&i| n[i].dot(&area) <= 0.0) {
-            return Err(SchemeError::NormalAgainstFace { corner });
-        }
-    }
+    crate::shirman_sequin::refuse_folding(v, n, edges)?;
     for (edge, c) in edges.iter().enumerate() {
         let [va, p1, p2, vb] = c.points;
         for (corner, t) in [(edge, p1 - va), (next(edge), vb - p2)] {
             if t.norm() == 0.0 || t.norm().is_nan() {
                 return Err(SchemeError::ZeroEndDerivative { edge, corner });
-            }
-            if t.dot(&n[corner]).abs() > DEGENERATE * t.norm() {
-                return Err(SchemeError::TangentOffPlane { edge, corner });
             }
         }
     }
