@@ -43,6 +43,8 @@ from pathlib import Path
 import igl
 import numpy as np
 
+from golden_diff import differences
+
 
 def read_obj(path):
     vs, fs = [], []
@@ -117,18 +119,11 @@ def rows(src, names, h_sign=None):
     return result, h_sign
 
 
-def differences(ours, theirs, path=""):
-    """Where two JSON values differ beyond GOLDEN_REL_TOL (numbers) or at all (the rest)."""
-    if isinstance(ours, dict) and isinstance(theirs, dict):
-        out = [f"{path}/{k}: missing" for k in sorted(set(ours) ^ set(theirs))]
-        for k in sorted(set(ours) & set(theirs)):
-            out += differences(ours[k], theirs[k], f"{path}/{k}")
-        return out
+def close(ours, theirs, _path):
+    """Numbers within GOLDEN_REL_TOL relative; anything else equal."""
     if isinstance(ours, (int, float)) and isinstance(theirs, (int, float)):
-        if abs(ours - theirs) > GOLDEN_REL_TOL * max(abs(ours), abs(theirs), 1e-300):
-            return [f"{path}: {ours!r} computed, {theirs!r} committed"]
-        return []
-    return [] if ours == theirs else [f"{path}: {ours!r} computed, {theirs!r} committed"]
+        return abs(ours - theirs) <= GOLDEN_REL_TOL * max(abs(ours), abs(theirs), 1e-300)
+    return ours == theirs
 
 
 def quick():
@@ -139,7 +134,7 @@ def quick():
         sizes = {n: m["vertices"] for n, m in committed["meshes"].items()}
         names = sorted(sizes, key=lambda n: (sizes[n], n))[:QUICK_MESHES]
         ours, _ = rows(Path(tmp), names, committed["h_sign"])
-    diff = differences(ours, {n: committed["meshes"][n] for n in names})
+    diff = differences({n: committed["meshes"][n] for n in names}, ours, close)
     if diff:
         for d in diff:
             print(f"golden_estimators --quick: {COMMITTED}{d}", file=sys.stderr)

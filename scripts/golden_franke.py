@@ -32,6 +32,8 @@ import numpy as np
 import scipy
 from scipy.interpolate import CloughTocher2DInterpolator
 
+from golden_diff import differences
+
 MASK = (1 << 64) - 1
 FRANKE_SEED = 0x4652_414E_4B45
 GRID = 33
@@ -130,29 +132,17 @@ def report():
     }
 
 
-def differences(committed, now, path=""):
-    """Where two reports differ: floats beyond GOLDEN_REL_TOL, anything else unequal."""
-    if isinstance(committed, dict) and isinstance(now, dict):
-        out = [f"{path}: keys {sorted(set(committed) ^ set(now))}"] if set(committed) != set(now) else []
-        for k in sorted(set(committed) & set(now)):
-            out += differences(committed[k], now[k], f"{path}.{k}")
-        return out
-    if isinstance(committed, list) and isinstance(now, list):
-        out = [f"{path}: {len(committed)} items, now {len(now)}"] if len(committed) != len(now) else []
-        for i, (a, b) in enumerate(zip(committed, now)):
-            out += differences(a, b, f"{path}[{i}]")
-        return out
+def close(committed, now, _path):
+    """Floats within GOLDEN_REL_TOL relative; anything else equal."""
     if isinstance(committed, float) and isinstance(now, float):
-        ok = abs(committed - now) <= GOLDEN_REL_TOL * abs(committed)
-    else:
-        ok = committed == now
-    return [] if ok else [f"{path}: committed {committed!r}, now {now!r}"]
+        return abs(committed - now) <= GOLDEN_REL_TOL * abs(committed)
+    return committed == now
 
 
 def main(argv):
     if argv == ["--quick"]:
         with open(COMMITTED) as f:
-            diffs = differences(json.load(f), report())
+            diffs = differences(json.load(f), report(), close)
         for d in diffs:
             print(f"golden_franke --quick: {COMMITTED}{d}", file=sys.stderr)
         if diffs:

@@ -50,6 +50,7 @@ import igl
 import numpy as np
 from compas_cgal import _subdivision as cgal_subdivision
 from compas_cgal import _types_std  # noqa: F401  (registers the list-of-lists face type)
+from golden_diff import differences
 
 # The same pinned libigl and compas_cgal reproduce the committed files byte for byte (measured);
 # 1e-12 (the Rust test's own comparison tolerance; the meshes are of unit size) leaves room
@@ -251,24 +252,11 @@ def best_of(runs, fn):
     return best
 
 
-def golden_differences(committed, now, path=""):
-    """Where two golden documents differ: positions (decimal strings) beyond GOLDEN_TOL,
-    anything else unequal."""
-    if isinstance(committed, dict) and isinstance(now, dict):
-        out = [f"{path}: keys {sorted(set(committed) ^ set(now))}"] if set(committed) != set(now) else []
-        for k in sorted(set(committed) & set(now)):
-            out += golden_differences(committed[k], now[k], f"{path}.{k}")
-        return out
-    if isinstance(committed, list) and isinstance(now, list):
-        out = [f"{path}: {len(committed)} items, now {len(now)}"] if len(committed) != len(now) else []
-        for i, (a, b) in enumerate(zip(committed, now)):
-            out += golden_differences(a, b, f"{path}[{i}]")
-        return out
+def golden_close(committed, now, path):
+    """Positions (decimal strings) within GOLDEN_TOL; anything else equal."""
     if isinstance(committed, str) and isinstance(now, str) and ".positions" in path:
-        ok = abs(float(committed) - float(now)) <= GOLDEN_TOL
-    else:
-        ok = committed == now
-    return [] if ok else [f"{path}: committed {committed!r}, now {now!r}"]
+        return abs(float(committed) - float(now)) <= GOLDEN_TOL
+    return committed == now
 
 
 def write_obj(path, v, f):
@@ -285,7 +273,7 @@ def quick():
             committed = json.loads((Path("data/golden") / name).read_text())
             now = json.loads((Path(tmp) / name).read_text())
             # The versions record numpy's too, which the pins fix; compared like the rest.
-            failures += [f"data/golden/{name}{d}" for d in golden_differences(committed, now)]
+            failures += [f"data/golden/{name}{d}" for d in differences(committed, now, golden_close)]
         meshes = {"closed": irregular_triangles(), "open": open_triangles()}
         bench_dir = Path(tmp) / "bench"
         bench_dir.mkdir()

@@ -116,9 +116,9 @@ const SCHEMES: [(&str, &str, f64); 3] = [
 ];
 
 /// The scheme whose error fields are pictured (`errors.png`), and the gradient sources pictured
-/// (matched against the row's gradient label).
+/// (by short name: `exact`, or an estimator's name).
 const PICTURED_SCHEME: &str = "clough-tocher";
-const PICTURED_GRADIENTS: [&str; 3] = ["exact", "(cubic)", "(minimum-norm)"];
+const PICTURED_GRADIENTS: [&str; 3] = ["exact", "cubic", "minimum-norm"];
 
 /// The workbench's answer to scipy's estimated-gradient Clough–Tocher: the same scheme
 /// (classical Clough–Tocher) with the workbench's best gradient estimator for functional data.
@@ -237,18 +237,18 @@ struct Measured {
 }
 
 /// Fits `mesh` (a height field) with the functional form of `scheme_name` (`clough-tocher`'s
-/// cubic weight `w`) and measures `|s − F|` and `|∇s − ∇F|` over the `g × g` grid of `[0, 1]²`;
-/// with `keep_field`, also the error at every grid point (row-major, NaN outside).
+/// cubic weight `w`) on `method`'s curves and measures `|s − F|` and `|∇s − ∇F|` over the
+/// `g × g` grid of `[0, 1]²`; with `keep_field`, also the error at every grid point (row-major,
+/// NaN outside).
 fn measure(
     f: mesh::analytic_franke::Franke,
     mesh: &mesh::Mesh,
-    scheme_name: &str,
-    w: f64,
+    method: &dyn curves::CurveMethod,
+    (scheme_name, w): (&str, f64),
     g: usize,
     keep_field: bool,
     subject: &str,
 ) -> Result<(Measured, Vec<f64>), ExperimentError> {
-    let method = curves::method_by_name("chord", &curves::MethodOptions::default())?;
     let options =
         surface::SchemeOptions::default().with(&surface::scheme::clough_tocher::CUBIC_WEIGHT, w);
     let s = surface::scheme_by_name(scheme_name, &options)?;
@@ -257,12 +257,11 @@ fn measure(
             subject: subject.to_string(),
             message: e.to_string(),
         })?;
-    let fit = surface::fit_scheme(mesh, s.as_ref(), method.as_ref()).map_err(|source| {
-        ExperimentError::Fit {
+    let fit =
+        surface::fit_scheme(mesh, s.as_ref(), method).map_err(|source| ExperimentError::Fit {
             subject: subject.to_string(),
             source,
-        }
-    })?;
+        })?;
     let graph = Graph::new(mesh, &fit);
     let (mut max, mut sum, mut count, mut gmax, mut outside) = (0.0f64, 0.0, 0usize, 0.0f64, 0);
     let mut field = Vec::with_capacity(if keep_field { g * g } else { 0 });
@@ -300,6 +299,7 @@ fn measure(
 pub fn run(args: &FrankeArgs) -> Result<ExitCode, ExperimentError> {
     let est = estimate::estimator_by_name(&args.estimate)
         .map_err(|e| ExperimentError::Usage(format!("--estimate {}: {e}", args.estimate)))?;
+    let method = curves::method_by_name("chord", &curves::MethodOptions::default())?;
     let g = args.grid as usize;
     let mut rows = Vec::new();
     let mut fields = Vec::new();
@@ -309,10 +309,14 @@ pub fn run(args: &FrankeArgs) -> Result<ExitCode, ExperimentError> {
         for (sampling, suffix) in [("grid 33 × 33", ""), ("scattered 100", "@scattered")] {
             let name = format!("franke{k}{suffix}");
             let exact = surface::dataset_by_name(&name, None)?.mesh;
-            let mut sources = vec![("exact".to_string(), exact.clone())];
+            // (short name, the rows' label, the data): exact, the surface estimator's, each
+            // functional-data estimator's.
             let mut estimated = exact.clone();
             estimate::apply(&mut estimated, est, false);
-            sources.push((format!("estimated ({})", est.name()), estimated));
+            let mut sources = vec![
+                ("exact", "exact".to_string(), exact.clone()),
+                (est.name(), format!("estimated ({})", est.name()), estimated),
+            ];
             for ge in estimate::gradients::GRADIENT_ESTIMATORS {
                 let mut m = exact.clone();
                 let grads = ge.gradients(&m);
@@ -324,14 +328,21 @@ pub fn run(args: &FrankeArgs) -> Result<ExitCode, ExperimentError> {
                     );
                 }
                 estimate::gradients::apply_gradients(&mut m, &grads);
-                sources.push((format!("estimated ({})", ge.name()), m));
+                sources.push((ge.name(), format!("estimated ({})", ge.name()), m));
             }
-            for (gradients, mesh) in &sources {
+            for (short, gradients, mesh) in &sources {
                 for (scheme_name, scheme, w) in SCHEMES {
-                    let pictured = scheme == PICTURED_SCHEME
-                        && PICTURED_GRADIENTS.iter().any(|p| gradients.contains(p));
+                    let pictured = scheme == PICTURED_SCHEME && PICTURED_GRADIENTS.contains(short);
                     let subject = format!("{name} {scheme} {gradients}");
-                    let (m, field) = measure(f, mesh, scheme_name, w, g, pictured, &subject)?;
+                    let (m, field) = measure(
+                        f,
+                        mesh,
+                        method.as_ref(),
+                        (scheme_name, w),
+                        g,
+                        pictured,
+                        &subject,
+                    )?;
                     let Measured {
                         max,
                         rms,
@@ -346,11 +357,8 @@ pub fn run(args: &FrankeArgs) -> Result<ExitCode, ExperimentError> {
                             .collect();
                         fields.push(ErrorField {
                             label: format!(
-                                "F{k} {}: {}",
-                                sampling.split(' ').next().unwrap_or(sampling),
-                                gradients
-                                    .trim_start_matches("estimated (")
-                                    .trim_end_matches(')')
+                                "F{k} {}: {short}",
+                                sampling.split(' ').next().unwrap_or(sampling)
                             ),
                             errors: field,
                             points,
@@ -390,18 +398,10 @@ pub fn run(args: &FrankeArgs) -> Result<ExitCode, ExperimentError> {
     let against = against_scipy(&rows);
     let staged = Staged::begin(&args.output)?;
     let out = staged.path().to_path_buf();
-    // The pictures: the grid sampling's fields, then the scattered one's, a row per function.
-    let per_row = PICTURED_GRADIENTS.len();
-    let mut ordered: Vec<ErrorField> = Vec::with_capacity(fields.len());
-    for chunk in fields.chunks(2 * per_row) {
-        // Within a function the grid's fields come first, then the scattered ones.
-        ordered.extend(chunk.iter().map(|f| ErrorField {
-            label: f.label.clone(),
-            errors: f.errors.clone(),
-            points: f.points.clone(),
-        }));
-    }
-    write_error_picture(&ordered, g, 2 * per_row, &out.join("errors.png"))?;
+    // The pictures, a row per function: its grid sampling's fields, then its scattered one's
+    // (the order the loop above made them in).
+    let columns = 2 * PICTURED_GRADIENTS.len();
+    write_error_picture(&fields, g, columns, &out.join("errors.png"))?;
     let report = json!({
         "study": "franke",
         "evaluation_grid": g,
@@ -599,8 +599,18 @@ mod tests {
                 .mesh;
             let g = MINIMUM_NORM.gradients(&m);
             apply_gradients(&mut m, &g);
-            let (ours, _) =
-                super::measure(f, &m, "clough-tocher", 0.0, 101, false, "test").expect("fit");
+            let chord = curves::method_by_name("chord", &curves::MethodOptions::default())
+                .expect("registered");
+            let (ours, _) = super::measure(
+                f,
+                &m,
+                chord.as_ref(),
+                ("clough-tocher", 0.0),
+                101,
+                false,
+                "test",
+            )
+            .expect("fit");
             let theirs = scipy
                 .iter()
                 .find(|r| r.function == k && r.sampling == "scattered 100")

@@ -51,13 +51,7 @@ pub(super) fn run(
     segments: usize,
     options: &MethodOptions,
 ) -> Result<(Value, String), ExperimentError> {
-    let mut surfaces = vec![Surface {
-        name: true_ring.name,
-        label: true_ring.label.clone(),
-        tess: true_ring.tess.clone(),
-        flat: false,
-        errors: true_ring.errors,
-    }];
+    let mut surfaces = Vec::with_capacity(GENERATIONS.len());
     let mut rows = Vec::new();
     for (stem, scheme, curves, label) in GENERATIONS {
         let kept = crate::input::fit_kept(fitjob::FitOptions {
@@ -91,7 +85,10 @@ pub(super) fn run(
     }
     let dir = out.join("generations");
     crate::output::ensure_dir(&dir)?;
-    let pictures = render_all(&dir, &surfaces_view(&surfaces))?;
+    // The true ring first, then the generations.
+    let mut views = surfaces_view(std::slice::from_ref(true_ring));
+    views.extend(surfaces_view(&surfaces));
+    let pictures = render_all(&dir, &views)?;
     let json = json!({
         "pictures": pictures,
         "fits": rows.iter().map(|(stem, scheme, curves, _, g1, e)| json!({
