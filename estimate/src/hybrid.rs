@@ -36,6 +36,7 @@ use rayon::prelude::*;
 
 use crate::fit::Workspace;
 use crate::jet::{fit_at, FIRST_WEIGHTING};
+use crate::multiscale::{mean_incident_edge, noise_level, MULTISCALE};
 use crate::normals::vertex_normals_many;
 use crate::{principal_curvatures, Estimate, Estimator, Topology, JET4, RUSINKIEWICZ};
 
@@ -69,20 +70,12 @@ impl Estimator for Hybrid {
             [RUSINKIEWICZ.weighting, FIRST_WEIGHTING],
             given,
         );
-        let mut out = RUSINKIEWICZ.estimate_with(mesh, &topo, max);
-        let n = mesh.num_vertices();
-        // Mean incident edge length per vertex.
-        let mut len = vec![0.0f64; n];
-        let mut count = vec![0usize; n];
-        let verts = mesh.vertices();
-        for e in mesh.edges() {
-            let [a, b] = e.vertices;
-            let l = (verts[b].data.p - verts[a].data.p).norm();
-            for v in [a, b] {
-                len[v] += l;
-                count[v] += 1;
-            }
+        let ell = mean_incident_edge(mesh);
+        let noise = noise_level(mesh, &topo, &first.normals, &ell);
+        if noise.is_noisy() {
+            return MULTISCALE.estimate_with(mesh, &topo, &first, &ell, noise.sigma, given);
         }
+        let mut out = RUSINKIEWICZ.estimate_with(mesh, &topo, max);
         // The result is Rusinkiewicz's (its fallbacks too: the jet's are used only where its
         // estimate is, and by the rule none are, but for normal fallbacks, which both share),
         // with the jet's estimate where the rule takes it. Vertex v's test reads only v's
@@ -97,9 +90,8 @@ impl Estimator for Hybrid {
             .with_min_len(256)
             .for_each_init(Workspace::default, |ws, (v, (normal, shape))| {
                 let [k1, k2] = principal_curvatures(shape, normal);
-                let ell = len[v] / count[v].max(1) as f64;
-                let rho = k1.abs().max(k2.abs()) * ell;
-                if !(rho <= RESOLVED && count[v] > 0) {
+                let rho = k1.abs().max(k2.abs()) * ell[v];
+                if !(rho <= RESOLVED && ell[v] > 0.0) {
                     return;
                 }
                 if let Some((jn, js)) = fit_at(mesh, &topo, &first, given, &spec, v, ws) {

@@ -45,6 +45,7 @@ pub mod fit;
 pub mod gradients;
 pub mod hybrid;
 pub mod jet;
+pub mod multiscale;
 pub mod normals;
 pub mod prepare;
 pub mod principal;
@@ -54,10 +55,11 @@ pub mod topology;
 
 pub use hybrid::{Hybrid, HYBRID};
 pub use jet::{Jet, JET, JET2, JET3, JET4};
+pub use multiscale::{Multiscale, MULTISCALE};
 pub use normals::{vertex_normals, NormalWeighting, Normals};
 pub use prepare::{
-    attach_creases, prepare, prepare_owned, prepare_with, CreaseSummary, EstimateChoice,
-    PrepareError, Prepared,
+    attach_creases, prepare, prepare_owned, prepare_with, ChoiceError, CreaseSummary,
+    EstimateChoice, PrepareError, Prepared,
 };
 pub use principal::{principal_frame, Principal};
 pub use quadric::{Quadric, QUADRIC};
@@ -117,6 +119,10 @@ pub enum FallbackKind {
         /// The degree used.
         to: usize,
     },
+    /// No Euclidean ball around the vertex gave an admissible fit (on an anisotropic mesh a
+    /// ball either wraps around the surface or holds a single row of points): the adaptive
+    /// k-ring jet of degree 2 ([`JET`]) was used ([`multiscale`]).
+    RingNeighbourhood,
     /// The shape tensor is zero: the surface is taken as planar at the vertex.
     Planar {
         /// Why.
@@ -133,6 +139,7 @@ impl FallbackKind {
             FallbackKind::DefaultNormal => "default_normal",
             FallbackKind::InvalidGivenNormal => "invalid_given_normal",
             FallbackKind::LowerDegree { .. } => "lower_degree",
+            FallbackKind::RingNeighbourhood => "ring_neighbourhood",
             FallbackKind::Planar { .. } => "planar",
         }
     }
@@ -214,8 +221,16 @@ pub struct UnknownEstimator {
 
 /// Every registered estimator, in the order `--help` and the studies list them (the default is
 /// [`DEFAULT_ESTIMATOR`], `hybrid`, not the first).
-pub static ESTIMATORS: &[&dyn Estimator] =
-    &[&JET, &JET2, &JET3, &JET4, &QUADRIC, &RUSINKIEWICZ, &HYBRID];
+pub static ESTIMATORS: &[&dyn Estimator] = &[
+    &JET,
+    &JET2,
+    &JET3,
+    &JET4,
+    &QUADRIC,
+    &RUSINKIEWICZ,
+    &HYBRID,
+    &MULTISCALE,
+];
 
 /// The recommended default estimator's name: `hybrid`, the most accurate in the `estimation`
 /// study (at least as accurate as the best of libigl's estimators on 30 of 32 meshes for the

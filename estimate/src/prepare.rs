@@ -25,6 +25,10 @@ pub enum EstimateChoice {
     None,
     /// Estimate what is missing with this estimator.
     With(&'static dyn Estimator),
+    /// Estimate what is missing with the degree-2 jet on one Euclidean ball of this many mean
+    /// edge lengths around each vertex (`--radius`: [`crate::multiscale`]'s fit at a radius
+    /// the user chose).
+    Ball(f64),
 }
 
 impl std::fmt::Debug for EstimateChoice {
@@ -32,6 +36,7 @@ impl std::fmt::Debug for EstimateChoice {
         match self {
             EstimateChoice::None => write!(f, "None"),
             EstimateChoice::With(e) => write!(f, "With({})", e.name()),
+            EstimateChoice::Ball(r) => write!(f, "Ball({r})"),
         }
     }
 }
@@ -50,8 +55,36 @@ impl EstimateChoice {
         match self {
             EstimateChoice::None => "none",
             EstimateChoice::With(e) => e.name(),
+            EstimateChoice::Ball(_) => crate::multiscale::BALL_NAME,
         }
     }
+
+    /// `name` (as [`EstimateChoice::parse`]), or with `radius` the ball of that many mean edge
+    /// lengths ([`EstimateChoice::Ball`]): a radius must be finite and positive, and asks for
+    /// an estimate, so it cannot go with `none`.
+    pub fn parse_with_radius(name: &str, radius: Option<f64>) -> Result<Self, ChoiceError> {
+        let choice = Self::parse(name)?;
+        match (radius, choice) {
+            (None, c) => Ok(c),
+            (Some(r), _) if !(r > 0.0 && r.is_finite()) => Err(ChoiceError::Radius(r)),
+            (Some(_), EstimateChoice::None) => Err(ChoiceError::RadiusWithNone),
+            (Some(r), _) => Ok(EstimateChoice::Ball(r)),
+        }
+    }
+}
+
+/// Why an estimate choice was refused.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ChoiceError {
+    /// Not a registered estimator.
+    #[error(transparent)]
+    Unknown(#[from] UnknownEstimator),
+    /// A radius that is not a positive number.
+    #[error("--radius {0}: the radius must be a positive number of mean edge lengths")]
+    Radius(f64),
+    /// A radius with `none`.
+    #[error("--radius asks for an estimate: it cannot go with `none`")]
+    RadiusWithNone,
 }
 
 /// Why a file could not be prepared.
@@ -291,14 +324,23 @@ pub fn prepare_with(
     let t1 = std::time::Instant::now();
     let mut crease_summary = attach_creases(&mut mesh, creases, &crease_edges);
     let curvature_given = mesh.vertices().iter().all(|v| v.curvature_known);
-    let (estimate, estimated) = match choice {
-        EstimateChoice::None => {
+    let ball;
+    let chosen: Option<&dyn Estimator> = match choice {
+        EstimateChoice::None => None,
+        EstimateChoice::With(e) => Some(e),
+        EstimateChoice::Ball(r) => {
+            ball = crate::multiscale::Multiscale::ball(r);
+            Some(&ball)
+        }
+    };
+    let (estimate, estimated) = match chosen {
+        None => {
             if !normals_given {
                 return Err(PrepareError::NoNormals);
             }
             (None, "nothing")
         }
-        EstimateChoice::With(est) => {
+        Some(est) => {
             let keep = normals_given && !replace_normals;
             if curvature_given && keep {
                 (None, "nothing")

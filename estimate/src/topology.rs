@@ -216,6 +216,55 @@ impl Topology {
         marks.clear(out);
         rings
     }
+
+    /// The vertices of `v`'s connected neighbourhood within Euclidean distance `radius` of
+    /// `v`'s position in `mesh` (whose topology this is): a breadth-first walk over the edges from `v` that keeps (and walks on
+    /// from) only the vertices inside the ball, stopping at `max_points`. `v` comes first. This
+    /// is the "sphere" neighbourhood of the fitting literature (Cazals & Pouget 2005, §5.1)
+    /// restricted to what is connected to `v` inside the ball, so that a nearby sheet of the
+    /// surface (the other side of a thin part) is not gathered. Returns the largest distance
+    /// gathered.
+    pub fn ball_into(
+        &self,
+        v: usize,
+        mesh: &Mesh,
+        radius: f64,
+        max_points: usize,
+        out: &mut Vec<usize>,
+        marks: &mut RingMarks,
+    ) -> f64 {
+        out.clear();
+        let positions = mesh.vertices();
+        let Some(origin) = positions.get(v).map(|x| x.data.p) else {
+            return 0.0;
+        };
+        if v >= self.num_vertices() || max_points == 0 {
+            return 0.0;
+        }
+        marks.begin(self.num_vertices());
+        out.push(v);
+        marks.insert(v);
+        let r2 = radius * radius;
+        let mut far = 0.0_f64;
+        let mut next = 0;
+        'walk: while next < out.len() {
+            let u = out[next];
+            next += 1;
+            for &w in self.neighbours(u) {
+                let Some(p) = positions.get(w) else { continue };
+                let d2 = (p.data.p - origin).norm_squared();
+                if d2 <= r2 && marks.insert(w) {
+                    out.push(w);
+                    far = far.max(d2);
+                    if out.len() >= max_points {
+                        break 'walk;
+                    }
+                }
+            }
+        }
+        marks.clear(out);
+        far.sqrt()
+    }
 }
 
 #[cfg(test)]
@@ -247,5 +296,25 @@ mod tests {
         }
         assert_eq!(t.rings_into(6, 10, 2, 10, &mut out), 0);
         assert!(out.is_empty());
+    }
+
+    #[test]
+    fn balls_of_the_octahedron() {
+        // Unit octahedron: neighbours at √2, the opposite vertex at 2.
+        let data = mesh::datasets::octa().expect("built-in");
+        let t = Topology::new(&data.mesh);
+        let p = &data.mesh;
+        let scale = p.vertices()[0].data.p.coords.norm();
+        let (mut out, mut marks) = (Vec::new(), RingMarks::default());
+        for v in 0..6 {
+            let far = t.ball_into(v, p, 0.5 * scale, 100, &mut out, &mut marks);
+            assert_eq!((out.as_slice(), far), ([v].as_slice(), 0.0));
+            t.ball_into(v, p, 1.5 * scale, 100, &mut out, &mut marks);
+            assert_eq!(out.len(), 5);
+            t.ball_into(v, p, 2.0 * scale, 100, &mut out, &mut marks);
+            assert_eq!(out.len(), 6);
+            t.ball_into(v, p, 2.0 * scale, 3, &mut out, &mut marks);
+            assert_eq!(out.len(), 3);
+        }
     }
 }

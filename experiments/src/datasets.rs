@@ -61,6 +61,7 @@ pub fn load_subject(
                 resolution,
             },
             estimate: estimate.to_string(),
+            radius: None,
             replace_normals: false,
             creases: mesh::features::CreaseRule::Auto,
         })?;

@@ -19,6 +19,11 @@ pub struct InputArgs {
     /// tensors). The names come from the estimator registry.
     #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR, value_parser = fitjob::cli::estimator_names())]
     pub estimate: String,
+    /// Estimate on Euclidean balls of this many mean edge lengths around each vertex (the
+    /// degree-2 jet at one radius, Huber-weighted for the mesh's noise) instead of the
+    /// estimator's own neighbourhoods: wider for noisier scans (docs/estimation.md).
+    #[arg(long, value_name = "R")]
+    pub radius: Option<f64>,
     /// Estimate normals even where the file gives them (by default the file's normals are kept
     /// and only the curvature is estimated, in their tangent planes).
     #[arg(long)]
@@ -49,6 +54,7 @@ impl InputArgs {
                 resolution: self.resolution,
             },
             estimate: self.estimate.clone(),
+            radius: self.radius,
             replace_normals: self.replace_normals,
             creases: self.creases.rule(),
         }

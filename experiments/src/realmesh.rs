@@ -176,6 +176,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             data: path.to_string_lossy().into_owned(),
             resolution: None,
             estimate: args.estimate.clone(),
+            radius: None,
             replace_normals: false,
             creases: fitjob::cli::CreaseArgs::default(),
         };

@@ -29,13 +29,14 @@ pub enum JobError {
         /// Why.
         source: estimate::PrepareError,
     },
-    /// `--estimate` names no estimator.
-    #[error("--estimate {value}: not an estimator's name or `none`")]
+    /// `--estimate` names no estimator, or `--radius` is not a positive number or goes with
+    /// `none`.
+    #[error("--estimate {value}: {source}")]
     Estimate {
         /// The value given.
         value: String,
-        /// The estimator registry's answer (it lists the known names).
-        source: estimate::UnknownEstimator,
+        /// What is wrong (an unknown name lists the known ones).
+        source: estimate::ChoiceError,
     },
     /// The input names a data set that cannot be built: an unknown name that is no mesh file
     /// either, or a resolution out of range.

@@ -79,6 +79,9 @@ pub struct InputOptions {
     /// How to estimate what a mesh file lacks (normals, shape tensors): an estimator's name or
     /// `none` (use the file's data only).
     pub estimate: String,
+    /// `--radius`: estimate on Euclidean balls of this many mean edge lengths (the degree-2
+    /// jet at one radius, [`estimate::EstimateChoice::Ball`]) instead of `estimate`'s rule.
+    pub radius: Option<f64>,
     /// Estimate normals even where the file gives them.
     pub replace_normals: bool,
     /// How creases are found in a mesh file (`--crease-angle`, `--no-creases`); data sets are
@@ -95,6 +98,7 @@ impl Default for InputOptions {
                 resolution: None,
             },
             estimate: estimate::DEFAULT_ESTIMATOR.into(),
+            radius: None,
             replace_normals: false,
             creases: mesh::features::CreaseRule::Auto,
         }
@@ -188,6 +192,7 @@ pub fn load_owned(options: InputOptions) -> Result<Loaded, JobError> {
             *raw,
             How {
                 estimate: &options.estimate,
+                radius: options.radius,
                 replace_normals: options.replace_normals,
                 creases: options.creases,
             },
@@ -203,6 +208,7 @@ pub fn load_owned(options: InputOptions) -> Result<Loaded, JobError> {
 #[derive(Clone, Copy)]
 struct How<'a> {
     estimate: &'a str,
+    radius: Option<f64>,
     replace_normals: bool,
     creases: mesh::features::CreaseRule,
 }
@@ -211,6 +217,7 @@ impl InputOptions {
     fn how(&self) -> How<'_> {
         How {
             estimate: &self.estimate,
+            radius: self.radius,
             replace_normals: self.replace_normals,
             creases: self.creases,
         }
@@ -225,10 +232,13 @@ fn prepare(
     read_time: f64,
 ) -> Result<Loaded, JobError> {
     let estimator = options.estimate;
-    let choice = EstimateChoice::parse(estimator).map_err(|source| JobError::Estimate {
-        value: estimator.to_string(),
-        source,
-    })?;
+    let choice =
+        EstimateChoice::parse_with_radius(estimator, options.radius).map_err(|source| {
+            JobError::Estimate {
+                value: estimator.to_string(),
+                source,
+            }
+        })?;
     let peak_read = crate::limits::peak_resident_bytes();
     let mut notes: Vec<String> = std::mem::take(&mut raw.notes);
     triangulate_point_cloud(&mut raw, &mut notes);

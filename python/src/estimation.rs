@@ -21,9 +21,11 @@ use crate::input::{crease_rule, raw_from_arrays};
 /// `H`; `missing` counts input vertices the repair dropped (unreferenced or degenerate), whose
 /// rows are NaN; `crease_vertices` counts vertices on creases, where the fit uses one estimate
 /// per sector and these rows hold the estimate over all the vertex's faces; `notes` lists what
-/// the repair and the estimator did. `threads`: as `fit`'s.
+/// the repair and the estimator did. `radius`: estimate on Euclidean balls of this many mean
+/// edge lengths (the degree-2 jet at one radius, for noisy scans) instead of `method`'s own
+/// neighbourhoods. `threads`: as `fit`'s.
 #[pyfunction]
-#[pyo3(signature = (V, F, method="hybrid", normals=None, *, crease_angle=None, no_creases=false, threads=None))]
+#[pyo3(signature = (V, F, method="hybrid", normals=None, *, crease_angle=None, no_creases=false, radius=None, threads=None))]
 #[allow(non_snake_case, clippy::too_many_arguments)]
 pub fn estimate<'py>(
     py: Python<'py>,
@@ -33,6 +35,7 @@ pub fn estimate<'py>(
     normals: Option<&Bound<'py, PyAny>>,
     crease_angle: Option<f64>,
     no_creases: bool,
+    radius: Option<f64>,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let raw = raw_from_arrays(V, F, normals, None, None)?;
@@ -43,6 +46,7 @@ pub fn estimate<'py>(
             raw: Box::new(raw),
         },
         estimate: method.to_string(),
+        radius,
         replace_normals: false,
         creases: crease_rule(crease_angle, no_creases)?,
     };

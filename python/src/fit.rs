@@ -240,6 +240,7 @@ pub fn fit(
     let input = fitjob::InputOptions {
         source,
         estimate: estimate.to_string(),
+        radius: None,
         replace_normals,
         creases: crease_rule(crease_angle, no_creases)?,
     };

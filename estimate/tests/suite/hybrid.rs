@@ -73,6 +73,10 @@ fn zoo_meshes() -> Vec<(&'static str, Mesh)> {
 /// module states it.
 fn rule(mesh: &Mesh, given: Option<&[nalgebra::Vector3<f64>]>) -> estimate::Estimate {
     use estimate::FallbackKind;
+    // A noisy mesh is the multi-scale jet's, whole.
+    if estimate::multiscale::mesh_noise(mesh, given).is_noisy() {
+        return estimate::MULTISCALE.estimate(mesh, given);
+    }
     let rus = RUSINKIEWICZ.estimate(mesh, given);
     let jet = JET4.estimate(mesh, given);
     let n = mesh.num_vertices();

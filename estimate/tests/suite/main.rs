@@ -5,6 +5,7 @@ mod common;
 mod gradients;
 mod hybrid;
 mod jet;
+mod multiscale;
 mod normals;
 mod quadric;
 mod rusinkiewicz;

@@ -435,3 +435,42 @@ fn subdivision_gets_the_files_creases_as_tags() {
         "tagged {tagged:?}, smooth {smooth:?}"
     );
 }
+
+#[test]
+fn a_radius_estimates_on_balls_and_a_bad_one_is_a_usage_error() {
+    let path = repo_file("data/meshes/teapot.ply");
+    let with = |estimate: &str, radius: Option<f64>| {
+        fitjob::input::load(&InputOptions {
+            estimate: estimate.into(),
+            radius,
+            ..data(&path)
+        })
+    };
+    let balls = with("hybrid", Some(4.0)).expect("radius 4");
+    assert!(
+        balls
+            .notes
+            .iter()
+            .any(|n| n.contains(estimate::multiscale::BALL_NAME)),
+        "{:?}",
+        balls.notes
+    );
+    let rings = with("hybrid", None).expect("default");
+    let differs = balls
+        .mesh
+        .vertices()
+        .iter()
+        .zip(rings.mesh.vertices())
+        .any(|(a, b)| a.data.shape != b.data.shape);
+    assert!(differs, "the ball estimate is not the default's");
+    for (estimate, radius) in [
+        ("hybrid", 0.0),
+        ("hybrid", -1.0),
+        ("hybrid", f64::NAN),
+        ("none", 3.0),
+    ] {
+        let err = with(estimate, Some(radius)).err().expect("refused");
+        assert!(err.is_usage(), "{estimate} --radius {radius}: {err}");
+        assert!(err.to_string().contains("--radius"), "{err}");
+    }
+}

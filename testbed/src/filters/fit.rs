@@ -59,6 +59,11 @@ pub struct FitArgs {
     /// Estimator for what the mesh lacks (the registry's, or `none`).
     #[arg(long, default_value = estimate::DEFAULT_ESTIMATOR, value_parser = fitjob::cli::estimator_names())]
     pub estimate: String,
+    /// Estimate on Euclidean balls of this many mean edge lengths (the degree-2 jet at one
+    /// radius, Huber-weighted) instead of the estimator's own neighbourhoods: wider for noisier
+    /// scans.
+    #[arg(long, value_name = "R")]
+    pub radius: Option<f64>,
     /// Estimate normals even where the mesh has them.
     #[arg(long)]
     pub replace_normals: bool,
@@ -138,6 +143,7 @@ impl Filter for Fit {
             }
         };
         input.creases = args.creases.rule();
+        input.radius = args.radius;
         if let Some(s) = args.segments {
             crate::filters::tess::check_segments(Self::NAME, s)?;
         }
@@ -216,6 +222,7 @@ pub fn input_from_bytes(
             raw: Box::new(raw),
         },
         estimate: estimate.to_string(),
+        radius: None,
         replace_normals,
         creases: mesh::features::CreaseRule::Auto,
     })
@@ -244,6 +251,7 @@ pub fn data_input(
             resolution,
         },
         estimate: estimate.to_string(),
+        radius: None,
         replace_normals,
         creases: mesh::features::CreaseRule::Auto,
     })
