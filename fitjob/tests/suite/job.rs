@@ -445,6 +445,7 @@ fn a_radius_estimates_on_balls_and_a_bad_one_is_a_usage_error() {
             radius,
             ..data(&path)
         })
+        .map_err(Box::new)
     };
     let balls = with("hybrid", Some(4.0)).expect("radius 4");
     assert!(
