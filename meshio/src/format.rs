@@ -91,8 +91,23 @@ pub trait MeshFormat: Sync {
     /// Parses a whole file.
     fn read(&self, bytes: &[u8]) -> Result<RawMesh, ReadError>;
 
-    /// Writes a whole file.
-    fn write(&self, mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError>;
+    /// Writes a whole file to `out`: the format's one encoder. Every check that can refuse the
+    /// mesh runs before the first byte is written, so a [`WriteError::Invalid`] leaves `out`
+    /// untouched; the bytes go out in chunks of a few hundred KiB (never the whole file in
+    /// memory), and a failing `out` gives [`WriteError::Io`]. `out` is flushed at the end.
+    fn write_to(
+        &self,
+        mesh: &RawMesh,
+        options: &WriteOptions,
+        out: &mut dyn std::io::Write,
+    ) -> Result<(), WriteError>;
+
+    /// Writes a whole file into memory ([`MeshFormat::write_to`] into a `Vec`).
+    fn write(&self, mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
+        let mut bytes = Vec::new();
+        self.write_to(mesh, options, &mut bytes)?;
+        Ok(bytes)
+    }
 }
 
 /// Every format, in the order content sniffing tries them (the most specific signatures

@@ -11,7 +11,7 @@ use std::hash::Hasher;
 use std::io::Write;
 
 use meshio::hash::FxHasher;
-use meshio::{Curvature, MeshFormat, Polygons, RawMesh, UpAxis, WriteError, WriteOptions, FORMATS};
+use meshio::{Curvature, Polygons, RawMesh, UpAxis, WriteError, WriteOptions, FORMATS};
 use nalgebra::{Matrix3, Point3, Vector3};
 
 use crate::common::{bare_cube, cube, grid};
@@ -455,5 +455,135 @@ fn writers_write_the_recorded_bytes() {
     for ((k, v), (ek, ev)) in now.iter().zip(EXPECTED) {
         assert_eq!(k, ek);
         assert_eq!(v, ev, "{k}");
+    }
+}
+
+/// A writer that takes `room` bytes and then fails, counting what it was offered.
+struct Failing {
+    room: usize,
+    taken: usize,
+}
+
+impl Write for Failing {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if self.taken >= self.room {
+            return Err(std::io::Error::other("disk full"));
+        }
+        let n = buf.len().min(self.room - self.taken);
+        self.taken += n;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// A writer that counts the bytes and the calls it gets.
+#[derive(Default)]
+struct Counting {
+    bytes: usize,
+    calls: usize,
+}
+
+impl Write for Counting {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.bytes += buf.len();
+        self.calls += 1;
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+#[test]
+fn a_failing_writer_gives_an_io_error() {
+    // A grid big enough that every format's file exceeds one sink buffer (256 KiB), failing
+    // at once and failing part way.
+    let mesh = grid(120);
+    for format in FORMATS.iter().filter(|f| f.can_write()) {
+        for (oname, opts) in option_sets() {
+            for room in [0, 1000, 300_000] {
+                let mut out = Failing { room, taken: 0 };
+                match format.write_to(&mesh, &opts, &mut out) {
+                    Err(WriteError::Io {
+                        format: name,
+                        source,
+                    }) => {
+                        assert_eq!(name, format.name());
+                        assert_eq!(source.to_string(), "disk full");
+                    }
+                    other => panic!("{}/{oname}/{room}: {other:?}", format.name()),
+                }
+            }
+        }
+    }
+}
+
+/// Meshes every writer refuses: a NaN position, a face index out of range, and curvature
+/// beyond `f32` for the formats that store it.
+fn refused() -> Vec<(&'static str, RawMesh)> {
+    let mut nan = grid(4);
+    if let Some(p) = nan.positions.last_mut() {
+        p.z = f64::NAN;
+    }
+    let mut out_of_range = grid(4);
+    let n = out_of_range.positions.len();
+    out_of_range.polygons.push(&[0, 1, n]);
+    let mut huge = grid(4);
+    let n = huge.positions.len();
+    let mut gaussian = vec![1.0; n];
+    gaussian[n - 1] = 1e300;
+    huge.curvature = Some(Curvature::from_exported(gaussian, vec![1.0; n]));
+    vec![
+        ("nan", nan),
+        ("out_of_range", out_of_range),
+        ("huge_curvature", huge),
+    ]
+}
+
+#[test]
+fn a_refused_mesh_writes_no_byte() {
+    for format in FORMATS.iter().filter(|f| f.can_write()) {
+        for (mname, mesh) in refused() {
+            if mname == "huge_curvature" && !format.writes_curvature() {
+                continue;
+            }
+            for (oname, opts) in option_sets() {
+                let mut out = Counting::default();
+                let result = format.write_to(&mesh, &opts, &mut out);
+                let case = format!("{}/{mname}/{oname}", format.name());
+                assert!(
+                    matches!(result, Err(WriteError::Invalid { .. })),
+                    "{case}: {result:?}"
+                );
+                assert_eq!(out.bytes, 0, "{case}");
+            }
+        }
+    }
+}
+
+#[test]
+fn bytes_go_out_in_big_chunks() {
+    // The sink hands its buffer on once it holds at least 256 KiB, and the rest at the end, so
+    // a file of B bytes takes at most B / 256 KiB + 1 writes to a writer that takes it all.
+    const CHUNK: usize = 256 * 1024;
+    let mesh = grid(200);
+    for format in FORMATS.iter().filter(|f| f.can_write()) {
+        let mut out = Counting::default();
+        format
+            .write_to(&mesh, &WriteOptions::new(), &mut out)
+            .expect("write");
+        let bound = out.bytes / CHUNK + 1;
+        assert!(out.bytes > CHUNK, "{}", format.name());
+        assert!(
+            out.calls <= bound,
+            "{}: {} calls for {} bytes",
+            format.name(),
+            out.calls,
+            out.bytes
+        );
     }
 }
