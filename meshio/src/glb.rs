@@ -381,16 +381,16 @@ fn write_glb(mesh: &RawMesh, up: UpAxis, out: &mut dyn std::io::Write) -> Result
     s.u32((bin_len + bin_padding) as u32);
     s.put(b"BIN\0");
     for p in &mesh.positions {
-        push_f32s(&mut s, gltf_position(p));
+        s.f32x3(gltf_position(p));
     }
     if let Some(normals) = &mesh.normals {
         for (i, nv) in normals.iter().enumerate() {
-            push_f32s(&mut s, gltf_normal(i, nv).unwrap_or([0.0; 3]));
+            s.f32x3(gltf_normal(i, nv).unwrap_or([0.0; 3]));
         }
     }
     if let Some(colors) = &mesh.colors {
         for c in colors {
-            push_f32s(&mut s, c.map(|x| x.clamp(0.0, 1.0)));
+            s.f32x3(c.map(|x| x.clamp(0.0, 1.0)));
         }
     }
     if let Some(c) = curvature {
@@ -408,14 +408,12 @@ fn write_glb(mesh: &RawMesh, up: UpAxis, out: &mut dyn std::io::Write) -> Result
         for j in 0..2 {
             for d in ds {
                 let v = up.to_gltf([d[j].x, d[j].y, d[j].z]);
-                push_f32s(&mut s, v.map(|x| x as f32));
+                s.f32x3(v.map(|x| x as f32));
             }
         }
     }
     for t in mesh.polygons.iter().flat_map(fan) {
-        for i in t {
-            s.u32(i as u32);
-        }
+        s.u32x3(t.map(|i| i as u32));
     }
     s.put(&[0; 3][..bin_padding]);
     s.finish(NAME)

@@ -1090,27 +1090,46 @@ fn write_ply(
             let _ = writeln!(s, "{a} {b} 1");
         }
     } else {
+        // Each record is gathered in a small buffer and handed to the sink whole.
+        let mut record: Vec<u8> = Vec::with_capacity(24 + 4 * cols.len());
         for (i, p) in mesh.positions.iter().enumerate() {
+            if cols.is_empty() && !options.double_precision {
+                // Fixed-size records are copied without a call.
+                s.f32x3([p.x as f32, p.y as f32, p.z as f32]);
+                continue;
+            }
+            record.clear();
             for x in [p.x, p.y, p.z] {
                 if options.double_precision {
-                    s.f64(x);
+                    record.extend_from_slice(&x.to_le_bytes());
                 } else {
-                    s.f32(x as f32);
+                    record.extend_from_slice(&(x as f32).to_le_bytes());
                 }
             }
             for (_, column) in &cols {
-                s.f32(column.value(i) as f32);
+                record.extend_from_slice(&(column.value(i) as f32).to_le_bytes());
             }
+            s.put(&record);
         }
         for poly in mesh.polygons.iter() {
+            if let (false, &[a, b, c]) = (big_faces, poly) {
+                let mut triangle = [3u8; 13];
+                for (slot, i) in triangle[1..].chunks_exact_mut(4).zip([a, b, c]) {
+                    slot.copy_from_slice(&(i as i32).to_le_bytes());
+                }
+                s.put(&triangle);
+                continue;
+            }
+            record.clear();
             if big_faces {
-                s.i32(poly.len() as i32);
+                record.extend_from_slice(&(poly.len() as i32).to_le_bytes());
             } else {
-                s.u8(poly.len() as u8);
+                record.push(poly.len() as u8);
             }
             for &i in poly {
-                s.i32(i as i32);
+                record.extend_from_slice(&(i as i32).to_le_bytes());
             }
+            s.put(&record);
         }
         for &[a, b] in creases {
             s.i32(a as i32);

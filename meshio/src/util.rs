@@ -11,15 +11,18 @@ use crate::raw::RawMesh;
 pub(crate) const SINK_BUFFER: usize = 256 * 1024;
 
 /// The buffered byte sink every encoder writes into: records are appended to a buffer of
-/// [`SINK_BUFFER`] bytes, which goes to the writer in one `write_all` when full, so that
-/// encoding a number costs a copy and a comparison and not a dynamic call.
+/// [`SINK_BUFFER`] bytes, which goes to the writer in one `write_all` when the next record
+/// does not fit, so that encoding a record costs a copy and a comparison and not a dynamic
+/// call.
 ///
 /// An error of the writer is kept, later bytes are dropped, and [`Sink::finish`] returns it:
 /// encoders then need no error path per number. Text goes in through [`std::fmt::Write`]
 /// (`write!(sink, …)`), which never fails here.
 pub(crate) struct Sink<'a> {
     out: &'a mut dyn Write,
-    buf: Vec<u8>,
+    /// [`SINK_BUFFER`] bytes, of which the first `len` are waiting.
+    buf: Box<[u8]>,
+    len: usize,
     error: Option<std::io::Error>,
 }
 
@@ -28,17 +31,42 @@ impl<'a> Sink<'a> {
     pub(crate) fn new(out: &'a mut dyn Write) -> Self {
         Sink {
             out,
-            buf: Vec::with_capacity(SINK_BUFFER),
+            buf: vec![0; SINK_BUFFER].into_boxed_slice(),
+            len: 0,
             error: None,
         }
     }
 
-    /// Appends bytes, handing the buffer on when it is full.
+    /// Appends bytes, handing the buffer on first when they do not fit (and bytes longer than
+    /// the buffer straight on after it).
     #[inline]
     pub(crate) fn put(&mut self, bytes: &[u8]) {
-        self.buf.extend_from_slice(bytes);
-        if self.buf.len() >= SINK_BUFFER {
-            self.drain();
+        let end = self.len + bytes.len();
+        match self.buf.get_mut(self.len..end) {
+            Some(room) => {
+                room.copy_from_slice(bytes);
+                self.len = end;
+            }
+            None => self.put_slow(bytes),
+        }
+    }
+
+    #[cold]
+    fn put_slow(&mut self, bytes: &[u8]) {
+        self.drain();
+        if bytes.len() >= SINK_BUFFER {
+            self.hand_on(bytes);
+        } else if let Some(room) = self.buf.get_mut(..bytes.len()) {
+            room.copy_from_slice(bytes);
+            self.len = bytes.len();
+        }
+    }
+
+    fn hand_on(&mut self, bytes: &[u8]) {
+        if self.error.is_none() {
+            if let Err(e) = self.out.write_all(bytes) {
+                self.error = Some(e);
+            }
         }
     }
 
@@ -54,10 +82,24 @@ impl<'a> Sink<'a> {
         self.put(&x.to_le_bytes());
     }
 
-    /// A 64-bit float, little-endian.
+    /// Three 32-bit floats, little-endian, as one 12-byte record.
     #[inline]
-    pub(crate) fn f64(&mut self, x: f64) {
-        self.put(&x.to_le_bytes());
+    pub(crate) fn f32x3(&mut self, v: [f32; 3]) {
+        let mut record = [0u8; 12];
+        for (slot, x) in record.chunks_exact_mut(4).zip(v) {
+            slot.copy_from_slice(&x.to_le_bytes());
+        }
+        self.put(&record);
+    }
+
+    /// Three 32-bit unsigned integers, little-endian, as one 12-byte record.
+    #[inline]
+    pub(crate) fn u32x3(&mut self, v: [u32; 3]) {
+        let mut record = [0u8; 12];
+        for (slot, x) in record.chunks_exact_mut(4).zip(v) {
+            slot.copy_from_slice(&x.to_le_bytes());
+        }
+        self.put(&record);
     }
 
     /// A 32-bit signed integer, little-endian.
@@ -85,12 +127,12 @@ impl<'a> Sink<'a> {
     }
 
     fn drain(&mut self) {
-        if self.error.is_none() {
-            if let Err(e) = self.out.write_all(&self.buf) {
+        let len = std::mem::take(&mut self.len);
+        if len > 0 && self.error.is_none() {
+            if let Err(e) = self.out.write_all(self.buf.get(..len).unwrap_or(&[])) {
                 self.error = Some(e);
             }
         }
-        self.buf.clear();
     }
 
     /// Hands on what is left and flushes the writer; the first error of the writer, if any,
