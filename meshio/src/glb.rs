@@ -128,6 +128,12 @@ impl MeshFormat for Glb {
         read_glb(bytes)
     }
 
+    fn size_hint(&self, mesh: &RawMesh, _: &WriteOptions) -> usize {
+        // Positions and normals as 12 bytes a vertex, 12 bytes a triangle of indices, and the
+        // JSON.
+        4096 + 24 * mesh.positions.len() + 12 * crate::util::fan_count(mesh)
+    }
+
     fn write_to(
         &self,
         mesh: &RawMesh,

@@ -72,6 +72,11 @@ impl MeshFormat for Off {
         read_off(bytes)
     }
 
+    fn size_hint(&self, mesh: &RawMesh, _: &WriteOptions) -> usize {
+        // About 40 characters a vertex line and 30 a face line.
+        40 * mesh.positions.len() + 30 * mesh.polygons.len()
+    }
+
     fn write_to(
         &self,
         mesh: &RawMesh,

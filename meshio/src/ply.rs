@@ -105,6 +105,22 @@ impl MeshFormat for Ply {
         read_ply(bytes)
     }
 
+    fn size_hint(&self, mesh: &RawMesh, options: &WriteOptions) -> usize {
+        // Binary: x y z (4 or 8 bytes each), then a count byte and 4-byte indices a face; text
+        // takes about twice as much.
+        let coords = if options.double_precision { 24 } else { 12 };
+        let binary = 1024
+            + coords * mesh.positions.len()
+            + mesh.polygons.len()
+            + 4 * mesh.polygons.corner_count()
+            + 9 * mesh.crease_edges.len();
+        if options.ascii {
+            2 * binary
+        } else {
+            binary
+        }
+    }
+
     fn write_to(
         &self,
         mesh: &RawMesh,

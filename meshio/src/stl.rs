@@ -76,6 +76,12 @@ impl MeshFormat for Stl {
         }
     }
 
+    fn size_hint(&self, mesh: &RawMesh, options: &WriteOptions) -> usize {
+        // Binary: an 84-byte header and 50 bytes a triangle; text about 250 bytes a triangle.
+        let per = if options.ascii { 250 } else { 50 };
+        84 + per * crate::util::fan_count(mesh)
+    }
+
     fn write_to(
         &self,
         mesh: &RawMesh,

@@ -92,6 +92,11 @@ impl MeshFormat for Testbed {
         read_testbed(bytes).map_err(|e| *e)
     }
 
+    fn size_hint(&self, mesh: &RawMesh, _: &WriteOptions) -> usize {
+        // About 80 characters a point line and 40 a face line.
+        80 * mesh.positions.len() + 40 * mesh.polygons.len()
+    }
+
     fn write_to(
         &self,
         mesh: &RawMesh,
