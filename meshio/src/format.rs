@@ -233,7 +233,8 @@ pub fn read_file(path: impl AsRef<Path>) -> Result<RawMesh, MeshIoError> {
     read_bytes(path, &bytes)
 }
 
-/// Writes `mesh` in `format` to bytes; the caller writes them (atomically, where it matters).
+/// Writes `mesh` in `format` to bytes in memory. A file on disk is better written with
+/// [`crate::outfile::write_atomic_mesh`], which streams it atomically.
 pub fn write_bytes(
     mesh: &RawMesh,
     format: &dyn MeshFormat,
