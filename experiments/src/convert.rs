@@ -17,7 +17,6 @@ use std::time::Instant;
 
 use crate::error::ExperimentError;
 use crate::input::{load, InputArgs};
-use crate::output::write_result;
 
 /// Options of the `convert` experiment.
 #[derive(clap::Args, Debug)]
@@ -91,13 +90,16 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     if args.ascii {
         options = options.ascii();
     }
-    let bytes = meshio::write_bytes(&raw, format, &options).map_err(|source| {
-        ExperimentError::MeshWrite {
-            path: args.output.clone(),
-            source,
-        }
-    })?;
-    write_result(Some(&args.output), &bytes)?;
+    fitjob::output::write_mesh_result(&args.output, format, &raw, &options).map_err(
+        |e| match e {
+            fitjob::JobError::MeshWrite { path, source } => {
+                ExperimentError::MeshWrite { path, source }
+            }
+            other => ExperimentError::from(other),
+        },
+    )?;
+    // The size as written (the file was streamed, not held in memory).
+    let written = std::fs::metadata(&args.output).map_or(0, |m| m.len());
     for note in &loaded.notes {
         say!("  {note}");
     }
@@ -107,7 +109,7 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
         mesh.num_vertices(),
         mesh.num_faces(),
         args.output.display(),
-        bytes.len(),
+        written,
         format.name(),
         t0.elapsed().as_secs_f64()
     );

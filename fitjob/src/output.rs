@@ -59,6 +59,28 @@ pub fn write_result_with(
     }
 }
 
+/// Writes `mesh` as `format` to `path` atomically and streaming
+/// ([`meshio::outfile::write_atomic_mesh`]: the encoder writes into the temporary file, the
+/// file's bytes are never all in memory), creating the parent directory if needed. A mesh the
+/// format refuses is [`JobError::MeshWrite`], a file that cannot be written the file's error;
+/// both name `path`.
+pub fn write_mesh_result(
+    path: &Path,
+    format: &dyn meshio::MeshFormat,
+    mesh: &meshio::RawMesh,
+    options: &meshio::WriteOptions,
+) -> Result<(), JobError> {
+    if let Some(parent) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        ensure_dir(parent)?;
+    }
+    meshio::outfile::write_atomic_mesh(path, format, mesh, options).map_err(|e| match e {
+        meshio::outfile::MeshOutputError::Encode { path, source } => {
+            JobError::MeshWrite { path, source }
+        }
+        meshio::outfile::MeshOutputError::File(e) => JobError::from(e),
+    })
+}
+
 /// Creates a results directory (and its parents).
 pub fn ensure_dir(dir: &Path) -> Result<(), JobError> {
     std::fs::create_dir_all(dir).map_err(|source| JobError::Write {
@@ -150,28 +172,83 @@ pub fn tessellation_mesh(
     tess: &surface::Tessellation,
     format: &dyn meshio::MeshFormat,
 ) -> meshio::RawMesh {
-    let mut raw = meshio::RawMesh::from_triangles(tess.positions.clone(), &tess.faces);
-    raw.normals = Some(tess.normals.clone());
-    let limit = gaussian_colour_limit(&tess.gaussian);
-    raw.colors = Some(
-        tess.gaussian
-            .iter()
-            .map(|k| render::colors::diverging(*k, limit))
-            .collect(),
-    );
-    raw.color_map = Some(meshio::ColorMap {
-        quantity: "gaussian_curvature".into(),
-        map: "diverging".into(),
-        min: -limit,
-        max: limit,
-    });
-    if format.writes_curvature() {
-        raw.curvature = Some(
-            meshio::Curvature::from_internal(tess.gaussian.clone(), tess.mean.clone())
-                .with_directions(principal_directions(tess)),
-        );
+    let extras = TessellationExtras::of(tess, format);
+    extras.mesh(
+        tess.positions.clone(),
+        tess.normals.clone(),
+        &tess.faces,
+        || (tess.gaussian.clone(), tess.mean.clone()),
+    )
+}
+
+/// [`tessellation_mesh`] taking the tessellation: its positions, normals and curvature move
+/// into the mesh instead of being copied (for a caller that no longer needs it).
+pub fn into_tessellation_mesh(
+    tess: surface::Tessellation,
+    format: &dyn meshio::MeshFormat,
+) -> meshio::RawMesh {
+    let extras = TessellationExtras::of(&tess, format);
+    let surface::Tessellation {
+        positions,
+        normals,
+        gaussian,
+        mean,
+        faces,
+        ..
+    } = tess;
+    extras.mesh(positions, normals, &faces, || (gaussian, mean))
+}
+
+/// What [`tessellation_mesh`] derives from a tessellation before taking its arrays: the
+/// colours by Gaussian curvature, their map, and the principal directions where the format
+/// stores curvature.
+struct TessellationExtras {
+    colors: Vec<[f32; 3]>,
+    color_map: meshio::ColorMap,
+    directions: Option<Vec<[nalgebra::Vector3<f64>; 2]>>,
+}
+
+impl TessellationExtras {
+    fn of(tess: &surface::Tessellation, format: &dyn meshio::MeshFormat) -> Self {
+        let limit = gaussian_colour_limit(&tess.gaussian);
+        TessellationExtras {
+            colors: tess
+                .gaussian
+                .iter()
+                .map(|k| render::colors::diverging(*k, limit))
+                .collect(),
+            color_map: meshio::ColorMap {
+                quantity: "gaussian_curvature".into(),
+                map: "diverging".into(),
+                min: -limit,
+                max: limit,
+            },
+            directions: format
+                .writes_curvature()
+                .then(|| principal_directions(tess)),
+        }
     }
-    raw
+
+    /// The mesh of these arrays; `curvature` (internal `K`, `H`) is asked for only where the
+    /// format stores it.
+    fn mesh(
+        self,
+        positions: Vec<nalgebra::Point3<f64>>,
+        normals: Vec<nalgebra::Vector3<f64>>,
+        faces: &[[usize; 3]],
+        curvature: impl FnOnce() -> (Vec<f64>, Vec<f64>),
+    ) -> meshio::RawMesh {
+        let mut raw = meshio::RawMesh::from_triangles(positions, faces);
+        raw.normals = Some(normals);
+        raw.colors = Some(self.colors);
+        raw.color_map = Some(self.color_map);
+        if let Some(directions) = self.directions {
+            let (k, h) = curvature();
+            raw.curvature =
+                Some(meshio::Curvature::from_internal(k, h).with_directions(directions));
+        }
+        raw
+    }
 }
 
 /// The unit principal directions `[d1, d2]` (of `κ1 ≥ κ2`, the exported convention) at every

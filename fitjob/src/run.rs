@@ -13,9 +13,7 @@ use crate::error::JobError;
 use crate::input::{load_owned, Source};
 use crate::limits::{self, check_memory, check_usize};
 use crate::options::FitOptions;
-use crate::output::{
-    destination, mesh_format_for, refuse_unwritable, write_result, write_result_with,
-};
+use crate::output::{destination, mesh_format_for, refuse_unwritable, write_result_with};
 
 use crate::report::{
     CurveCounts, DegenerateEdge, FaceRef, FallbackFace, FitReport, FoldSummary, G1Summary,
@@ -325,22 +323,25 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         let tessellate_time = t3.elapsed().as_secs_f64();
         t_sample = tessellate_time;
         tess.to_world(&frame);
-        let raw = crate::output::tessellation_mesh(&tess, format);
+        let (vertices, triangles, welds) = (tess.positions.len(), tess.faces.len(), tess.welds);
+        // The mesh takes the tessellation's arrays unless it is kept.
+        let raw = if options.keep {
+            let raw = crate::output::tessellation_mesh(&tess, format);
+            kept_tessellation = Some(tess);
+            raw
+        } else {
+            crate::output::into_tessellation_mesh(tess, format)
+        };
         let write_options = options.mesh_options.write_options();
-        let bytes = meshio::write_bytes(&raw, format, &write_options).map_err(|source| {
-            JobError::MeshWrite {
-                path: path.clone(),
-                source,
-            }
-        })?;
-        write_result(Some(path), &bytes)?;
+        crate::output::write_mesh_result(path, format, &raw, &write_options)?;
+        drop(raw);
         t_tess = t3.elapsed().as_secs_f64();
         log(&format!(
             "  tessellation: s = {}, {} vertices, {} triangles, {} seam welds, in {:.3} s (tessellate {:.3} s, convert and write the rest) → {}",
             options.tess,
-            tess.positions.len(),
-            tess.faces.len(),
-            tess.welds,
+            vertices,
+            triangles,
+            welds,
             t_tess,
             tessellate_time,
             path.display()
@@ -348,14 +349,11 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
         peak_after("tessellate");
         tessellation = Some(TessellationSummary {
             segments: options.tess,
-            vertices: tess.positions.len(),
-            triangles: tess.faces.len(),
-            welds: tess.welds,
+            vertices,
+            triangles,
+            welds,
             path: path.display().to_string(),
         });
-        if options.keep {
-            kept_tessellation = Some(tess);
-        }
     }
     let faces = mesh.num_faces();
     let uses_curves = scheme.uses_curves();

@@ -12,7 +12,7 @@ use std::time::Instant;
 use crate::error::JobError;
 use crate::input::Source;
 use crate::options::FitOptions;
-use crate::output::{mesh_format_for, refuse_overwriting_input, write_result};
+use crate::output::{mesh_format_for, refuse_overwriting_input};
 use crate::report::{FitReport, SubdivisionSummary, Timings};
 
 /// The crease tags of a file's polygons: the creases `rule` finds on the file's mesh, the ones
@@ -119,14 +119,7 @@ pub fn run(options: &FitOptions) -> Result<FitReport, JobError> {
         refuse_overwriting_input("--mesh-output", path, &input)?;
         let format = mesh_format_for("--mesh-output", path)?;
         let write_options = options.mesh_options.write_options();
-        let bytes =
-            meshio::write_bytes(&refined.to_raw(), format, &write_options).map_err(|source| {
-                JobError::MeshWrite {
-                    path: path.to_path_buf(),
-                    source,
-                }
-            })?;
-        write_result(Some(path), &bytes)?;
+        crate::output::write_mesh_result(path, format, &refined.to_raw(), &write_options)?;
     }
     Ok(FitReport {
         input: label,

@@ -43,6 +43,36 @@ fn bench(c: &mut Criterion) {
         b.iter(|| glb.write(&mesh, &opts).expect("write"))
     });
     g.finish();
+    streaming(c, &mesh);
+}
+
+/// Writing a whole file to a sink, for each writable binary and text encoder: the bytes reach
+/// an `io::Write` (here `io::sink()`, standing for a file), so what is timed is the encoding
+/// plus whatever buffering the writer needs to get the bytes out.
+fn streaming(c: &mut Criterion, mesh: &meshio::RawMesh) {
+    let mut g = c.benchmark_group("streaming_1M_triangles");
+    g.sample_size(10);
+    let cases = [
+        ("ply", WriteOptions::new()),
+        ("glb", WriteOptions::new()),
+        ("stl", WriteOptions::new()),
+        ("obj", WriteOptions::new()),
+    ];
+    for (name, opts) in cases {
+        let f = format_by_name(name).expect("format");
+        let len = f.write(mesh, &opts).expect("write").len();
+        g.throughput(Throughput::Bytes(len as u64));
+        g.bench_function(format!("{name}_to_sink"), |b| {
+            b.iter(|| to_sink(f, mesh, &opts))
+        });
+    }
+    g.finish();
+}
+
+/// One file streamed to `io::sink()` ([`meshio::MeshFormat::write_to`]). Before the writers
+/// streamed, this was `write` into a `Vec` and then `write_all` of it (docs/performance.md).
+fn to_sink(f: &dyn meshio::MeshFormat, mesh: &meshio::RawMesh, opts: &WriteOptions) {
+    f.write_to(mesh, opts, &mut std::io::sink()).expect("write");
 }
 
 criterion_group!(benches, bench);

@@ -115,7 +115,7 @@ impl ReadError {
 }
 
 /// A mesh could not be written in a format.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum WriteError {
     /// The format is read-only.
     #[error("{format}: writing is not supported")]
@@ -131,6 +131,17 @@ pub enum WriteError {
         format: &'static str,
         /// What is wrong.
         message: String,
+    },
+    /// The mesh was valid but the bytes could not be delivered: the writer given to
+    /// [`crate::MeshFormat::write_to`] failed (a full disk, a closed pipe). Every check runs
+    /// before the first byte, so this is never a mesh problem.
+    #[error("{format}: {source}")]
+    Io {
+        /// The format's name.
+        format: &'static str,
+        /// The writer's error.
+        #[source]
+        source: std::io::Error,
     },
 }
 

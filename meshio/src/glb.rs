@@ -128,8 +128,19 @@ impl MeshFormat for Glb {
         read_glb(bytes)
     }
 
-    fn write(&self, mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
-        write_glb(mesh, options.up)
+    fn size_hint(&self, mesh: &RawMesh, _: &WriteOptions) -> usize {
+        // Positions and normals as 12 bytes a vertex, 12 bytes a triangle of indices, and the
+        // JSON.
+        4096 + 24 * mesh.positions.len() + 12 * crate::util::fan_count(mesh)
+    }
+
+    fn write_to(
+        &self,
+        mesh: &RawMesh,
+        options: &WriteOptions,
+        out: &mut dyn std::io::Write,
+    ) -> Result<(), WriteError> {
+        write_glb(mesh, options.up, out)
     }
 }
 
@@ -140,9 +151,9 @@ const UNSIGNED_SHORT: u32 = 5123;
 const UNSIGNED_INT: u32 = 5125;
 const FLOAT: u32 = 5126;
 
-fn push_f32s(bin: &mut Vec<u8>, xs: impl IntoIterator<Item = f32>) {
+fn push_f32s(sink: &mut crate::util::Sink<'_>, xs: impl IntoIterator<Item = f32>) {
     for x in xs {
-        bin.extend_from_slice(&x.to_le_bytes());
+        sink.f32(x);
     }
 }
 
@@ -192,7 +203,11 @@ fn extras(mesh: &RawMesh, up: UpAxis) -> serde_json::Value {
     serde_json::Value::Object(e)
 }
 
-fn write_glb(mesh: &RawMesh, up: UpAxis) -> Result<Vec<u8>, WriteError> {
+/// The glTF binary of `mesh` in two passes: the first makes every check and the bounds of the
+/// positions, and lays out the buffer (each view's length follows from the counts: 12 bytes a
+/// vertex for a `VEC3` of `f32`, 4 for a `SCALAR`, 12 a triangle for the `u32` indices); the
+/// JSON chunk is then written, and the BIN chunk streamed view by view in the same order.
+fn write_glb(mesh: &RawMesh, up: UpAxis, out: &mut dyn std::io::Write) -> Result<(), WriteError> {
     validate_for_write(mesh, NAME)?;
     let n = mesh.positions.len();
     let ntri = fan_count(mesh);
@@ -209,8 +224,8 @@ fn write_glb(mesh: &RawMesh, up: UpAxis) -> Result<Vec<u8>, WriteError> {
         ));
     }
     if let Some(c) = &mesh.curvature {
-        check_f32_values(NAME, "gaussian curvature", &c.gaussian)?;
-        check_f32_values(NAME, "mean curvature", &c.mean)?;
+        check_f32_values(NAME, "gaussian curvature", c.gaussian.iter().copied())?;
+        check_f32_values(NAME, "mean curvature", c.mean.iter().copied())?;
     }
     let mut used = vec![false; n];
     for &i in mesh.polygons.iter().flatten() {
@@ -218,42 +233,86 @@ fn write_glb(mesh: &RawMesh, up: UpAxis) -> Result<Vec<u8>, WriteError> {
             *u = true;
         }
     }
-    let vec3_bytes = 12 * n;
-    let mut bin = Vec::with_capacity(vec3_bytes * 3 + 8 * n + 12 * ntri);
-    let mut views = Vec::new();
-    let mut accessors = Vec::new();
-    let mut attributes = serde_json::Map::new();
-
-    // POSITION
+    let gltf_position = |p: &Point3<f64>| up.to_gltf([p.x, p.y, p.z]).map(|x| x as f32);
     let mut min = [f32::INFINITY; 3];
     let mut max = [f32::NEG_INFINITY; 3];
     for p in &mesh.positions {
-        let q = up.to_gltf([p.x, p.y, p.z]);
-        let v = q.map(|x| x as f32);
+        let v = gltf_position(p);
         for k in 0..3 {
             min[k] = min[k].min(v[k]);
             max[k] = max[k].max(v[k]);
         }
-        push_f32s(&mut bin, v);
     }
     if !min.iter().chain(&max).all(|x| x.is_finite()) {
         return Err(WriteError::invalid(NAME, "a position does not fit an f32"));
     }
-    let mut add = |bin_start: usize, bin_end: usize, target: u32, acc: serde_json::Value| {
+    // A zero normal is refused where a face uses the vertex, and written as glTF's up elsewhere.
+    let gltf_normal = |i: usize, nv: &Vector3<f64>| match nv.try_normalize(0.0) {
+        Some(u) => Some(up.to_gltf([u.x, u.y, u.z]).map(|x| x as f32)),
+        None if !used.get(i).copied().unwrap_or(false) => Some([0.0, 1.0, 0.0]),
+        None => None,
+    };
+    if let Some(normals) = &mesh.normals {
+        if let Some(i) = normals
+            .iter()
+            .enumerate()
+            .position(|(i, nv)| gltf_normal(i, nv).is_none())
+        {
+            return Err(WriteError::invalid(
+                NAME,
+                format!("vertex {i} has a zero normal"),
+            ));
+        }
+    }
+    let curvature = mesh.curvature.as_ref();
+    let directions = curvature.and_then(|c| c.directions.as_ref().map(|ds| (c, ds)));
+    if let Some((c, ds)) = directions {
+        check_f32_values(
+            NAME,
+            "principal curvature k1",
+            (0..n).map(|i| c.principal(i).map_or(f64::NAN, |k| k[0])),
+        )?;
+        check_f32_values(
+            NAME,
+            "principal curvature k2",
+            (0..n).map(|i| c.principal(i).map_or(f64::NAN, |k| k[1])),
+        )?;
+        for j in 0..2 {
+            for d in ds {
+                let v = up.to_gltf([d[j].x, d[j].y, d[j].z]);
+                if !v.iter().all(|x| x.is_finite()) {
+                    return Err(WriteError::invalid(
+                        NAME,
+                        "a principal direction is not finite",
+                    ));
+                }
+            }
+        }
+    }
+
+    // The layout: views back to back in the order they are streamed below.
+    let (vec3_bytes, scalar_bytes) = (12 * n, 4 * n);
+    let mut bin_len = 0usize;
+    let mut views = Vec::new();
+    let mut accessors = Vec::new();
+    let mut attributes = serde_json::Map::new();
+    let mut add = |byte_length: usize, target: u32, acc: serde_json::Value| {
         views.push(json!({
             "buffer": 0,
-            "byteOffset": bin_start,
-            "byteLength": bin_end - bin_start,
+            "byteOffset": bin_len,
+            "byteLength": byte_length,
             "target": target,
         }));
+        bin_len += byte_length;
         let mut acc = acc;
         acc["bufferView"] = json!(views.len() - 1);
         accessors.push(acc);
         accessors.len() - 1
     };
+    let vec3 = json!({ "componentType": FLOAT, "count": n, "type": "VEC3" });
+    let scalar = json!({ "componentType": FLOAT, "count": n, "type": "SCALAR" });
     let pos = add(
-        0,
-        bin.len(),
+        vec3_bytes,
         ARRAY_BUFFER,
         json!({
             "componentType": FLOAT, "count": n, "type": "VEC3",
@@ -261,114 +320,32 @@ fn write_glb(mesh: &RawMesh, up: UpAxis) -> Result<Vec<u8>, WriteError> {
         }),
     );
     attributes.insert("POSITION".into(), json!(pos));
-
-    if let Some(normals) = &mesh.normals {
-        let start = bin.len();
-        for (i, nv) in normals.iter().enumerate() {
-            let unit = match nv.try_normalize(0.0) {
-                Some(u) => up.to_gltf([u.x, u.y, u.z]),
-                None if !used.get(i).copied().unwrap_or(false) => [0.0, 1.0, 0.0],
-                None => {
-                    return Err(WriteError::invalid(
-                        NAME,
-                        format!("vertex {i} has a zero normal"),
-                    ))
-                }
-            };
-            push_f32s(&mut bin, unit.map(|x| x as f32));
-        }
-        let a = add(
-            start,
-            bin.len(),
-            ARRAY_BUFFER,
-            json!({
-                "componentType": FLOAT, "count": n, "type": "VEC3",
-            }),
-        );
+    if mesh.normals.is_some() {
+        let a = add(vec3_bytes, ARRAY_BUFFER, vec3.clone());
         attributes.insert("NORMAL".into(), json!(a));
     }
-    if let Some(colors) = &mesh.colors {
-        let start = bin.len();
-        for c in colors {
-            push_f32s(&mut bin, c.map(|x| x.clamp(0.0, 1.0)));
-        }
-        let a = add(
-            start,
-            bin.len(),
-            ARRAY_BUFFER,
-            json!({
-                "componentType": FLOAT, "count": n, "type": "VEC3",
-            }),
-        );
+    if mesh.colors.is_some() {
+        let a = add(vec3_bytes, ARRAY_BUFFER, vec3.clone());
         attributes.insert("COLOR_0".into(), json!(a));
     }
-    if let Some(c) = &mesh.curvature {
-        for (name, values) in [(GAUSSIAN_ATTRIBUTE, &c.gaussian), (MEAN_ATTRIBUTE, &c.mean)] {
-            let start = bin.len();
-            push_f32s(&mut bin, values.iter().map(|&x| x as f32));
-            let a = add(
-                start,
-                bin.len(),
-                ARRAY_BUFFER,
-                json!({
-                    "componentType": FLOAT, "count": n, "type": "SCALAR",
-                }),
-            );
+    if curvature.is_some() {
+        for name in [GAUSSIAN_ATTRIBUTE, MEAN_ATTRIBUTE] {
+            let a = add(scalar_bytes, ARRAY_BUFFER, scalar.clone());
             attributes.insert(name.into(), json!(a));
         }
-        if let Some(ds) = &c.directions {
-            let [k1, k2] = [0, 1].map(|j| {
-                (0..n)
-                    .map(|i| c.principal(i).map_or(f64::NAN, |k| k[j]))
-                    .collect::<Vec<f64>>()
-            });
-            check_f32_values(NAME, "principal curvature k1", &k1)?;
-            check_f32_values(NAME, "principal curvature k2", &k2)?;
-            for (name, values) in [
-                (PRINCIPAL_ATTRIBUTES[0], &k1),
-                (PRINCIPAL_ATTRIBUTES[1], &k2),
-            ] {
-                let start = bin.len();
-                push_f32s(&mut bin, values.iter().map(|&x| x as f32));
-                let a = add(
-                    start,
-                    bin.len(),
-                    ARRAY_BUFFER,
-                    json!({ "componentType": FLOAT, "count": n, "type": "SCALAR" }),
-                );
-                attributes.insert(name.into(), json!(a));
+        if directions.is_some() {
+            for name in &PRINCIPAL_ATTRIBUTES[..2] {
+                let a = add(scalar_bytes, ARRAY_BUFFER, scalar.clone());
+                attributes.insert((*name).into(), json!(a));
             }
-            for (j, name) in [(0, PRINCIPAL_ATTRIBUTES[2]), (1, PRINCIPAL_ATTRIBUTES[3])] {
-                let start = bin.len();
-                for d in ds {
-                    let v = up.to_gltf([d[j].x, d[j].y, d[j].z]);
-                    if !v.iter().all(|x| x.is_finite()) {
-                        return Err(WriteError::invalid(
-                            NAME,
-                            "a principal direction is not finite",
-                        ));
-                    }
-                    push_f32s(&mut bin, v.map(|x| x as f32));
-                }
-                let a = add(
-                    start,
-                    bin.len(),
-                    ARRAY_BUFFER,
-                    json!({ "componentType": FLOAT, "count": n, "type": "VEC3" }),
-                );
-                attributes.insert(name.into(), json!(a));
+            for name in &PRINCIPAL_ATTRIBUTES[2..4] {
+                let a = add(vec3_bytes, ARRAY_BUFFER, vec3.clone());
+                attributes.insert((*name).into(), json!(a));
             }
-        }
-    }
-    let start = bin.len();
-    for t in mesh.polygons.iter().flat_map(fan) {
-        for i in t {
-            bin.extend_from_slice(&(i as u32).to_le_bytes());
         }
     }
     let indices = add(
-        start,
-        bin.len(),
+        12 * ntri,
         ELEMENT_ARRAY_BUFFER,
         json!({
             "componentType": UNSIGNED_INT, "count": 3 * ntri, "type": "SCALAR",
@@ -385,7 +362,7 @@ fn write_glb(mesh: &RawMesh, up: UpAxis) -> Result<Vec<u8>, WriteError> {
             "indices": indices,
             "mode": 4,
         } ] } ],
-        "buffers": [ { "byteLength": bin.len() } ],
+        "buffers": [ { "byteLength": bin_len } ],
         "bufferViews": views,
         "accessors": accessors,
     });
@@ -394,23 +371,58 @@ fn write_glb(mesh: &RawMesh, up: UpAxis) -> Result<Vec<u8>, WriteError> {
     while json_bytes.len() % 4 != 0 {
         json_bytes.push(b' ');
     }
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json_bytes.len() + 8 + bin.len();
+    let bin_padding = (4 - bin_len % 4) % 4;
+    let total = 12 + 8 + json_bytes.len() + 8 + bin_len + bin_padding;
     let total32 = u32::try_from(total)
         .map_err(|_| WriteError::invalid(NAME, "the file would exceed 4 GiB"))?;
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&total32.to_le_bytes());
-    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json_bytes);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
-    Ok(out)
+
+    // Every check is done: from here on, bytes go out.
+    let mut s = crate::util::Sink::new(out);
+    s.put(b"glTF");
+    s.u32(2);
+    s.u32(total32);
+    s.u32(json_bytes.len() as u32);
+    s.put(b"JSON");
+    s.put(&json_bytes);
+    s.u32((bin_len + bin_padding) as u32);
+    s.put(b"BIN\0");
+    for p in &mesh.positions {
+        s.f32x3(gltf_position(p));
+    }
+    if let Some(normals) = &mesh.normals {
+        for (i, nv) in normals.iter().enumerate() {
+            s.f32x3(gltf_normal(i, nv).unwrap_or([0.0; 3]));
+        }
+    }
+    if let Some(colors) = &mesh.colors {
+        for c in colors {
+            s.f32x3(c.map(|x| x.clamp(0.0, 1.0)));
+        }
+    }
+    if let Some(c) = curvature {
+        for values in [&c.gaussian, &c.mean] {
+            push_f32s(&mut s, values.iter().map(|&x| x as f32));
+        }
+    }
+    if let Some((c, ds)) = directions {
+        for j in 0..2 {
+            push_f32s(
+                &mut s,
+                (0..n).map(|i| c.principal(i).map_or(f64::NAN, |k| k[j]) as f32),
+            );
+        }
+        for j in 0..2 {
+            for d in ds {
+                let v = up.to_gltf([d[j].x, d[j].y, d[j].z]);
+                s.f32x3(v.map(|x| x as f32));
+            }
+        }
+    }
+    for t in mesh.polygons.iter().flat_map(fan) {
+        s.u32x3(t.map(|i| i as u32));
+    }
+    s.put(&[0; 3][..bin_padding]);
+    s.finish(NAME)
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -121,8 +121,18 @@ impl MeshFormat for Obj {
         read_obj(bytes)
     }
 
-    fn write(&self, mesh: &RawMesh, _: &WriteOptions) -> Result<Vec<u8>, WriteError> {
-        write_obj(mesh)
+    fn size_hint(&self, mesh: &RawMesh, _: &WriteOptions) -> usize {
+        // About 40 characters a vertex line and 30 a face line.
+        40 * mesh.positions.len() + 30 * mesh.polygons.len()
+    }
+
+    fn write_to(
+        &self,
+        mesh: &RawMesh,
+        _: &WriteOptions,
+        out: &mut dyn std::io::Write,
+    ) -> Result<(), WriteError> {
+        write_obj(mesh, out)
     }
 }
 
@@ -664,9 +674,9 @@ fn vertex_normals(
     Some(out)
 }
 
-fn write_obj(mesh: &RawMesh) -> Result<Vec<u8>, WriteError> {
+fn write_obj(mesh: &RawMesh, out: &mut dyn std::io::Write) -> Result<(), WriteError> {
     validate_for_write(mesh, NAME)?;
-    let mut s = String::with_capacity(40 * mesh.positions.len() + 30 * mesh.polygons.len());
+    let mut s = crate::util::Sink::new(out);
     for line in crate::util::provenance(mesh, Some(COLOUR_NOTE)) {
         let _ = writeln!(s, "# {line}");
     }
@@ -695,5 +705,5 @@ fn write_obj(mesh: &RawMesh) -> Result<Vec<u8>, WriteError> {
         }
         s.push('\n');
     }
-    Ok(s.into_bytes())
+    s.finish(NAME)
 }

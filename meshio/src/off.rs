@@ -72,8 +72,18 @@ impl MeshFormat for Off {
         read_off(bytes)
     }
 
-    fn write(&self, mesh: &RawMesh, _: &WriteOptions) -> Result<Vec<u8>, WriteError> {
-        write_off(mesh)
+    fn size_hint(&self, mesh: &RawMesh, _: &WriteOptions) -> usize {
+        // About 40 characters a vertex line and 30 a face line.
+        40 * mesh.positions.len() + 30 * mesh.polygons.len()
+    }
+
+    fn write_to(
+        &self,
+        mesh: &RawMesh,
+        _: &WriteOptions,
+        out: &mut dyn std::io::Write,
+    ) -> Result<(), WriteError> {
+        write_off(mesh, out)
     }
 }
 
@@ -253,9 +263,9 @@ fn read_off(bytes: &[u8]) -> Result<RawMesh, ReadError> {
     })
 }
 
-fn write_off(mesh: &RawMesh) -> Result<Vec<u8>, WriteError> {
+fn write_off(mesh: &RawMesh, out: &mut dyn std::io::Write) -> Result<(), WriteError> {
     validate_for_write(mesh, NAME)?;
-    let mut s = String::with_capacity(40 * mesh.positions.len() + 30 * mesh.polygons.len());
+    let mut s = crate::util::Sink::new(out);
     // One of the headers libigl, MeshLab and trimesh all read: `COFF` when there are colours
     // (normals then left out: no reader takes both), `NOFF` with normals, else `OFF`.
     let colors = mesh.colors.as_ref();
@@ -296,5 +306,5 @@ fn write_off(mesh: &RawMesh) -> Result<Vec<u8>, WriteError> {
         }
         s.push('\n');
     }
-    Ok(s.into_bytes())
+    s.finish(NAME)
 }

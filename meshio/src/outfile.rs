@@ -218,6 +218,55 @@ pub fn write_atomic_with(
     Ok(())
 }
 
+/// Why a mesh file could not be written: the format's encoder refused the mesh, or the file
+/// could not be written. Both name the file.
+#[derive(Debug, thiserror::Error)]
+pub enum MeshOutputError {
+    /// The encoder refused the mesh (something the format cannot hold); nothing was written
+    /// and an existing file is untouched.
+    #[error("cannot write {path} as a mesh: {source}", path = .path.display())]
+    Encode {
+        /// The file.
+        path: PathBuf,
+        /// The encoder's answer.
+        #[source]
+        source: crate::error::WriteError,
+    },
+    /// The file could not be written (or its path is not a writable regular file).
+    #[error(transparent)]
+    File(#[from] OutputError),
+}
+
+/// Writes `mesh` in `format` to `path` atomically ([`write_atomic_with`]), streaming: the
+/// encoder ([`crate::MeshFormat::write_to`]) writes into the buffered temporary file, so the
+/// file's bytes never sit in memory all at once. An encoder refusal leaves an existing `path`
+/// untouched and no temporary file behind.
+pub fn write_atomic_mesh(
+    path: &Path,
+    format: &dyn crate::MeshFormat,
+    mesh: &crate::RawMesh,
+    options: &crate::WriteOptions,
+) -> Result<(), MeshOutputError> {
+    // The encoder's refusal is kept here; the atomic writer sees an I/O error and cleans up.
+    let mut refused = None;
+    let result = write_atomic_with(path, &mut |w| {
+        format.write_to(mesh, options, w).map_err(|e| match e {
+            crate::error::WriteError::Io { source, .. } => source,
+            other => {
+                refused = Some(other);
+                std::io::Error::other("the encoder refused the mesh")
+            }
+        })
+    });
+    match (refused, result) {
+        (Some(source), _) => Err(MeshOutputError::Encode {
+            path: path.to_path_buf(),
+            source,
+        }),
+        (None, result) => result.map_err(MeshOutputError::File),
+    }
+}
+
 /// `dir/.name.tmp-<pid>-<n>` beside `path`.
 fn temp_sibling(path: &Path) -> Result<PathBuf, OutputError> {
     let name = path.file_name().ok_or_else(|| OutputError::NoFileName {
@@ -329,6 +378,38 @@ mod tests {
         registry.add(&sub);
         assert_eq!(registry.remove_all(), 2);
         assert!(entries(dir.path()).is_empty());
+    }
+
+    #[test]
+    fn mesh_files_stream_and_refusals_keep_the_old_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("tri.obj");
+        let obj = crate::format_by_name("obj").unwrap();
+        let opts = crate::WriteOptions::new();
+        let mut mesh = crate::RawMesh::from_triangles(
+            vec![
+                nalgebra::Point3::new(0.0, 0.0, 0.0),
+                nalgebra::Point3::new(1.0, 0.0, 0.0),
+                nalgebra::Point3::new(0.0, 1.0, 0.0),
+            ],
+            &[[0, 1, 2]],
+        );
+        write_atomic_mesh(&path, obj, &mesh, &opts).unwrap();
+        let written = fs::read(&path).unwrap();
+        assert_eq!(written, obj.write(&mesh, &opts).unwrap());
+        // A NaN position is refused by the encoder: the old file stays, no temporary is left.
+        mesh.positions[1].x = f64::NAN;
+        let err = write_atomic_mesh(&path, obj, &mesh, &opts).unwrap_err();
+        assert!(matches!(err, MeshOutputError::Encode { .. }), "{err}");
+        assert!(err.to_string().contains("tri.obj"), "{err}");
+        assert_eq!(fs::read(&path).unwrap(), written);
+        assert_eq!(entries(dir.path()), vec!["tri.obj".to_string()]);
+        // A file that cannot be made is the file's error, naming it.
+        mesh.positions[1].x = 1.0;
+        let missing = dir.path().join("missing").join("x.obj");
+        let err = write_atomic_mesh(&missing, obj, &mesh, &opts).unwrap_err();
+        assert!(matches!(err, MeshOutputError::File(_)), "{err}");
+        assert!(err.to_string().contains("x.obj"), "{err}");
     }
 
     #[test]

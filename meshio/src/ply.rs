@@ -105,8 +105,29 @@ impl MeshFormat for Ply {
         read_ply(bytes)
     }
 
-    fn write(&self, mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
-        write_ply(mesh, options)
+    fn size_hint(&self, mesh: &RawMesh, options: &WriteOptions) -> usize {
+        // Binary: x y z (4 or 8 bytes each), then a count byte and 4-byte indices a face; text
+        // takes about twice as much.
+        let coords = if options.double_precision { 24 } else { 12 };
+        let binary = 1024
+            + coords * mesh.positions.len()
+            + mesh.polygons.len()
+            + 4 * mesh.polygons.corner_count()
+            + 9 * mesh.crease_edges.len();
+        if options.ascii {
+            2 * binary
+        } else {
+            binary
+        }
+    }
+
+    fn write_to(
+        &self,
+        mesh: &RawMesh,
+        options: &WriteOptions,
+        out: &mut dyn std::io::Write,
+    ) -> Result<(), WriteError> {
+        write_ply(mesh, options, out)
     }
 }
 
@@ -892,33 +913,65 @@ const DIRECTION_NAMES: [&str; 6] = ["pd1x", "pd1y", "pd1z", "pd2x", "pd2y", "pd2
 /// How the colours are stored, for the header comment.
 const COLOUR_NOTE: &str = "float 0-1 (float, not uchar: libigl 2.6's reader aborts on byte colours beside float properties)";
 
-/// Every vertex property after `x y z` in file order, each as `(name, per-vertex value)`; all
-/// are `float`, so that libigl's reader, which reads every property it does not know into one
-/// matrix of one type, survives (module docs).
-fn float_columns(mesh: &RawMesh) -> Result<Vec<(String, Vec<f64>)>, WriteError> {
-    let mut cols: Vec<(String, Vec<f64>)> = Vec::new();
+/// Where the values of one vertex property come from: read from the mesh vertex by vertex as
+/// the records are written, never gathered into a column of their own.
+enum Column<'a> {
+    /// Component `k` of the normals.
+    Normal(&'a [Vector3<f64>], usize),
+    /// Component `k` of the colours, sRGB-encoded ([`crate::srgb::encode`]).
+    Colour(&'a [[f32; 3]], usize),
+    /// One value per vertex, as stored (curvature, properties).
+    Values(&'a [f64]),
+    /// Principal curvature `j` (0: `k1`, 1: `k2`) of the curvature.
+    Principal(&'a crate::convention::Curvature, usize),
+    /// Component `k % 3` of principal direction `k / 3`.
+    Direction(&'a [[Vector3<f64>; 2]], usize),
+}
+
+impl Column<'_> {
+    /// The value of vertex `i` (0 out of range; the lengths are checked before writing).
+    fn value(&self, i: usize) -> f64 {
+        match *self {
+            Column::Normal(ns, k) => ns.get(i).map_or(0.0, |n| n[k]),
+            Column::Colour(cs, k) => cs
+                .get(i)
+                .map_or(0.0, |c| f64::from(crate::srgb::encode(c[k]))),
+            Column::Values(vs) => vs.get(i).copied().unwrap_or(0.0),
+            Column::Principal(c, j) => crate::util::principal(c, i, j),
+            Column::Direction(ds, k) => ds.get(i).map_or(0.0, |d| d[k / 3][k % 3]),
+        }
+    }
+}
+
+/// Every vertex property after `x y z` in file order, each as `(name, where its values come
+/// from)`, with every check of their names and values done; all are `float`, so that libigl's
+/// reader, which reads every property it does not know into one matrix of one type, survives
+/// (module docs).
+fn float_columns(mesh: &RawMesh) -> Result<Vec<(&str, Column<'_>)>, WriteError> {
+    let mut cols: Vec<(&str, Column<'_>)> = Vec::new();
     if let Some(ns) = &mesh.normals {
-        for (k, name) in ["nx", "ny", "nz"].iter().enumerate() {
-            cols.push((name.to_string(), ns.iter().map(|n| n[k]).collect()));
+        for (k, name) in ["nx", "ny", "nz"].into_iter().enumerate() {
+            cols.push((name, Column::Normal(ns, k)));
         }
     }
     if let Some(cs) = &mesh.colors {
-        for (k, name) in ["red", "green", "blue"].iter().enumerate() {
-            let encoded = cs.iter().map(|c| f64::from(crate::srgb::encode(c[k])));
-            cols.push((name.to_string(), encoded.collect()));
+        for (k, name) in ["red", "green", "blue"].into_iter().enumerate() {
+            cols.push((name, Column::Colour(cs, k)));
         }
     }
     if let Some(c) = &mesh.curvature {
-        let [k, h, k1, k2] = crate::util::curvature_columns(NAME, c)?;
-        cols.push(("quality".into(), k.1.clone()));
-        for (name, vs) in [k, h, k1, k2] {
-            cols.push((name.into(), vs));
-        }
+        crate::util::check_curvature(NAME, c)?;
+        cols.push(("quality", Column::Values(&c.gaussian)));
+        cols.push(("gaussian_curvature", Column::Values(&c.gaussian)));
+        cols.push(("mean_curvature", Column::Values(&c.mean)));
+        cols.push(("k1", Column::Principal(c, 0)));
+        cols.push(("k2", Column::Principal(c, 1)));
         if let Some(ds) = &c.directions {
-            for (k, name) in DIRECTION_NAMES.iter().enumerate() {
-                let vs: Vec<f64> = ds.iter().map(|d| d[k / 3][k % 3]).collect();
-                crate::util::check_f32_values(NAME, "principal direction", &vs)?;
-                cols.push((name.to_string(), vs));
+            for (k, name) in DIRECTION_NAMES.into_iter().enumerate() {
+                let column = Column::Direction(ds, k);
+                let values = (0..ds.len()).map(|i| column.value(i));
+                crate::util::check_f32_values(NAME, "principal direction", values)?;
+                cols.push((name, column));
             }
         }
     }
@@ -944,13 +997,17 @@ fn float_columns(mesh: &RawMesh) -> Result<Vec<(String, Vec<f64>)>, WriteError> 
                 format!("property `{k}` would clash with the curvature written under that name"),
             ));
         }
-        crate::util::check_f32_values(NAME, &format!("property `{k}`"), vs)?;
-        cols.push((k.clone(), vs.clone()));
+        crate::util::check_f32_values(NAME, &format!("property `{k}`"), vs.iter().copied())?;
+        cols.push((k.as_str(), Column::Values(vs)));
     }
     Ok(cols)
 }
 
-fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
+fn write_ply(
+    mesh: &RawMesh,
+    options: &WriteOptions,
+    out: &mut dyn std::io::Write,
+) -> Result<(), WriteError> {
     validate_for_write(mesh, NAME)?;
     let cols = float_columns(mesh)?;
     if !options.double_precision
@@ -1023,25 +1080,18 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
         h.push_str("property int vertex1\nproperty int vertex2\nproperty uchar crease\n");
     }
     h.push_str("end_header\n");
-    let vbytes = if options.double_precision { 24 } else { 12 } + 4 * cols.len();
-    let mut out = Vec::with_capacity(
-        h.len()
-            + vbytes * mesh.positions.len()
-            + 4 * mesh.polygons.corner_count()
-            + mesh.polygons.len()
-            + 9 * creases.len(),
-    );
-    out.extend_from_slice(h.as_bytes());
+    // Every check is done: from here on, bytes go out.
+    let mut s = crate::util::Sink::new(out);
+    s.push_str(&h);
     if ascii {
-        let mut s = String::new();
         for (i, p) in mesh.positions.iter().enumerate() {
             if options.double_precision {
                 let _ = write!(s, "{:?} {:?} {:?}", p.x, p.y, p.z);
             } else {
                 let _ = write!(s, "{:?} {:?} {:?}", p.x as f32, p.y as f32, p.z as f32);
             }
-            for (_, vs) in &cols {
-                let _ = write!(s, " {:?}", vs.get(i).copied().unwrap_or(0.0) as f32);
+            for (_, column) in &cols {
+                let _ = write!(s, " {:?}", column.value(i) as f32);
             }
             s.push('\n');
         }
@@ -1055,36 +1105,53 @@ fn write_ply(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
         for [a, b] in creases {
             let _ = writeln!(s, "{a} {b} 1");
         }
-        out.extend_from_slice(s.as_bytes());
     } else {
+        // Each record is gathered in a small buffer and handed to the sink whole.
+        let mut record: Vec<u8> = Vec::with_capacity(24 + 4 * cols.len());
         for (i, p) in mesh.positions.iter().enumerate() {
+            if cols.is_empty() && !options.double_precision {
+                // Fixed-size records are copied without a call.
+                s.f32x3([p.x as f32, p.y as f32, p.z as f32]);
+                continue;
+            }
+            record.clear();
             for x in [p.x, p.y, p.z] {
                 if options.double_precision {
-                    out.extend_from_slice(&x.to_le_bytes());
+                    record.extend_from_slice(&x.to_le_bytes());
                 } else {
-                    out.extend_from_slice(&(x as f32).to_le_bytes());
+                    record.extend_from_slice(&(x as f32).to_le_bytes());
                 }
             }
-            for (_, vs) in &cols {
-                let x = vs.get(i).copied().unwrap_or(0.0) as f32;
-                out.extend_from_slice(&x.to_le_bytes());
+            for (_, column) in &cols {
+                record.extend_from_slice(&(column.value(i) as f32).to_le_bytes());
             }
+            s.put(&record);
         }
         for poly in mesh.polygons.iter() {
+            if let (false, &[a, b, c]) = (big_faces, poly) {
+                let mut triangle = [3u8; 13];
+                for (slot, i) in triangle[1..].chunks_exact_mut(4).zip([a, b, c]) {
+                    slot.copy_from_slice(&(i as i32).to_le_bytes());
+                }
+                s.put(&triangle);
+                continue;
+            }
+            record.clear();
             if big_faces {
-                out.extend_from_slice(&(poly.len() as i32).to_le_bytes());
+                record.extend_from_slice(&(poly.len() as i32).to_le_bytes());
             } else {
-                out.push(poly.len() as u8);
+                record.push(poly.len() as u8);
             }
             for &i in poly {
-                out.extend_from_slice(&(i as i32).to_le_bytes());
+                record.extend_from_slice(&(i as i32).to_le_bytes());
             }
+            s.put(&record);
         }
         for &[a, b] in creases {
-            out.extend_from_slice(&(a as i32).to_le_bytes());
-            out.extend_from_slice(&(b as i32).to_le_bytes());
-            out.push(1);
+            s.i32(a as i32);
+            s.i32(b as i32);
+            s.u8(1);
         }
     }
-    Ok(out)
+    s.finish(NAME)
 }

@@ -76,8 +76,19 @@ impl MeshFormat for Stl {
         }
     }
 
-    fn write(&self, mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
-        write_stl(mesh, options)
+    fn size_hint(&self, mesh: &RawMesh, options: &WriteOptions) -> usize {
+        // Binary: an 84-byte header and 50 bytes a triangle; text about 250 bytes a triangle.
+        let per = if options.ascii { 250 } else { 50 };
+        84 + per * crate::util::fan_count(mesh)
+    }
+
+    fn write_to(
+        &self,
+        mesh: &RawMesh,
+        options: &WriteOptions,
+        out: &mut dyn std::io::Write,
+    ) -> Result<(), WriteError> {
+        write_stl(mesh, options, out)
     }
 }
 
@@ -264,13 +275,18 @@ fn facet_normal(a: &Point3<f64>, b: &Point3<f64>, c: &Point3<f64>) -> Vector3<f6
     n.try_normalize(0.0).unwrap_or_else(Vector3::zeros)
 }
 
-fn write_stl(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteError> {
+fn write_stl(
+    mesh: &RawMesh,
+    options: &WriteOptions,
+    out: &mut dyn std::io::Write,
+) -> Result<(), WriteError> {
     validate_for_write(mesh, NAME)?;
     let p = &mesh.positions;
     let tris = mesh.polygons.iter().flat_map(fan);
     let corner = |i: usize| p.get(i).copied().unwrap_or_else(Point3::origin);
     if options.ascii {
-        let mut s = String::from("solid meshio\n");
+        let mut s = crate::util::Sink::new(out);
+        s.push_str("solid meshio\n");
         for [a, b, c] in tris {
             let (a, b, c) = (corner(a), corner(b), corner(c));
             let n = facet_normal(&a, &b, &c);
@@ -290,29 +306,31 @@ fn write_stl(mesh: &RawMesh, options: &WriteOptions) -> Result<Vec<u8>, WriteErr
             s.push_str("    endloop\n  endfacet\n");
         }
         s.push_str("endsolid meshio\n");
-        return Ok(s.into_bytes());
+        return s.finish(NAME);
     }
     let count = fan_count(mesh);
     let count32 = u32::try_from(count).map_err(|_| {
         WriteError::invalid(NAME, format!("{count} triangles do not fit a binary STL"))
     })?;
-    let mut out = Vec::with_capacity(84 + 50 * count);
+    let mut s = crate::util::Sink::new(out);
     let mut header = [b' '; 80];
     let text = b"binary STL written by meshio";
     for (h, t) in header.iter_mut().zip(text) {
         *h = *t;
     }
-    out.extend_from_slice(&header);
-    out.extend_from_slice(&count32.to_le_bytes());
+    s.put(&header);
+    s.u32(count32);
+    // One facet is one 50-byte record: normal and corners as 12 f32, then 2 attribute bytes.
+    let mut record = [0u8; 50];
     for [a, b, c] in tris {
         let (a, b, c) = (corner(a), corner(b), corner(c));
         let n = facet_normal(&a, &b, &c);
-        for v in [n, a.coords, b.coords, c.coords] {
-            for x in v.iter() {
-                out.extend_from_slice(&(*x as f32).to_le_bytes());
-            }
+        let values = [n, a.coords, b.coords, c.coords];
+        let floats = values.iter().flat_map(|v| v.iter());
+        for (slot, x) in record.chunks_exact_mut(4).zip(floats) {
+            slot.copy_from_slice(&(*x as f32).to_le_bytes());
         }
-        out.extend_from_slice(&[0, 0]);
+        s.put(&record);
     }
-    Ok(out)
+    s.finish(NAME)
 }

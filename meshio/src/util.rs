@@ -1,7 +1,162 @@
 //! Helpers shared by the readers and writers.
 
+use std::io::Write;
+
 use crate::error::WriteError;
 use crate::raw::RawMesh;
+
+/// How many bytes [`Sink`] gathers before handing them to its writer: large enough that the
+/// dynamic call and the system call behind it are paid once per 256 KiB, small enough to stay
+/// in the L2 cache of the machines the workbench runs on.
+pub(crate) const SINK_BUFFER: usize = 256 * 1024;
+
+/// The buffered byte sink every encoder writes into: records are appended to a buffer of
+/// [`SINK_BUFFER`] bytes, which goes to the writer in one `write_all` when the next record
+/// does not fit, so that encoding a record costs a copy and a comparison and not a dynamic
+/// call.
+///
+/// An error of the writer is kept, later bytes are dropped, and [`Sink::finish`] returns it:
+/// encoders then need no error path per number. Text goes in through [`std::fmt::Write`]
+/// (`write!(sink, …)`), which never fails here.
+pub(crate) struct Sink<'a> {
+    out: &'a mut dyn Write,
+    /// [`SINK_BUFFER`] bytes, of which the first `len` are waiting.
+    buf: Box<[u8]>,
+    len: usize,
+    error: Option<std::io::Error>,
+}
+
+impl<'a> Sink<'a> {
+    /// A sink writing to `out`.
+    pub(crate) fn new(out: &'a mut dyn Write) -> Self {
+        Sink {
+            out,
+            buf: vec![0; SINK_BUFFER].into_boxed_slice(),
+            len: 0,
+            error: None,
+        }
+    }
+
+    /// Appends bytes, handing the buffer on first when they do not fit (and bytes longer than
+    /// the buffer straight on after it).
+    #[inline]
+    pub(crate) fn put(&mut self, bytes: &[u8]) {
+        let end = self.len + bytes.len();
+        match self.buf.get_mut(self.len..end) {
+            Some(room) => {
+                room.copy_from_slice(bytes);
+                self.len = end;
+            }
+            None => self.put_slow(bytes),
+        }
+    }
+
+    #[cold]
+    fn put_slow(&mut self, bytes: &[u8]) {
+        self.drain();
+        if bytes.len() >= SINK_BUFFER {
+            self.hand_on(bytes);
+        } else if let Some(room) = self.buf.get_mut(..bytes.len()) {
+            room.copy_from_slice(bytes);
+            self.len = bytes.len();
+        }
+    }
+
+    fn hand_on(&mut self, bytes: &[u8]) {
+        if self.error.is_none() {
+            if let Err(e) = self.out.write_all(bytes) {
+                self.error = Some(e);
+            }
+        }
+    }
+
+    /// One byte.
+    #[inline]
+    pub(crate) fn u8(&mut self, x: u8) {
+        self.put(&[x]);
+    }
+
+    /// A 32-bit float, little-endian.
+    #[inline]
+    pub(crate) fn f32(&mut self, x: f32) {
+        self.put(&x.to_le_bytes());
+    }
+
+    /// Three 32-bit floats, little-endian, as one 12-byte record.
+    #[inline]
+    pub(crate) fn f32x3(&mut self, v: [f32; 3]) {
+        let mut record = [0u8; 12];
+        for (slot, x) in record.chunks_exact_mut(4).zip(v) {
+            slot.copy_from_slice(&x.to_le_bytes());
+        }
+        self.put(&record);
+    }
+
+    /// Three 32-bit unsigned integers, little-endian, as one 12-byte record.
+    #[inline]
+    pub(crate) fn u32x3(&mut self, v: [u32; 3]) {
+        let mut record = [0u8; 12];
+        for (slot, x) in record.chunks_exact_mut(4).zip(v) {
+            slot.copy_from_slice(&x.to_le_bytes());
+        }
+        self.put(&record);
+    }
+
+    /// A 32-bit signed integer, little-endian.
+    #[inline]
+    pub(crate) fn i32(&mut self, x: i32) {
+        self.put(&x.to_le_bytes());
+    }
+
+    /// A 32-bit unsigned integer, little-endian.
+    #[inline]
+    pub(crate) fn u32(&mut self, x: u32) {
+        self.put(&x.to_le_bytes());
+    }
+
+    /// Text.
+    #[inline]
+    pub(crate) fn push_str(&mut self, s: &str) {
+        self.put(s.as_bytes());
+    }
+
+    /// One character.
+    #[inline]
+    pub(crate) fn push(&mut self, c: char) {
+        self.put(c.encode_utf8(&mut [0; 4]).as_bytes());
+    }
+
+    fn drain(&mut self) {
+        let len = std::mem::take(&mut self.len);
+        if len > 0 && self.error.is_none() {
+            if let Err(e) = self.out.write_all(self.buf.get(..len).unwrap_or(&[])) {
+                self.error = Some(e);
+            }
+        }
+    }
+
+    /// Hands on what is left and flushes the writer; the first error of the writer, if any,
+    /// as [`WriteError::Io`] of `format`.
+    pub(crate) fn finish(mut self, format: &'static str) -> Result<(), WriteError> {
+        self.drain();
+        if self.error.is_none() {
+            if let Err(e) = self.out.flush() {
+                self.error = Some(e);
+            }
+        }
+        match self.error {
+            Some(source) => Err(WriteError::Io { format, source }),
+            None => Ok(()),
+        }
+    }
+}
+
+impl std::fmt::Write for Sink<'_> {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        self.push_str(s);
+        Ok(())
+    }
+}
 
 /// Lines of a text file, 1-based, without the line break (`\n` or `\r\n`).
 pub(crate) fn lines(bytes: &[u8]) -> impl Iterator<Item = (usize, &[u8])> {
@@ -196,21 +351,22 @@ pub(crate) fn fan_count(mesh: &RawMesh) -> usize {
 /// Checks that every value of a per-vertex quantity stored as a 32-bit float (PLY `float`, glTF
 /// `FLOAT`) is one: finite and at most `f32::MAX` in magnitude. The error names the quantity,
 /// the vertex, the value and the range, so that a curvature overflowing at an extreme scale is
-/// refused rather than written as an infinity or a plausible-looking number.
+/// refused rather than written as an infinity or a plausible-looking number. The values are
+/// taken one by one (derived quantities are checked without being stored).
 pub(crate) fn check_f32_values(
     format: &'static str,
     what: &str,
-    values: &[f64],
+    values: impl IntoIterator<Item = f64>,
 ) -> Result<(), WriteError> {
     match values
-        .iter()
-        .position(|x| !x.is_finite() || x.abs() > f64::from(f32::MAX))
+        .into_iter()
+        .enumerate()
+        .find(|(_, x)| !x.is_finite() || x.abs() > f64::from(f32::MAX))
     {
-        Some(i) => Err(WriteError::invalid(
+        Some((i, x)) => Err(WriteError::invalid(
             format,
             format!(
-                "{what} of vertex {i} is {:e}, which a 32-bit float does not hold (finite, at most {:e} in magnitude)",
-                values.get(i).copied().unwrap_or(f64::NAN),
+                "{what} of vertex {i} is {x:e}, which a 32-bit float does not hold (finite, at most {:e} in magnitude)",
                 f32::MAX
             ),
         )),
@@ -218,29 +374,33 @@ pub(crate) fn check_f32_values(
     }
 }
 
-/// The curvature quantities a writer stores, in the exported convention: `(name, values)` for
-/// the Gaussian and the mean curvature and the principal curvatures `k1 ≥ k2`
-/// ([`crate::convention::Curvature::principal`]); checked with [`check_f32_values`].
-pub(crate) fn curvature_columns(
+/// Principal curvature `j` (0: `k1`, 1: `k2`, `k1 ≥ k2`) of vertex `i`
+/// ([`crate::convention::Curvature::principal`]), 0 out of range.
+pub(crate) fn principal(c: &crate::convention::Curvature, i: usize, j: usize) -> f64 {
+    c.principal(i)
+        .and_then(|k| k.get(j).copied())
+        .unwrap_or(0.0)
+}
+
+/// Checks the curvature quantities a writer stores, in the exported convention, with
+/// [`check_f32_values`]: the Gaussian and the mean curvature and the principal curvatures
+/// `k1 ≥ k2`, in that order.
+pub(crate) fn check_curvature(
     format: &'static str,
     c: &crate::convention::Curvature,
-) -> Result<[(&'static str, Vec<f64>); 4], WriteError> {
-    check_f32_values(format, "gaussian curvature", &c.gaussian)?;
-    check_f32_values(format, "mean curvature", &c.mean)?;
-    let (k1, k2): (Vec<f64>, Vec<f64>) = (0..c.len())
-        .map(|i| {
-            let [a, b] = c.principal(i).unwrap_or([0.0; 2]);
-            (a, b)
-        })
-        .unzip();
-    check_f32_values(format, "principal curvature k1", &k1)?;
-    check_f32_values(format, "principal curvature k2", &k2)?;
-    Ok([
-        ("gaussian_curvature", c.gaussian.clone()),
-        ("mean_curvature", c.mean.clone()),
-        ("k1", k1),
-        ("k2", k2),
-    ])
+) -> Result<(), WriteError> {
+    check_f32_values(format, "gaussian curvature", c.gaussian.iter().copied())?;
+    check_f32_values(format, "mean curvature", c.mean.iter().copied())?;
+    check_f32_values(
+        format,
+        "principal curvature k1",
+        (0..c.len()).map(|i| principal(c, i, 0)),
+    )?;
+    check_f32_values(
+        format,
+        "principal curvature k2",
+        (0..c.len()).map(|i| principal(c, i, 1)),
+    )
 }
 
 /// The lines every written file opens with, each for the format's own comment syntax: the

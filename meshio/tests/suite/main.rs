@@ -13,4 +13,5 @@ mod ply;
 mod ply_creases;
 mod registry;
 mod stl;
+mod streaming;
 mod testbed;

@@ -121,13 +121,15 @@ pub fn write_mesh(
     if format.writes_curvature() {
         raw.curvature = curvature(tris, &welded);
     }
-    let bytes = meshio::write_bytes(&raw, format, &mesh_options.write_options()).map_err(|e| {
-        FilterError::MeshWrite {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        }
-    })?;
-    meshio::outfile::write_atomic(path, &bytes).map_err(render::RenderError::from)?;
+    meshio::outfile::write_atomic_mesh(path, format, &raw, &mesh_options.write_options()).map_err(
+        |e| match e {
+            meshio::outfile::MeshOutputError::Encode { path, source } => FilterError::MeshWrite {
+                path,
+                message: source.to_string(),
+            },
+            meshio::outfile::MeshOutputError::File(e) => render::RenderError::from(e).into(),
+        },
+    )?;
     eprintln!(
         "to-mesh: {} triangles, {} vertices ({} corners welded within {:.1e}: {:.0e} of the size; {} collapsed triangles dropped){} → {}",
         raw.num_faces(),
