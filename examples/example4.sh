@@ -4,9 +4,10 @@
 #   % KColor < octa.out | Sgp | Render > octa.kg.wff
 #   % Mat0 < octa.out | Sgp | Render > octa.simple.wff
 # Shirman–Séquin with Piper's tangent rule stands in for Piper's scheme; the triangle file is kept in the seed's dstruct format
-# (octa.out), which every filter detects. Mat0 ignores the kg it does not use.
+# (octa.out) as Triangle records (--triangles), which every filter detects. Mat0 ignores the kg
+# it does not use.
 . "$(dirname "$0")/common.sh"
-tb fit --scheme shirman-sequin-testbed --curves piper < "$DATA" | tb tess -s 8 --kg --format dstruct > "$OUT/octa.out"
+tb fit --scheme shirman-sequin-testbed --curves piper < "$DATA" | tb tess -s 8 --kg --triangles --format dstruct > "$OUT/octa.out"
 tb kcolor < "$OUT/octa.out" | tb render > "$OUT/example4-kg.png"
 tb mat0 < "$OUT/octa.out" | tb render > "$OUT/example4-simple.png"
 rm -f "$OUT/octa.out"

@@ -28,7 +28,8 @@ pub struct StreamOptions {
     /// `to-mesh`: the mesh file).
     #[arg(short = 'o', long, global = true)]
     pub output: Option<PathBuf>,
-    /// Output format (default: the input's; JSON Lines for fit).
+    /// Output format (default: the input's; for fit the binary form, or JSON Lines on a
+    /// terminal or for an output named .jsonl).
     #[arg(long, global = true, value_enum)]
     pub format: Option<Format>,
     /// Skip malformed records (counted on standard error) instead of stopping.

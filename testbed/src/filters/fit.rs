@@ -165,18 +165,31 @@ impl Filter for Fit {
         };
         let mut input = Some(input);
         stream.with_output(&mut |out| {
-            // JSON Lines unless asked, or the binary patch file for an output named `.bzp`.
-            let bzp_name = stream
-                .output
-                .as_ref()
-                .is_some_and(|p| p.extension().is_some_and(|e| e == "bzp"));
-            let default = if bzp_name { Format::Bzp } else { Format::Json };
-            let mut w = RecordWriter::new(out, stream.format.or(Some(default)));
+            let mut w = RecordWriter::new(out, Some(stream.format.unwrap_or_else(|| default_format(&stream))));
             match input.take() {
                 Some(input) => fit(input, &options, &mut w),
                 None => Ok(()),
             }
         })
+    }
+}
+
+/// The record format `fit` writes when `--format` is not given: the binary patch file for an
+/// output named `.bzp`, JSON Lines for one named `.jsonl` or `.json` and on a terminal (where
+/// a person reads it), the self-describing binary form otherwise (into a pipe or a file: the
+/// fast form, which every filter reads and follows).
+pub fn default_format(stream: &StreamOptions) -> Format {
+    use std::io::IsTerminal;
+    let output = stream.output.as_deref().and_then(fitjob::destination);
+    let ext = output
+        .and_then(|p| p.extension())
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("bzp") => Format::Bzp,
+        Some("jsonl" | "json") => Format::Json,
+        _ if output.is_none() && std::io::stdout().is_terminal() => Format::Json,
+        _ => Format::Binary,
     }
 }
 

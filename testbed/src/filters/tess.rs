@@ -26,7 +26,7 @@ pub struct Tess;
 #[derive(clap::Args, Debug)]
 pub struct TessArgs {
     /// Segments per patch edge, from 1 to 4096 (and within memory: a patch at s takes about
-    /// 44 bytes × s² while it is written, 0.5 kB × s² with --mesh).
+    /// 44 bytes × s² while it is written, 0.5 kB × s² as one TriangleMesh, 44 bytes × s² as Triangles).
     #[arg(short = 's', long = "segments", value_name = "N", default_value_t = 8)]
     pub s: usize,
     /// Write Gaussian curvature `kg` at the vertices.
@@ -41,16 +41,20 @@ pub struct TessArgs {
     #[arg(long)]
     pub kp: bool,
     /// Write one TriangleMesh record per patch (its vertices once, its triangles as
-    /// indices) instead of s² Triangle records.
-    #[arg(long)]
+    /// indices): the default, accepted for scripts that ask for it.
+    #[arg(long, conflicts_with = "triangles")]
     pub mesh: bool,
+    /// Write the seed's s² Triangle records per patch instead of one TriangleMesh (every
+    /// triangle with its three vertices: about three times the bytes and the work downstream).
+    #[arg(long)]
+    pub triangles: bool,
 }
 
 impl Filter for Tess {
     const NAME: &'static str = "tess";
     const SUMMARY: &'static str = "\
-        BezierTriangles to Triangles (s² per patch) or, with --mesh, one TriangleMesh per patch; \
-        a patch's other fields go to its records";
+        BezierTriangles to one TriangleMesh per patch or, with --triangles, the seed's Triangles \
+        (s² per patch); a patch's other fields go to its records";
     const DESCRIPTION: &'static str = "\
         Each triangle (or TriangleMesh) gets its vertices first, then every field of its patch \
         but `type`, `degree` and `points`, in the patch's order: `face`, `subpatch`, `scheme` \
@@ -65,10 +69,10 @@ impl Filter for Tess {
     type Args = TessArgs;
 
     fn run(args: TessArgs, stream: StreamOptions) -> Result<(), FilterError> {
-        let records = if args.mesh {
-            TessRecords::Mesh
-        } else {
+        let records = if args.triangles {
             TessRecords::Triangles
+        } else {
+            TessRecords::Mesh
         };
         let fields = CurvatureFields {
             kg: args.kg,

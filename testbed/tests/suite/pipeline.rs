@@ -4,7 +4,7 @@
 
 use serde_json::Value;
 
-use crate::support::{json_records, ok, testbed};
+use crate::support::{json_records, ok, testbed, testbed_as_given};
 
 fn octa() -> Vec<u8> {
     std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../data/octa.m")).expect("octa.m")
@@ -656,4 +656,47 @@ fn g1_leaves_out_the_creases_fit_marks() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+/// `testbed ARGS` exactly as given, which must succeed: its standard output.
+fn ok_as_given(args: &[&str], input: &[u8]) -> Vec<u8> {
+    let out = testbed_as_given(args, input);
+    assert!(
+        out.status.success(),
+        "testbed {args:?} failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
+#[test]
+fn the_default_pipeline_is_binary_triangle_meshes_and_draws_what_the_seeds_forms_draw() {
+    // Into a pipe `fit` writes the binary form, and `tess` one TriangleMesh per patch in it.
+    let patches = ok_as_given(&["fit"], &octa());
+    assert!(patches.starts_with(b"TBIN1"), "fit's default into a pipe is binary");
+    let meshes = ok_as_given(&["tess", "-s", "4", "--kg"], &patches);
+    assert!(meshes.starts_with(b"TBIN1"), "tess follows its input's format");
+    let as_json = json_records(&ok_as_given(&["tess", "-s", "4", "--kg", "--format", "json"], &patches));
+    assert_eq!(as_json.len(), 8, "one record per patch of the octahedron");
+    assert!(as_json.iter().all(|r| r["type"] == "TriangleMesh"), "{:?}", as_json[0]["type"]);
+    // The same picture as the seed's forms (JSON Lines, Triangle records) give.
+    let draw = |tris: &[u8]| {
+        let coloured = ok_as_given(&["kcolor"], tris);
+        ok_as_given(&["render", "--size", "96x96"], &coloured)
+    };
+    let seed = ok_as_given(
+        &["tess", "-s", "4", "--kg", "--triangles"],
+        &ok_as_given(&["fit", "--format", "json"], &octa()),
+    );
+    assert!(seed.starts_with(b"{"), "JSON Lines by request");
+    assert_eq!(draw(&meshes), draw(&seed), "the default pipeline draws the seed's picture");
+}
+
+#[test]
+fn fit_writes_json_lines_for_an_output_named_jsonl() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("patches.jsonl");
+    ok_as_given(&["fit", "--output", out.to_str().expect("utf-8")], &octa());
+    let text = std::fs::read(&out).expect("written");
+    assert_eq!(json_records(&text).len(), 8);
 }

@@ -8,9 +8,30 @@ use std::process::{Command, Output, Stdio};
 
 use serde_json::Value;
 
-/// `testbed ARGS` with `input` on its standard input (written from another thread, so a
-/// filter that fails early and closes its input cannot block the test).
+/// `args` in the forms most tests read as text: `fit` writes JSON Lines unless `--format` is
+/// given (its default into a pipe is the binary form), and `tess` the seed's `Triangle`
+/// records unless `--mesh` or `--triangles` is (its default is one `TriangleMesh` per patch).
+/// The defaults themselves are tested with [`testbed_as_given`].
+pub fn seed_forms<'a>(args: &[&'a str]) -> Vec<&'a str> {
+    let mut out = args.to_vec();
+    let has = |flag: &str| args.iter().any(|a| *a == flag || a.starts_with(&format!("{flag}=")));
+    match args.first() {
+        Some(&"fit") if !has("--format") => out.extend(["--format", "json"]),
+        Some(&"tess") if !has("--mesh") && !has("--triangles") => out.push("--triangles"),
+        _ => {}
+    }
+    out
+}
+
+/// `testbed ARGS` (in the seed's forms, [`seed_forms`]) with `input` on its standard input
+/// (written from another thread, so a filter that fails early and closes its input cannot
+/// block the test).
 pub fn testbed(args: &[&str], input: &[u8]) -> Output {
+    testbed_as_given(&seed_forms(args), input)
+}
+
+/// `testbed ARGS` exactly as given, with `input` on its standard input.
+pub fn testbed_as_given(args: &[&str], input: &[u8]) -> Output {
     let mut child = Command::new(env!("CARGO_BIN_EXE_testbed"))
         .args(args)
         .stdin(Stdio::piped())
