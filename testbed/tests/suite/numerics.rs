@@ -219,7 +219,7 @@ fn tess_at_a_large_s_holds_the_samples_alone() {
     let one = json_records(&patches)[0].to_string();
     let mut child = Command::new("sh")
         .arg("-c")
-        .arg("ulimit -v 400000 && exec \"$0\" tess -s 700 --format binary > /dev/null")
+        .arg("ulimit -v 400000 && exec \"$0\" tess -s 700 --triangles --format binary > /dev/null")
         .arg(env!("CARGO_BIN_EXE_testbed"))
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
