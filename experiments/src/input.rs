@@ -21,7 +21,7 @@ pub struct InputArgs {
     pub estimate: String,
     /// Estimate on Euclidean balls of this many mean edge lengths around each vertex (the
     /// degree-2 jet at one radius, Huber-weighted for the mesh's noise) instead of the
-    /// estimator's own neighbourhoods: wider for noisier scans (docs/estimation.md).
+    /// estimator's own neighbourhoods: wider for noisier scans (`estimate::multiscale`).
     #[arg(long, value_name = "R")]
     pub radius: Option<f64>,
     /// Estimate normals even where the file gives them (by default the file's normals are kept

@@ -165,7 +165,10 @@ impl Filter for Fit {
         };
         let mut input = Some(input);
         stream.with_output(&mut |out| {
-            let mut w = RecordWriter::new(out, Some(stream.format.unwrap_or_else(|| default_format(&stream))));
+            let mut w = RecordWriter::new(
+                out,
+                Some(stream.format.unwrap_or_else(|| default_format(&stream))),
+            );
             match input.take() {
                 Some(input) => fit(input, &options, &mut w),
                 None => Ok(()),

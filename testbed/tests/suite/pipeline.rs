@@ -673,13 +673,26 @@ fn ok_as_given(args: &[&str], input: &[u8]) -> Vec<u8> {
 fn the_default_pipeline_is_binary_triangle_meshes_and_draws_what_the_seeds_forms_draw() {
     // Into a pipe `fit` writes the binary form, and `tess` one TriangleMesh per patch in it.
     let patches = ok_as_given(&["fit"], &octa());
-    assert!(patches.starts_with(b"TBIN1"), "fit's default into a pipe is binary");
+    assert!(
+        patches.starts_with(b"TBIN1"),
+        "fit's default into a pipe is binary"
+    );
     let meshes = ok_as_given(&["tess", "-s", "4", "--kg"], &patches);
-    assert!(meshes.starts_with(b"TBIN1"), "tess follows its input's format");
-    let as_json = json_records(&ok_as_given(&["tess", "-s", "4", "--kg", "--format", "json"], &patches));
+    assert!(
+        meshes.starts_with(b"TBIN1"),
+        "tess follows its input's format"
+    );
+    let as_json = json_records(&ok_as_given(
+        &["tess", "-s", "4", "--kg", "--format", "json"],
+        &patches,
+    ));
     // Shirman–Séquin splits each of the octahedron's 8 faces into 3 patches.
     assert_eq!(as_json.len(), 24, "one record per patch of the octahedron");
-    assert!(as_json.iter().all(|r| r["type"] == "TriangleMesh"), "{:?}", as_json[0]["type"]);
+    assert!(
+        as_json.iter().all(|r| r["type"] == "TriangleMesh"),
+        "{:?}",
+        as_json[0]["type"]
+    );
     // The same picture as the seed's forms (JSON Lines, Triangle records) give.
     let draw = |tris: &[u8]| {
         let coloured = ok_as_given(&["kcolor"], tris);
@@ -690,7 +703,11 @@ fn the_default_pipeline_is_binary_triangle_meshes_and_draws_what_the_seeds_forms
         &ok_as_given(&["fit", "--format", "json"], &octa()),
     );
     assert!(seed.starts_with(b"{"), "JSON Lines by request");
-    assert_eq!(draw(&meshes), draw(&seed), "the default pipeline draws the seed's picture");
+    assert_eq!(
+        draw(&meshes),
+        draw(&seed),
+        "the default pipeline draws the seed's picture"
+    );
 }
 
 #[test]

@@ -14,7 +14,10 @@ use serde_json::Value;
 /// The defaults themselves are tested with [`testbed_as_given`].
 pub fn seed_forms<'a>(args: &[&'a str]) -> Vec<&'a str> {
     let mut out = args.to_vec();
-    let has = |flag: &str| args.iter().any(|a| *a == flag || a.starts_with(&format!("{flag}=")));
+    let has = |flag: &str| {
+        args.iter()
+            .any(|a| *a == flag || a.starts_with(&format!("{flag}=")))
+    };
     match args.first() {
         Some(&"fit") if !has("--format") => out.extend(["--format", "json"]),
         Some(&"tess") if !has("--mesh") && !has("--triangles") => out.push("--triangles"),
