@@ -60,6 +60,10 @@
 //! the jet is refitted with those weights: one step of iteratively reweighted least squares from
 //! the least-squares start, which bounds the pull of a far outlier to `c σ̂`. The standard errors
 //! are then taken from `(AᵀWA)⁻¹`, the weighted fit's covariance up to the efficiency factor.
+//! The radius rule below compares the unweighted fits (whose standard errors are exactly
+//! Gauss–Markov's), and only the fit at the chosen radius is reweighted: on the study's noisy
+//! meshes this is 2.2–2.7 times faster than reweighting every radius and as accurate (K RMS
+//! within −11 % … +3 % of it, 24 of 24 meshes still within the target).
 //!
 //! # The radius: intersection of confidence intervals
 //!
@@ -642,7 +646,7 @@ impl Multiscale {
             frame_normal(mesh, topo, v, first, FRAME_RADIUS * l, ws)
         };
         let radii = LADDER.map(|r| r * l);
-        ladder(mesh, topo, v, &n0, Some(first), &radii, sigma, ws);
+        ladder(mesh, topo, v, &n0, Some(first), &radii, 0.0, ws);
         ici(&ws.fits, sigma, ICI_GAMMA).map(|i| ws.fits[i].radius / l)
     }
 

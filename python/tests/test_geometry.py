@@ -121,7 +121,7 @@ def test_layout_and_edge_curves_describe_the_nets():
 
 # A noisy unit sphere (level 5, edges about 0.06): uniform noise of ±NOISE per coordinate,
 # about 0.08 edge lengths. The wide balls of `radius=4` average it: measured |H − 1| RMS 0.050
-# (the default, which measures the mesh as noisy and hands it to `multiscale`: 0.050); 0.15
+# (as the default does, which measures the mesh as noisy and hands it to `multiscale`); 0.15
 # allowed.
 NOISE = 0.005
 NOISY_SPHERE_H_TOL = 0.15
