@@ -6,6 +6,9 @@
 //! target/release/examples/lm_reference --count 1000000
 //! ```
 //!
+//! `scripts/end_to_end.sh` times it against `experiments fit`; its tests (the `tests` module
+//! below) run in `solver`'s test suite (`tests/suite/lm_reference.rs`).
+//!
 //! Each problem fits the model `y = a·exp(b·x)` to [`POINTS`] samples `(x_i, y_i)` in the least
 //! squares sense, a two-parameter problem of the size and cost of a boundary curve's
 //! tangent-length fit (a few residuals, each an exponential and a few products). Problem `k`'s
