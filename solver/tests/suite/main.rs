@@ -6,3 +6,4 @@ mod agreement;
 mod check;
 mod common;
 mod fast_paths;
+mod lm_reference;
