@@ -621,37 +621,55 @@ impl Multiscale {
         }
     }
 
-    /// The radius (in mean edge lengths at `v`) the radius rule takes at vertex `v` from
-    /// [`LADDER`], for noise level `sigma`; `None` where no radius gives a fit.
-    #[allow(clippy::too_many_arguments)]
-    fn rule_radius(
-        &self,
+    /// The normal of vertex `v`'s fitting frame: the given normal where there is one, else
+    /// [`frame_normal`] (the first normal where `v` has no faces or edges). Computed once per
+    /// vertex and shared by the radius rule and the fit.
+    fn frame(
         mesh: &Mesh,
         topo: &Topology,
         first: &[Vector3<f64>],
         given: Option<&[Vector3<f64>]>,
         ell: &[f64],
-        sigma: f64,
         v: usize,
         ws: &mut ScaleWorkspace,
+    ) -> Vector3<f64> {
+        let own = first.get(v).copied().unwrap_or_else(Vector3::z);
+        let l = ell.get(v).copied().unwrap_or(0.0);
+        if given_normal(given, v).is_some()
+            || topo.faces(v).is_empty()
+            || !(l > 0.0 && l.is_finite())
+        {
+            return own;
+        }
+        frame_normal(mesh, topo, v, first, FRAME_RADIUS * l, ws)
+    }
+
+    /// The radius (in mean edge lengths at `v`) the radius rule takes at vertex `v` from
+    /// [`LADDER`] in the frame of `n0`, for noise level `sigma`; `None` where no radius gives a
+    /// fit.
+    #[allow(clippy::too_many_arguments)]
+    fn rule_radius(
+        mesh: &Mesh,
+        topo: &Topology,
+        first: &[Vector3<f64>],
+        ell: &[f64],
+        sigma: f64,
+        v: usize,
+        n0: &Vector3<f64>,
+        ws: &mut ScaleWorkspace,
     ) -> Option<f64> {
-        let own = first.get(v).copied()?;
         let l = ell.get(v).copied().filter(|l| *l > 0.0)?;
         if topo.faces(v).is_empty() {
             return None;
         }
-        let n0 = if given_normal(given, v).is_some() {
-            own
-        } else {
-            frame_normal(mesh, topo, v, first, FRAME_RADIUS * l, ws)
-        };
         let radii = LADDER.map(|r| r * l);
-        ladder(mesh, topo, v, &n0, Some(first), &radii, 0.0, ws);
+        ladder(mesh, topo, v, n0, Some(first), &radii, 0.0, ws);
         ici(&ws.fits, sigma, ICI_GAMMA).map(|i| ws.fits[i].radius / l)
     }
 
-    /// The fit at vertex `v` on the ball of `radius` mean edge lengths at `v`, for noise level
-    /// `sigma` (module docs); planar where no radius was chosen or the fit fails.
+    /// The fit at vertex `v` on the ball of `radius` mean edge lengths at `v` in the frame of
+    /// `n0`, for noise level `sigma` (module docs); the ring jet where no radius was chosen or
+    /// the fit fails, planar where that fails too.
     #[allow(clippy::too_many_arguments)]
     fn fit_one(
         mesh: &Mesh,
@@ -661,6 +679,7 @@ impl Multiscale {
         ell: &[f64],
         sigma: f64,
         v: usize,
+        n0: Vector3<f64>,
         radius: Option<f64>,
         ws: &mut ScaleWorkspace,
     ) -> VertexResult {
@@ -670,11 +689,6 @@ impl Multiscale {
         if topo.faces(v).is_empty() || !(l > 0.0 && l.is_finite()) {
             return (own, Matrix3::zeros(), None);
         }
-        let n0 = if given_normal(given, v).is_some() {
-            own
-        } else {
-            frame_normal(mesh, topo, v, normals, FRAME_RADIUS * l, ws)
-        };
         let (t1, t2) = tangent_basis(&n0);
         let fitted = radius.and_then(|r| {
             ladder(mesh, topo, v, &n0, Some(normals), &[r * l], sigma, ws);
@@ -741,6 +755,13 @@ impl Multiscale {
         given: Option<&[Vector3<f64>]>,
     ) -> Estimate {
         let nv = mesh.num_vertices();
+        let frames: Vec<Vector3<f64>> = (0..nv)
+            .into_par_iter()
+            .with_min_len(256)
+            .map_init(ScaleWorkspace::default, |ws, v| {
+                Self::frame(mesh, topo, &first.normals, given, ell, v, ws)
+            })
+            .collect();
         // The radius per vertex: the rule's, median-filtered over the vertex and its
         // neighbours (module docs).
         let radius: Vec<Option<f64>> = match self.radius {
@@ -750,7 +771,7 @@ impl Multiscale {
                     .into_par_iter()
                     .with_min_len(256)
                     .map_init(ScaleWorkspace::default, |ws, v| {
-                        self.rule_radius(mesh, topo, &first.normals, given, ell, sigma, v, ws)
+                        Self::rule_radius(mesh, topo, &first.normals, ell, sigma, v, &frames[v], ws)
                     })
                     .collect();
                 (0..nv)
@@ -773,8 +794,9 @@ impl Multiscale {
             .enumerate()
             .with_min_len(256)
             .map_init(ScaleWorkspace::default, |ws, (v, (n_out, s_out))| {
-                let (n, s, fb) =
-                    Self::fit_one(mesh, topo, first, given, ell, sigma, v, radius[v], ws);
+                let (n, s, fb) = Self::fit_one(
+                    mesh, topo, first, given, ell, sigma, v, frames[v], radius[v], ws,
+                );
                 *n_out = n;
                 *s_out = s;
                 fb.map(|kind| Fallback { vertex: v, kind })

@@ -85,21 +85,13 @@ impl<'a> Sink<'a> {
     /// Three 32-bit floats, little-endian, as one 12-byte record.
     #[inline]
     pub(crate) fn f32x3(&mut self, v: [f32; 3]) {
-        let mut record = [0u8; 12];
-        for (slot, x) in record.chunks_exact_mut(4).zip(v) {
-            slot.copy_from_slice(&x.to_le_bytes());
-        }
-        self.put(&record);
+        self.put(&record12(v.map(f32::to_le_bytes)));
     }
 
     /// Three 32-bit unsigned integers, little-endian, as one 12-byte record.
     #[inline]
     pub(crate) fn u32x3(&mut self, v: [u32; 3]) {
-        let mut record = [0u8; 12];
-        for (slot, x) in record.chunks_exact_mut(4).zip(v) {
-            slot.copy_from_slice(&x.to_le_bytes());
-        }
-        self.put(&record);
+        self.put(&record12(v.map(u32::to_le_bytes)));
     }
 
     /// A 32-bit signed integer, little-endian.
@@ -156,6 +148,16 @@ impl std::fmt::Write for Sink<'_> {
         self.push_str(s);
         Ok(())
     }
+}
+
+/// Three 4-byte words as one 12-byte record.
+#[inline]
+fn record12(words: [[u8; 4]; 3]) -> [u8; 12] {
+    let mut record = [0u8; 12];
+    for (slot, w) in record.chunks_exact_mut(4).zip(words) {
+        slot.copy_from_slice(&w);
+    }
+    record
 }
 
 /// Lines of a text file, 1-based, without the line break (`\n` or `\r\n`).

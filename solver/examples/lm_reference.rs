@@ -218,6 +218,12 @@ impl SplitMix64 {
 pub fn generate(rng: &mut SplitMix64) -> Problem {
     let a = rng.uniform(0.5, 2.0);
     let b = rng.uniform(-1.0, 1.0);
+    sampled(a, b, || rng.uniform(-NOISE, NOISE))
+}
+
+/// `y_i = a·exp(b·x_i) + noise()` at `x_i` evenly spaced on `[0, 1]`, `noise` called once a
+/// sample in order.
+pub fn sampled(a: f64, b: f64, mut noise: impl FnMut() -> f64) -> Problem {
     let mut problem = Problem {
         x: [0.0; POINTS],
         y: [0.0; POINTS],
@@ -225,7 +231,7 @@ pub fn generate(rng: &mut SplitMix64) -> Problem {
     for i in 0..POINTS {
         let x = i as f64 / (POINTS - 1) as f64;
         problem.x[i] = x;
-        problem.y[i] = a * (b * x).exp() + rng.uniform(-NOISE, NOISE);
+        problem.y[i] = a * (b * x).exp() + noise();
     }
     problem
 }
@@ -303,15 +309,7 @@ mod tests {
     #[test]
     fn recovers_a_noise_free_exponential() {
         let (a, b) = (1.7, -0.6);
-        let mut problem = Problem {
-            x: [0.0; POINTS],
-            y: [0.0; POINTS],
-        };
-        for i in 0..POINTS {
-            let x = i as f64 / (POINTS - 1) as f64;
-            problem.x[i] = x;
-            problem.y[i] = a * (b * x).exp();
-        }
+        let problem = sampled(a, b, || 0.0);
         let s = solve(&problem, START, &Tolerances::default());
         assert!((s.p[0] - a).abs() < EXACT_TOL, "a = {}", s.p[0]);
         assert!((s.p[1] - b).abs() < EXACT_TOL, "b = {}", s.p[1]);

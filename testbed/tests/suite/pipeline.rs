@@ -4,7 +4,7 @@
 
 use serde_json::Value;
 
-use crate::support::{json_records, ok, testbed, testbed_as_given};
+use crate::support::{json_records, ok, ok_as_given, testbed};
 
 fn octa() -> Vec<u8> {
     std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../data/octa.m")).expect("octa.m")
@@ -656,17 +656,6 @@ fn g1_leaves_out_the_creases_fit_marks() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-}
-
-/// `testbed ARGS` exactly as given, which must succeed: its standard output.
-fn ok_as_given(args: &[&str], input: &[u8]) -> Vec<u8> {
-    let out = testbed_as_given(args, input);
-    assert!(
-        out.status.success(),
-        "testbed {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out.stdout
 }
 
 #[test]

@@ -53,9 +53,15 @@ pub fn testbed_as_given(args: &[&str], input: &[u8]) -> Output {
     out
 }
 
-/// `testbed ARGS` that must succeed: its standard output.
+/// `testbed ARGS` (in the seed's forms, [`seed_forms`]) that must succeed: its standard
+/// output.
 pub fn ok(args: &[&str], input: &[u8]) -> Vec<u8> {
-    let out = testbed(args, input);
+    ok_as_given(&seed_forms(args), input)
+}
+
+/// `testbed ARGS` exactly as given, which must succeed: its standard output.
+pub fn ok_as_given(args: &[&str], input: &[u8]) -> Vec<u8> {
+    let out = testbed_as_given(args, input);
     assert!(
         out.status.success(),
         "testbed {args:?} failed: {}",
