@@ -34,6 +34,7 @@
 
 pub mod bounds;
 pub mod convention;
+pub mod direct;
 pub mod error;
 pub mod format;
 pub mod glb;

@@ -185,6 +185,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
 /// [`write_atomic`] for output produced piece by piece: `produce` writes into a buffered
 /// temporary file, which is flushed, synced and renamed over `path` only if `produce` succeeds
 /// (so gigabytes of output never sit in memory, and a failure still leaves `path` untouched).
+/// Output larger than one buffer goes to the device past the page cache where the file system
+/// allows ([`crate::direct`]).
 pub fn write_atomic_with(
     path: &Path,
     produce: &mut dyn FnMut(&mut dyn Write) -> std::io::Result<()>,
@@ -202,9 +204,11 @@ pub fn write_atomic_with(
             .write(true)
             .create_new(true)
             .open(&tmp)?;
-        let mut buffered = std::io::BufWriter::with_capacity(1 << 20, file);
+        // Buffered, and past the page cache once the output outgrows the buffer
+        // (`crate::direct`): the sync below would write the bytes out anyway.
+        let mut buffered = crate::direct::DirectWriter::new(file, &tmp);
         produce(&mut buffered)?;
-        let file = buffered.into_inner().map_err(|e| e.into_error())?;
+        let (file, _) = buffered.finish()?;
         file.sync_all()?;
         drop(file);
         fs::rename(&tmp, path)

@@ -20,13 +20,16 @@ use mesh::Mesh;
 use nalgebra::{Point3, Vector3};
 
 use crate::fit::Fit;
-use crate::patch::{eval, prepare, Prepared};
+use crate::patch::{partials, prepare, Prepared};
 use crate::scheme::Layout;
 
 /// Segments a patch edge of the fold test's sample grid: 15 samples a patch (28 with a
 /// corner-split layout's three patches, which share their edges), enough to see a fold that
 /// spans a tenth of a face and cheap beside the fit (a fifth of the G1 measure's samples).
 pub const FOLD_SEGMENTS: usize = 4;
+
+/// Samples a patch of the fold test's grid: `(s + 1)(s + 2)/2` for `s = `[`FOLD_SEGMENTS`].
+const FOLD_SAMPLES: usize = (FOLD_SEGMENTS + 1) * (FOLD_SEGMENTS + 2) / 2;
 
 /// What [`measure`] found.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -97,10 +100,19 @@ impl FoldPlan {
         };
         let per_patch = self.layout.points_per_patch();
         let mut worst = f64::INFINITY;
+        // The cross products of a patch first, then their normalization: the square roots and
+        // divisions of different samples are independent and overlap in the processor, where
+        // one sample at a time waited on each (perf at 10⁶ faces: 1.13 s → 0.53 s of CPU in
+        // this function; with `partials` instead of the full evaluation the fold test as a
+        // whole went 2.0 s → 0.92 s. The same operations on the same numbers: the same bits).
+        let mut normals = [Vector3::zeros(); FOLD_SAMPLES];
         for net in points.chunks(per_patch.max(1)) {
-            for at in &self.samples {
-                let d = eval(&self.layout, net, at);
-                match unit(&d.du.cross(&d.dv)) {
+            for (c, at) in normals.iter_mut().zip(&self.samples) {
+                let (du, dv) = partials(&self.layout, net, at);
+                *c = du.cross(&dv);
+            }
+            for c in &normals[..self.samples.len()] {
+                match unit(c) {
                     Some(n) => worst = worst.min(n.dot(&face_normal)),
                     None => report.singular_samples += 1,
                 }

@@ -31,7 +31,9 @@ pub mod side_vertex;
 use nalgebra::{Point3, Vector3};
 
 use crate::beztri::SampleWeights;
-use crate::beztri::{curvature_of, net_derivatives, BezierTriangle, Curvature, Derivatives};
+use crate::beztri::{
+    curvature_of, net_derivatives, net_partials, BezierTriangle, Curvature, Derivatives,
+};
 use crate::fit::Fit;
 use crate::scheme::{Bary, Form, Layout};
 
@@ -90,6 +92,23 @@ pub fn eval(layout: &Layout, points: &[Point3<f64>], at: &Prepared) -> Derivativ
         // A point prepared for a sampled form, used with a Bézier layout: a caller's mix-up,
         // made visible.
         (Form::Bezier, Prepared::Sampled(_)) => Derivatives::nan(),
+    }
+}
+
+/// The first partials `(r_u, r_v)` of the patch with stored points `points` at a prepared
+/// point: [`eval`]'s `du` and `dv`, bit for bit, without the position and second partials for
+/// a Bézier net ([`crate::beztri::net_partials`]; a sampled form evaluates in full).
+pub fn partials(
+    layout: &Layout,
+    points: &[Point3<f64>],
+    at: &Prepared,
+) -> (Vector3<f64>, Vector3<f64>) {
+    match (layout.form, at) {
+        (_, Prepared::Bezier(w)) => net_partials(points, w),
+        _ => {
+            let d = eval(layout, points, at);
+            (d.du, d.dv)
+        }
     }
 }
 
