@@ -174,16 +174,25 @@ impl Tangents {
         face: &[Point3<f64>],
         np: usize,
     ) -> (Option<Point3<f64>>, Option<Vector3<f64>>) {
-        let Some(net) = face.get(self.patch * np..(self.patch + 1) * np) else {
-            return (None, None);
-        };
+        match self.point_and_cross(face, np) {
+            Some((p, c)) => (p, unit_normal(&c)),
+            None => (None, None),
+        }
+    }
+
+    /// The position (sampled forms only) and `r_u × r_v`, not normalized; `None` where the
+    /// face's points do not hold the patch.
+    fn point_and_cross(
+        &self,
+        face: &[Point3<f64>],
+        np: usize,
+    ) -> Option<(Option<Point3<f64>>, Vector3<f64>)> {
+        let net = face.get(self.patch * np..(self.patch + 1) * np)?;
         let (p, du, dv) = match &self.how {
             How::Bezier(w) => {
                 let (mut du, mut dv) = (Vector3::zeros(), Vector3::zeros());
                 for (i, w) in w {
-                    let Some(p) = net.get(*i) else {
-                        return (None, None);
-                    };
+                    let p = net.get(*i)?;
                     du += p.coords * w[0];
                     dv += p.coords * w[1];
                 }
@@ -194,14 +203,68 @@ impl Tangents {
                 (Some(d.p), d.du, d.dv)
             }
         };
-        let c = du.cross(&dv);
-        let len = c.norm();
-        (p, (len > 0.0 && len.is_finite()).then(|| c / len))
+        Some((p, du.cross(&dv)))
+    }
+
+    /// `r_u × r_v` of the face's patch, not normalized ([`unit_normal`] makes it the normal).
+    fn cross(&self, face: &[Point3<f64>], np: usize) -> Option<Vector3<f64>> {
+        self.point_and_cross(face, np).map(|(_, c)| c)
     }
 
     /// Unit normal `r_u × r_v` of the face's patch (see [`Tangents::point_and_normal`]).
     pub(crate) fn normal(&self, face: &[Point3<f64>], np: usize) -> Option<Vector3<f64>> {
         self.point_and_normal(face, np).1
+    }
+}
+
+/// `c / |c|`: the unit normal of a cross product `r_u × r_v`, `None` where it is zero or not
+/// finite (no threshold).
+fn unit_normal(c: &Vector3<f64>) -> Option<Vector3<f64>> {
+    let len = c.norm();
+    (len > 0.0 && len.is_finite()).then(|| c / len)
+}
+
+/// Samples of one boundary whose normals are computed together ([`chord_pairs`]).
+const BATCH: usize = 16;
+
+/// The squared chords between the unit normals of two sides at pairs of samples (`None` where
+/// either is undefined), given to `at` in order with the pair's index. The cross products of a
+/// batch of pairs first, then their normalization: the square roots and divisions of
+/// different samples overlap in the processor where one sample at a time waited on each. The
+/// same operations on the same numbers as normalizing each pair at once: the same bits.
+fn chord_pairs<'a>(
+    pairs: impl ExactSizeIterator<
+        Item = (
+            &'a Tangents,
+            &'a [Point3<f64>],
+            &'a Tangents,
+            &'a [Point3<f64>],
+        ),
+    >,
+    np: usize,
+    flip_b: bool,
+    mut at: impl FnMut(usize, Option<f64>),
+) {
+    let mut cross = [(None, None); BATCH];
+    let mut pairs = pairs.peekable();
+    let mut k = 0;
+    while pairs.peek().is_some() {
+        let mut n = 0;
+        for (slot, (ta, pa, tb, pb)) in cross.iter_mut().zip(pairs.by_ref()) {
+            *slot = (ta.cross(pa, np), tb.cross(pb, np));
+            n += 1;
+        }
+        for (ca, cb) in &cross[..n] {
+            let c = match (
+                ca.and_then(|c| unit_normal(&c)),
+                cb.and_then(|c| unit_normal(&c)),
+            ) {
+                (Some(x), Some(y)) => Some(chord2(&x, &if flip_b { -y } else { y })),
+                _ => None,
+            };
+            at(k, c);
+            k += 1;
+        }
     }
 }
 
@@ -497,24 +560,23 @@ impl Plan {
     fn face(&self, mesh: &Mesh, f: usize, pts: &[Point3<f64>], fallback: bool, r: &mut G1Report) {
         let np = self.np;
         for (bi, row) in self.interior.iter().enumerate() {
-            for (t, a, b) in row {
-                match (a.normal(pts, np), b.normal(pts, np)) {
-                    (Some(x), Some(y)) if fallback => {
-                        r.fallback_interior_max = r.fallback_interior_max.max(chord2(&x, &y));
-                    }
-                    (Some(x), Some(y)) => r.interior(
-                        chord2(&x, &y),
-                        (
-                            Boundary::Interior {
-                                face: f,
-                                boundary: bi,
-                            },
-                            *t,
-                        ),
-                    ),
-                    _ => r.undefined_normals += 1,
+            let pairs = row.iter().map(|(_, a, b)| (a, pts, b, pts));
+            chord_pairs(pairs, np, false, |k, c| match c {
+                Some(c) if fallback => {
+                    r.fallback_interior_max = r.fallback_interior_max.max(c);
                 }
-            }
+                Some(c) => r.interior(
+                    c,
+                    (
+                        Boundary::Interior {
+                            face: f,
+                            boundary: bi,
+                        },
+                        row[k].0,
+                    ),
+                ),
+                None => r.undefined_normals += 1,
+            });
         }
         for (i, (point, tangents)) in self.corners.iter().enumerate() {
             let Some(v) = mesh.corner_data(f, i) else {
@@ -589,14 +651,11 @@ pub(crate) fn boundary_chords(
 ) {
     let ((sa, pa), (sb, pb)) = (a, b);
     let n = sa.len().min(sb.len());
-    for (k, (t, ta)) in sa.iter().take(n).enumerate() {
+    let pairs = (0..n).map(|k| {
         let tb = &sb[if reversed { n - 1 - k } else { k }].1;
-        let c = match (ta.normal(pa, np), tb.normal(pb, np)) {
-            (Some(x), Some(y)) => Some(chord2(&x, &if flip_b { -y } else { y })),
-            _ => None,
-        };
-        at(*t, c);
-    }
+        (&sa[k].1, pa, tb, pb)
+    });
+    chord_pairs(pairs, np, flip_b, |k, c| at(sa[k].0, c));
 }
 
 #[cfg(test)]
