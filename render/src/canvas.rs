@@ -382,6 +382,23 @@ mod tests {
             };
             prop_assert_eq!(bits(&two), bits(&one));
             prop_assert!(passes <= 2);
+            // The box gathered as the points come, then one pass.
+            let mut bounds = crate::shade::FrameBox::default();
+            for c in cuts.windows(2) {
+                bounds.add(&points[c[0]..c[1]]);
+            }
+            let boxed = Camera::framing_box(
+                &bounds,
+                |visit| {
+                    visit(&points);
+                    Ok::<(), ()>(())
+                },
+                az,
+                el,
+                aspect,
+            )
+            .unwrap();
+            prop_assert_eq!(bits(&boxed), bits(&one));
         }
     }
 

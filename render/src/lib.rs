@@ -44,5 +44,5 @@ pub use error::RenderError;
 pub use mosaic::{write_composite, Legend, LegendKind, Tile};
 pub use shade::{
     blank_wire_frame, draw_wire_frame, interrogation_field, render, render_many, wire_frame,
-    write_png, Camera, Field, Image, RenderMesh, RenderOptions, Shading,
+    write_png, Camera, Field, FrameBox, Image, RenderMesh, RenderOptions, Shading,
 };

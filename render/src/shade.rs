@@ -140,27 +140,33 @@ impl Camera {
     /// [`Camera::framing_points`] for points that are not all in memory at once: `visit` is
     /// called twice and must hand the same points, in the same order, to the function it is
     /// given, in slices of any lengths (a stream's triangles replayed chunk by chunk). The
-    /// first pass finds the finite points' bounding box, the second the distance; the
-    /// arithmetic is that of `framing_points` point by point (the box by `inf`/`sup`, the
-    /// distance by `max`, in the order visited), so the camera is the same bit for bit. An
-    /// error of `visit` ends the framing and is returned.
+    /// first pass finds the finite points' bounding box ([`FrameBox`]), the second the
+    /// distance ([`Camera::framing_box`]); the arithmetic is that of `framing_points` point by
+    /// point, so the camera is the same bit for bit. An error of `visit` ends the framing and
+    /// is returned.
     pub fn framing_passes<E>(
         mut visit: impl FnMut(&mut dyn FnMut(&[Point3<f64>])) -> Result<(), E>,
         azimuth: f64,
         elevation: f64,
         aspect: f64,
     ) -> Result<Camera, E> {
-        let finite = |p: &&Point3<f64>| p.iter().all(|x| x.is_finite());
-        let (mut lo, mut hi) = (
-            Point3::from(Vector3::repeat(f64::INFINITY)),
-            Point3::from(Vector3::repeat(f64::NEG_INFINITY)),
-        );
-        visit(&mut |points| {
-            for p in points.iter().filter(finite) {
-                lo = lo.inf(p);
-                hi = hi.sup(p);
-            }
-        })?;
+        let mut bounds = FrameBox::default();
+        visit(&mut |points| bounds.add(points))?;
+        Camera::framing_box(&bounds, visit, azimuth, elevation, aspect)
+    }
+
+    /// The second pass of [`Camera::framing_passes`], for a caller that gathered the first
+    /// pass's box as the points came (a stream read once, then replayed once): `visit` hands
+    /// every point once more (only when the box holds a point), `bounds` is the box of all of
+    /// them. The camera is [`Camera::framing_points`]' of the points.
+    pub fn framing_box<E>(
+        bounds: &FrameBox,
+        visit: impl FnOnce(&mut dyn FnMut(&[Point3<f64>])) -> Result<(), E>,
+        azimuth: f64,
+        elevation: f64,
+        aspect: f64,
+    ) -> Result<Camera, E> {
+        let (lo, hi) = (bounds.lo, bounds.hi);
         if lo.x > hi.x {
             return Ok(Camera::framing_aspect(
                 Point3::origin(),
@@ -172,7 +178,7 @@ impl Camera {
         }
         let mut framer = Framer::new(lo, hi, azimuth, elevation, aspect);
         visit(&mut |points| {
-            for p in points.iter().filter(finite) {
+            for p in points.iter().filter(|p| finite(p)) {
                 framer.add(*p);
             }
         })?;
@@ -195,6 +201,45 @@ impl Camera {
             framer.add(p);
         }
         framer.camera()
+    }
+}
+
+/// Whether every coordinate of `p` is finite (the points framing takes).
+#[inline]
+fn finite(p: &Point3<f64>) -> bool {
+    p.iter().all(|x| x.is_finite())
+}
+
+/// The bounding box of the finite points added so far: the first pass of
+/// [`Camera::framing_passes`] (a minimum and a maximum, so neither the order of the points nor
+/// their split into slices changes it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameBox {
+    lo: Point3<f64>,
+    hi: Point3<f64>,
+}
+
+impl Default for FrameBox {
+    fn default() -> Self {
+        FrameBox {
+            lo: Point3::from(Vector3::repeat(f64::INFINITY)),
+            hi: Point3::from(Vector3::repeat(f64::NEG_INFINITY)),
+        }
+    }
+}
+
+impl FrameBox {
+    /// Adds `points` (those not finite are left out).
+    pub fn add(&mut self, points: &[Point3<f64>]) {
+        for p in points.iter().filter(|p| finite(p)) {
+            self.lo = self.lo.inf(p);
+            self.hi = self.hi.sup(p);
+        }
+    }
+
+    /// The box's corners, `None` while no finite point was added.
+    pub fn corners(&self) -> Option<(Point3<f64>, Point3<f64>)> {
+        (self.lo.x <= self.hi.x).then_some((self.lo, self.hi))
     }
 }
 
