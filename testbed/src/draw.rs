@@ -447,3 +447,124 @@ pub fn draw_mesh_with(
 pub fn write_png(image: &Image, out: &mut dyn Write) -> Result<(), FilterError> {
     render::write_png(image, out).map_err(|e| FilterError::Png(e.to_string()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::triangle_store::CHUNK_TRIANGLES;
+    use nalgebra::{Point3, Vector3};
+
+    /// A stream's worth of triangles: single Triangles (some without normals or colours, one
+    /// corner not finite now and then) and TriangleMesh strips with and without normals,
+    /// into a store of `budget` bytes and into one mesh as [`collect_mesh`] builds it.
+    fn stored(budget: usize) -> (TriangleStore, RenderMesh) {
+        let mut store = TriangleStore::new(budget, "test");
+        let mut whole = RenderMesh::default();
+        let colour = render::colors::MATERIAL;
+        for r in 0..60 {
+            let t = f64::from(r) * 0.41;
+            if r % 3 == 0 {
+                let mut m = TriangleMesh::default();
+                // One strip longer than a chunk: the store closes chunks before and after it.
+                let n = if r == 30 { CHUNK_TRIANGLES + 100 } else { 38 };
+                for k in 0..n as u32 + 2 {
+                    let a = t + f64::from(k) * 0.15;
+                    m.pos.push(Point3::new(
+                        a.cos(),
+                        a.sin(),
+                        0.3 * f64::from(k % 2) + 0.1 * t,
+                    ));
+                    if r % 2 == 0 {
+                        m.norm.push(Vector3::new(a.cos(), a.sin(), 0.4));
+                        m.color.push([0.2, (k % 5) as f32 / 5.0, 0.7]);
+                    }
+                }
+                m.triangles = (0..n as u32).map(|k| [k, k + 1, k + 2]).collect();
+                store.push_triangle_mesh(&m, colour).unwrap();
+                push_triangle_mesh(&mut whole, &m, colour);
+            } else {
+                let at = |k: f64| Point3::new(t.sin() + 0.5 * k, t.cos() - 0.3 * k, 0.2 * k);
+                let v = |pos, norm, color| Vertex {
+                    pos,
+                    norm,
+                    kg: None,
+                    km: None,
+                    color,
+                };
+                let tri = [
+                    v(
+                        at(0.0),
+                        Some(Vector3::new(0.0, 0.3, 1.0)),
+                        Some([0.9, 0.1, 0.2]),
+                    ),
+                    v(
+                        if r % 11 == 4 {
+                            Point3::new(f64::NAN, 0.0, 0.0)
+                        } else {
+                            at(1.0)
+                        },
+                        None,
+                        None,
+                    ),
+                    v(at(1.7) + Vector3::new(0.0, 0.9, 0.0), None, None),
+                ];
+                store.push_triangle(&tri, colour).unwrap();
+                push_triangle(&mut whole, &tri, colour);
+            }
+        }
+        store.finish().unwrap();
+        (store, whole)
+    }
+
+    /// The store's pictures, in memory and spilled, are `draw_mesh_with`'s of the whole mesh
+    /// byte for byte: shaded in every mode, and the wire frame.
+    #[test]
+    fn stored_pictures_are_the_whole_meshs_pictures() {
+        /// No memory for chunks: all three go to the file.
+        const TINY: usize = 0;
+        let modes = [
+            Shading::Lit,
+            Shading::REFLECTION,
+            Shading::ISOPHOTES,
+            Shading::HIGHLIGHT,
+        ];
+        for budget in [STORE_BYTES, TINY] {
+            let (mut store, whole) = stored(budget);
+            assert_eq!(store.triangles(), whole.faces.len());
+            assert_eq!(store.spilled(), if budget == TINY { 3 } else { 0 });
+            for (wire, size) in [(false, (97, 71)), (true, (64, 80))] {
+                let view = View {
+                    view: (20.0, 35.0),
+                    size,
+                    wire,
+                };
+                for &shading in if wire { &modes[..1] } else { &modes[..] } {
+                    let a = draw_store(&mut store, &view, shading).unwrap();
+                    let b = draw_mesh_with(&whole, &view, shading).unwrap();
+                    assert!(a.rgb.iter().any(|&c| c < 200), "{shading:?}: drawn");
+                    assert!(a == b, "budget {budget}, {shading:?}, wire {wire}");
+                }
+            }
+        }
+    }
+
+    /// A highlight seen end on is the same usage error from the store as from the mesh.
+    #[test]
+    fn a_refused_mode_is_the_same_usage_error() {
+        let (mut store, whole) = stored(STORE_BYTES);
+        let view = View {
+            view: (0.0, 90.0),
+            size: (40, 30),
+            wire: false,
+        };
+        let end_on = Shading::Highlight {
+            lines: 8,
+            direction: Some(Vector3::z()),
+            width: 0.5,
+        };
+        let a = draw_store(&mut store, &view, end_on).unwrap_err();
+        let b = draw_mesh_with(&whole, &view, end_on).unwrap_err();
+        assert!(matches!(a, FilterError::Usage(_)), "{a}");
+        assert_eq!(a.to_string(), b.to_string());
+    }
+}
