@@ -513,12 +513,15 @@ mod tests {
             err.contains("creating a temporary file in") && err.contains("no-such-dir"),
             "{err}"
         );
-        let mut store = TriangleStore::new(0, "test");
+        let dir = tempfile::tempdir().unwrap();
+        let mut store = TriangleStore::in_dir(0, "test", dir.path());
         store
             .push_triangle_mesh(&strip(10, 0.0), render::colors::MATERIAL)
             .unwrap();
         store.finish().unwrap();
         assert_eq!(store.spilled(), 1);
+        // The file in use has no name in its directory (unlinked at once).
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
         let err = store
             .replay(&mut |_| Err(FilterError::Usage("stop".into())))
             .unwrap_err();
