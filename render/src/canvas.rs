@@ -13,9 +13,9 @@
 //! than the depth so far (`z < depth`; the first of equally near ones stays). So the fragment
 //! that last passes the test at a pixel is the one the depth pass leaves as its nearest
 //! triangle. The canvas colours each fragment that passes, at once, by the same function
-//! ([`Painter`]) of the same values — the triangle set up by the same code
-//! ([`setup_chunk`]), the edge functions at the pixel centre ([`Tri::at`]) and the
-//! perspective-correct weights ([`Tri::weights`]) — so the last colour written is the colour
+//! (`shade::Painter`) of the same values — the triangle set up by the same code
+//! (`shade::setup_chunk`), the edge functions at the pixel centre (`Tri::at`) and the
+//! perspective-correct weights (`Tri::weights`) — so the last colour written is the colour
 //! the shading pass gives that triangle there. Overdrawn fragments are shaded in vain (the
 //! price of not keeping the triangles), never wrongly.
 //!

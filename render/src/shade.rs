@@ -15,6 +15,13 @@
 //! per-triangle shader this replaced (same operations per pixel, same triangle order per
 //! pixel), the same on every run and for any number of threads. [`render_many`] draws many
 //! pictures in parallel.
+//!
+//! [`render`] needs the whole mesh at once. [`crate::canvas::Canvas`] draws the same pictures
+//! from triangles given in parts (a stream's), in bounded memory, by forward shading with the
+//! pieces here (the triangle set-up `setup_chunk`, the colouring `Painter`), and
+//! [`draw_wire_frame`] draws [`wire_frame`]'s lines part by part; the camera of
+//! [`Camera::framing_points`] is framed on points visited twice by
+//! [`Camera::framing_passes`].
 
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;

@@ -34,9 +34,9 @@ pub const DEFAULT_VIEW: (f64, f64) = (35.0, 25.0);
 pub const DEFAULT_SIZE: (u32, u32) = (400, 300);
 
 /// Largest picture side accepted: an 8192 × 8192 picture takes about 1 GB while it is drawn
-/// and encoded ([`RENDER_BYTES_PER_PIXEL`] and [`PICTURE_FIXED_BYTES`]; 1.25 GB measured with
-/// the deferred renderer this replaced, which kept a triangle id a pixel more; a 16384 ×
-/// 16384 one took 5.0 GB), the most a shared machine should be asked for; every size is also
+/// and encoded ([`RENDER_BYTES_PER_PIXEL`] and [`PICTURE_FIXED_BYTES`]: 1.07 GB estimated,
+/// 0.80 GB measured; 1.25 GB with the deferred renderer this replaced, which kept a triangle
+/// id a pixel more; a 16384 × 16384 one took 5.0 GB), the most a shared machine should be asked for; every size is also
 /// checked against the memory available before anything is drawn ([`check_picture_memory`]).
 pub const MAX_SIDE: u32 = 8192;
 
