@@ -11,6 +11,7 @@
 //!   cubic with its control polygon above its signed curvature against normalized arc length,
 //!   together with the straight line joining the target end curvatures. Written as PNG and SVG.
 //! * [`chart`] — line charts (optionally log y, in grids) and grouped bar charts;
+//! * [`camera`] — the perspective camera and its framing of the points drawn;
 //! * [`canvas`] — the same pictures drawn from triangles as they come, in bounded memory;
 //! * [`shade`] — a z-buffer rasterizer with near-plane clipping, perspective-correct
 //!   interpolation, Blinn–Phong shading and an optional wireframe;
@@ -21,6 +22,7 @@
 //! * [`mosaic`] — composites of rendered tiles with a title and a legend;
 //! * [`font`] — the bundled font and its one-time registration.
 
+pub mod camera;
 pub mod canvas;
 pub mod chart;
 pub mod colors;
