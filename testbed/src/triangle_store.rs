@@ -202,6 +202,7 @@ impl TriangleStore {
             return Ok(());
         }
         if self.spill.is_none() {
+            let (file, path) = scratch_file::create_in(&self.dir, "triangles")?;
             eprintln!(
                 "{}: the triangles kept for drawing passed {} MiB; the rest wait in a temporary \
                  file ({}; removed when the filter ends)",
@@ -209,7 +210,6 @@ impl TriangleStore {
                 self.budget >> 20,
                 self.dir.display()
             );
-            let (file, path) = scratch_file::create_in(&self.dir, "triangles")?;
             self.spill = Some(StoreFile {
                 file: BufWriter::with_capacity(1 << 16, file),
                 bytes: Vec::new(),
