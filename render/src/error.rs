@@ -44,4 +44,8 @@ pub enum RenderError {
         /// What is wrong, naming the field.
         message: String,
     },
+    /// A drawing option the incremental canvas cannot honour ([`crate::canvas::Canvas`]: the
+    /// wireframe overlay needs the finished depth buffer).
+    #[error("{0}")]
+    Unsupported(String),
 }

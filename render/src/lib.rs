@@ -11,6 +11,8 @@
 //!   cubic with its control polygon above its signed curvature against normalized arc length,
 //!   together with the straight line joining the target end curvatures. Written as PNG and SVG.
 //! * [`chart`] — line charts (optionally log y, in grids) and grouped bar charts;
+//! * [`camera`] — the perspective camera and its framing of the points drawn;
+//! * [`canvas`] — the same pictures drawn from triangles as they come, in bounded memory;
 //! * [`shade`] — a z-buffer rasterizer with near-plane clipping, perspective-correct
 //!   interpolation, Blinn–Phong shading and an optional wireframe;
 //! * [`interrogation`] — reflection lines, isophotes and highlight lines, per pixel from the
@@ -20,6 +22,8 @@
 //! * [`mosaic`] — composites of rendered tiles with a title and a legend;
 //! * [`font`] — the bundled font and its one-time registration.
 
+pub mod camera;
+pub mod canvas;
 pub mod chart;
 pub mod colors;
 pub mod curveplot;
@@ -30,6 +34,7 @@ pub mod mosaic;
 pub mod shade;
 pub mod srgb;
 
+pub use canvas::{Canvas, SceneBounds};
 pub use chart::{
     write_histogram, write_line_chart, write_line_charts, Histogram, LineChart, Series,
 };
@@ -40,6 +45,6 @@ pub use curveplot::{
 pub use error::RenderError;
 pub use mosaic::{write_composite, Legend, LegendKind, Tile};
 pub use shade::{
-    interrogation_field, render, render_many, wire_frame, write_png, Camera, Field, Image,
-    RenderMesh, RenderOptions, Shading,
+    blank_wire_frame, draw_wire_frame, interrogation_field, render, render_many, wire_frame,
+    write_png, Camera, Field, FrameBox, Image, RenderMesh, RenderOptions, Shading,
 };

@@ -15,6 +15,13 @@
 //! per-triangle shader this replaced (same operations per pixel, same triangle order per
 //! pixel), the same on every run and for any number of threads. [`render_many`] draws many
 //! pictures in parallel.
+//!
+//! [`render`] needs the whole mesh at once. [`crate::canvas::Canvas`] draws the same pictures
+//! from triangles given in parts (a stream's), in bounded memory, by forward shading with the
+//! pieces here (the triangle set-up `setup_chunk`, the colouring `Painter`), and
+//! [`draw_wire_frame`] draws [`wire_frame`]'s lines part by part; the camera of
+//! [`Camera::framing_points`] is framed on points visited twice by
+//! [`Camera::framing_passes`].
 
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
@@ -38,165 +45,7 @@ pub struct RenderMesh {
     pub faces: Vec<[usize; 3]>,
 }
 
-/// A perspective camera.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Camera {
-    /// Eye position.
-    pub eye: Point3<f64>,
-    /// Point looked at (image centre).
-    pub target: Point3<f64>,
-    /// Up direction (need not be perpendicular to the view direction).
-    pub up: Vector3<f64>,
-    /// Vertical field of view in degrees.
-    pub fov_y_degrees: f64,
-}
-
-/// How much of the picture's width and height [`Camera::framing`] lets the object fill: 90%,
-/// a margin of 5% of each side all round (an object drawn to the very edge looks cut off, and a
-/// silhouette pixel on the border cannot be told from one outside it).
-pub const FRAME_FILL: f64 = 0.9;
-
-/// Vertical field of view of [`Camera::framing`], degrees (a mild perspective: the pictures
-/// compare shapes, not depth cues).
-pub const FRAME_FOV_DEGREES: f64 = 30.0;
-
-/// Least distance from [`Camera::framing`]'s eye to the box centre, in box half-diagonals:
-/// every point of the box is then at least a quarter half-diagonal in front of the eye, even
-/// for a box that the field of view alone would let the eye come nearer to (a segment seen end
-/// on, a point). Not more: in a wide picture the field of view puts an edge-on disk at 1.3
-/// half-diagonals.
-pub const MIN_FRAME_DISTANCE: f64 = 1.25;
-
-impl Camera {
-    /// A camera looking at the box `[lo, hi]` from azimuth and elevation (degrees, about the z
-    /// axis and above the xy plane), for a picture at least as wide as it is tall: the box
-    /// (and so everything in it) fills at most [`FRAME_FILL`] of the picture's height and of
-    /// its width. [`Camera::framing_aspect`] with aspect 1, which fits the box in the square
-    /// `height × height` at the picture's centre: a wider picture only adds room at the sides.
-    pub fn framing(lo: Point3<f64>, hi: Point3<f64>, azimuth: f64, elevation: f64) -> Camera {
-        Camera::framing_aspect(lo, hi, azimuth, elevation, 1.0)
-    }
-
-    /// [`Camera::framing`] for a picture of `aspect = width / height` (a portrait picture,
-    /// `aspect < 1`, needs it; a non-finite or non-positive aspect is taken as 1).
-    ///
-    /// The view direction is fixed by the angles, so only the distance `D` from the box centre
-    /// is chosen. A corner with camera-frame offsets `(x, y, z)` from the centre (`z` along the
-    /// view) is seen at `x / (D + z)` across and `y / (D + z)` up, and the picture shows up to
-    /// `aspect · tan(fov/2)` and `tan(fov/2)`; the corner lies in the filled part iff
-    /// `D ≥ |x| / (FRAME_FILL · aspect · tan(fov/2)) − z` and `D ≥ |y| / (FRAME_FILL ·
-    /// tan(fov/2)) − z`. `D` is the largest of these over the eight corners (and at least
-    /// [`MIN_FRAME_DISTANCE`] half-diagonals, so the whole box is in front of the eye). A
-    /// perspective projection maps segments in front of the eye to segments, so the box, the
-    /// convex hull of its corners, projects inside the convex hull of their images: inside the
-    /// filled rectangle. This fits the box itself, not its bounding sphere (whose silhouette
-    /// overstates a flat or elongated box by up to √3, and which the 0.8 shortcut this replaced
-    /// let the corners of a square plate, and the ends of a tall cylinder seen from the side,
-    /// stick out of: 17.9° off axis in a 15° half-field).
-    pub fn framing_aspect(
-        lo: Point3<f64>,
-        hi: Point3<f64>,
-        azimuth: f64,
-        elevation: f64,
-        aspect: f64,
-    ) -> Camera {
-        let corners = (0..8).map(|k| {
-            Point3::new(
-                if k & 1 == 0 { lo.x } else { hi.x },
-                if k & 2 == 0 { lo.y } else { hi.y },
-                if k & 4 == 0 { lo.z } else { hi.z },
-            )
-        });
-        Camera::fit(lo, hi, corners, azimuth, elevation, aspect)
-    }
-
-    /// [`Camera::framing_aspect`] fitted to `points` themselves rather than to the corners of
-    /// their bounding box (same centre, the box's; same bounds on the distance, over the
-    /// points): the tightest distance at which every point lies in the middle [`FRAME_FILL`]
-    /// of the width and the height, so the object fills that much of one of them. A mesh is
-    /// inside the convex hull of its vertices, so its vertices suffice. Points that are not
-    /// finite are left out; none left frames the unit box at the origin.
-    pub fn framing_points(
-        points: &[Point3<f64>],
-        azimuth: f64,
-        elevation: f64,
-        aspect: f64,
-    ) -> Camera {
-        let finite = || {
-            points
-                .iter()
-                .copied()
-                .filter(|p| p.iter().all(|x| x.is_finite()))
-        };
-        let (mut lo, mut hi) = (
-            Point3::from(Vector3::repeat(f64::INFINITY)),
-            Point3::from(Vector3::repeat(f64::NEG_INFINITY)),
-        );
-        for p in finite() {
-            lo = lo.inf(&p);
-            hi = hi.sup(&p);
-        }
-        if lo.x > hi.x {
-            return Camera::framing_aspect(
-                Point3::origin(),
-                Point3::new(1.0, 1.0, 1.0),
-                azimuth,
-                elevation,
-                aspect,
-            );
-        }
-        Camera::fit(lo, hi, finite(), azimuth, elevation, aspect)
-    }
-
-    /// The camera looking at the centre of `[lo, hi]` from the angles, at the least distance
-    /// that keeps every point of `points` in the middle [`FRAME_FILL`] of the picture
-    /// ([`Camera::framing_aspect`] derives it).
-    fn fit(
-        lo: Point3<f64>,
-        hi: Point3<f64>,
-        points: impl Iterator<Item = Point3<f64>>,
-        azimuth: f64,
-        elevation: f64,
-        aspect: f64,
-    ) -> Camera {
-        let centre = nalgebra::center(&lo, &hi);
-        let radius = (hi - lo).norm() * 0.5;
-        let (az, el) = (azimuth.to_radians(), elevation.to_radians());
-        let dir = Vector3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
-        let up = if el.cos() < 1e-3 {
-            Vector3::y()
-        } else {
-            Vector3::z()
-        };
-        let aspect = if aspect.is_finite() && aspect > 0.0 {
-            aspect
-        } else {
-            1.0
-        };
-        // The frame `View::new` builds for this camera.
-        let f = -dir;
-        let r = f.cross(&up).normalize();
-        let u = r.cross(&f);
-        let ty = FRAME_FILL * (FRAME_FOV_DEGREES.to_radians() * 0.5).tan();
-        let tx = ty * aspect;
-        let mut distance = MIN_FRAME_DISTANCE * radius;
-        for p in points {
-            let q = p - centre;
-            let (x, y, z) = (q.dot(&r), q.dot(&u), q.dot(&f));
-            distance = distance.max(x.abs() / tx - z).max(y.abs() / ty - z);
-        }
-        if !(distance > 0.0 && distance.is_finite()) {
-            // A point (or a box that is not finite): any distance frames it.
-            distance = 1.0;
-        }
-        Camera {
-            eye: centre + dir * distance,
-            target: centre,
-            up,
-            fov_y_degrees: FRAME_FOV_DEGREES,
-        }
-    }
-}
+pub use crate::camera::{Camera, FrameBox, FRAME_FILL, FRAME_FOV_DEGREES, MIN_FRAME_DISTANCE};
 
 /// Rendering settings.
 #[derive(Clone, Debug, PartialEq)]
@@ -259,10 +108,10 @@ pub use crate::srgb::{to_srgb8, to_srgb8_exact};
 /// Rows of one band of the parallel rasterization. Each band draws the triangles that reach it
 /// in mesh order, so a pixel sees the same triangles in the same order as a serial pass: the
 /// picture does not depend on the band height or on the number of threads.
-const BAND_ROWS: usize = 16;
+pub(crate) const BAND_ROWS: usize = 16;
 
 /// Faces per task of the parallel triangle setup.
-const SETUP_CHUNK: usize = 4096;
+pub(crate) const SETUP_CHUNK: usize = 4096;
 
 /// Largest integer Blinn–Phong exponent raised by repeated squaring (more multiplications
 /// than that would lose more than the 2⁻⁴⁶ relative accuracy stated in [`spec_power`]).
@@ -270,10 +119,22 @@ const MAX_INTEGER_SHININESS: f64 = 1024.0;
 
 /// A vertex in camera space with its attributes.
 #[derive(Clone, Copy)]
-struct Cv {
-    c: Vector3<f64>,
+pub(crate) struct Cv {
+    pub(crate) c: Vector3<f64>,
     n: Vector3<f64>,
     col: [f32; 3],
+}
+
+/// Vertex `i` of `mesh` (at `p`) in camera space with its attributes: a normal of zero and a
+/// light grey where the mesh has none for it.
+#[inline]
+pub(crate) fn camera_vertex(mesh: &RenderMesh, view: &View, i: usize, p: &Point3<f64>) -> Cv {
+    let n = mesh.normals.get(i).copied().unwrap_or_else(Vector3::zeros);
+    Cv {
+        c: view.to_cam(p),
+        n: view.dir_to_cam(&n),
+        col: mesh.colors.get(i).copied().unwrap_or([0.8, 0.8, 0.8]),
+    }
 }
 
 fn lerp_cv(a: &Cv, b: &Cv, t: f64) -> Cv {
@@ -286,19 +147,19 @@ fn lerp_cv(a: &Cv, b: &Cv, t: f64) -> Cv {
 }
 
 /// The camera frame and screen mapping of one picture.
-struct View {
+pub(crate) struct View {
     eye: Point3<f64>,
     r: Vector3<f64>,
     u: Vector3<f64>,
     f: Vector3<f64>,
     fpx: f64,
     near: f64,
-    w: usize,
-    h: usize,
+    pub(crate) w: usize,
+    pub(crate) h: usize,
 }
 
 impl View {
-    fn new(camera: &Camera, (w, h): (usize, usize)) -> View {
+    pub(crate) fn new(camera: &Camera, (w, h): (usize, usize)) -> View {
         let f = (camera.target - camera.eye).normalize();
         let r = f.cross(&camera.up).normalize();
         let u = r.cross(&f);
@@ -314,7 +175,7 @@ impl View {
         }
     }
 
-    fn to_cam(&self, p: &Point3<f64>) -> Vector3<f64> {
+    pub(crate) fn to_cam(&self, p: &Point3<f64>) -> Vector3<f64> {
         let d = p - self.eye;
         Vector3::new(d.dot(&self.r), d.dot(&self.u), d.dot(&self.f))
     }
@@ -356,12 +217,12 @@ impl Edge {
 /// its signed screen area, inverse depths, the pixel box it may cover (inclusive, inside the
 /// picture) and its vertices (indices into the vertex list of the picture).
 #[derive(Clone, Copy)]
-struct Tri {
+pub(crate) struct Tri {
     edges: [Edge; 3],
     area: f64,
     inv_z: [f64; 3],
-    x: (usize, usize),
-    y: (usize, usize),
+    pub(crate) x: (usize, usize),
+    pub(crate) y: (usize, usize),
     v: [usize; 3],
 }
 
@@ -403,7 +264,7 @@ impl Tri {
 
     /// The row parts `dx (y − ay)` of the edge functions at the centres of pixel row `py`.
     #[inline]
-    fn row(&self, py: usize) -> [f64; 3] {
+    pub(crate) fn row(&self, py: usize) -> [f64; 3] {
         let y = py as f64 + 0.5;
         self.edges.map(|e| e.dx * (y - e.ay))
     }
@@ -411,7 +272,7 @@ impl Tri {
     /// The edge functions at the centre of pixel `px` of the row whose parts are `row` (the
     /// same operations, in the same order, as `(b.x − a.x)(y − a.y) − (b.y − a.y)(x − a.x)`).
     #[inline]
-    fn at(&self, row: &[f64; 3], px: usize) -> [f64; 3] {
+    pub(crate) fn at(&self, row: &[f64; 3], px: usize) -> [f64; 3] {
         let x = px as f64 + 0.5;
         std::array::from_fn(|k| row[k] - self.edges[k].dy * (x - self.edges[k].ax))
     }
@@ -425,7 +286,7 @@ impl Tri {
     /// rounding (a rounded difference and a rounded product by a constant are monotone), so
     /// the pixels inside form one run: the rasterizer stops a row at the first pixel after it.
     #[inline]
-    fn inside(&self, e: &[f64; 3]) -> bool {
+    pub(crate) fn inside(&self, e: &[f64; 3]) -> bool {
         if self.area > 0.0 {
             e[0] >= 0.0 && e[1] >= 0.0 && e[2] >= 0.0
         } else {
@@ -435,7 +296,7 @@ impl Tri {
 
     /// The perspective-correct weights `λᵢ/zᵢ` for edge functions `e` and their sum `1/z`.
     #[inline]
-    fn weights(&self, e: &[f64; 3]) -> ([f64; 3], f64) {
+    pub(crate) fn weights(&self, e: &[f64; 3]) -> ([f64; 3], f64) {
         let l = e.map(|e| e / self.area);
         let w = [
             l[0] * self.inv_z[0],
@@ -451,13 +312,13 @@ impl Tri {
 /// (kept apart, not concatenated): each chunk's triangles in face order and the vertices its
 /// clipping made. A triangle's vertex `i` is the mesh's vertex `i` below `verts.len()` and the
 /// chunk's own vertex `i − verts.len()` above.
-struct Scene {
-    verts: Vec<Cv>,
-    chunks: Vec<(Vec<Tri>, Vec<Cv>)>,
+pub(crate) struct Scene {
+    pub(crate) verts: Vec<Cv>,
+    pub(crate) chunks: Vec<(Vec<Tri>, Vec<Cv>)>,
 }
 
 /// A triangle's id: its chunk in the high half, its place in the chunk in the low half.
-type TriId = u64;
+pub(crate) type TriId = u64;
 
 /// One band of the depth pass: its number, its depths and nearest triangles, its triangles.
 type DepthBand<'a> = (usize, ((&'a mut [f64], &'a mut [TriId]), &'a Vec<TriId>));
@@ -467,7 +328,7 @@ const NO_TRIANGLE: TriId = TriId::MAX;
 
 /// Clips the faces of one chunk against the near plane and sets up their triangles. Vertices
 /// made by clipping are numbered from `verts.len()` in the chunk's own list.
-fn setup_chunk(faces: &[[usize; 3]], verts: &[Cv], view: &View) -> (Vec<Tri>, Vec<Cv>) {
+pub(crate) fn setup_chunk(faces: &[[usize; 3]], verts: &[Cv], view: &View) -> (Vec<Tri>, Vec<Cv>) {
     let (mut tris, mut extra) = (Vec::with_capacity(faces.len()), Vec::new());
     let n = verts.len();
     for face in faces {
@@ -512,15 +373,8 @@ fn setup_chunk(faces: &[[usize; 3]], verts: &[Cv], view: &View) -> (Vec<Tri>, Ve
 }
 
 impl Scene {
-    fn new(mesh: &RenderMesh, view: &View, parallel: bool) -> Scene {
-        let vertex = |(i, p): (usize, &Point3<f64>)| {
-            let n = mesh.normals.get(i).copied().unwrap_or_else(Vector3::zeros);
-            Cv {
-                c: view.to_cam(p),
-                n: view.dir_to_cam(&n),
-                col: mesh.colors.get(i).copied().unwrap_or([0.8, 0.8, 0.8]),
-            }
-        };
+    pub(crate) fn new(mesh: &RenderMesh, view: &View, parallel: bool) -> Scene {
+        let vertex = |(i, p): (usize, &Point3<f64>)| camera_vertex(mesh, view, i, p);
         let verts: Vec<Cv> = if parallel {
             mesh.positions.par_iter().enumerate().map(vertex).collect()
         } else {
@@ -536,7 +390,7 @@ impl Scene {
     }
 
     /// Every triangle with its id, in mesh order.
-    fn tris(&self) -> impl Iterator<Item = (TriId, &Tri)> {
+    pub(crate) fn tris(&self) -> impl Iterator<Item = (TriId, &Tri)> {
         self.chunks.iter().enumerate().flat_map(|(c, (tris, _))| {
             tris.iter()
                 .enumerate()
@@ -545,7 +399,7 @@ impl Scene {
     }
 
     /// The triangle `id` and its three vertices.
-    fn tri(&self, id: TriId) -> Option<(&Tri, [&Cv; 3])> {
+    pub(crate) fn tri(&self, id: TriId) -> Option<(&Tri, [&Cv; 3])> {
         let (tris, extra) = self.chunks.get((id >> 32) as usize)?;
         let t = tris.get((id & 0xffff_ffff) as usize)?;
         let n = self.verts.len();
@@ -556,11 +410,29 @@ impl Scene {
 }
 
 /// The lights (camera space, pointing towards the light) and material of a picture.
-struct Lighting<'a> {
+pub(crate) struct Lighting {
     key: Vector3<f64>,
     fill: Vector3<f64>,
     exponent: Exponent,
-    o: &'a RenderOptions,
+    ambient: f64,
+    key_intensity: f64,
+    fill_intensity: f64,
+    specular: f64,
+}
+
+impl Lighting {
+    /// The lights fixed to the camera and the material of `o`.
+    pub(crate) fn new(o: &RenderOptions) -> Lighting {
+        Lighting {
+            key: Vector3::new(-0.45, 0.65, -0.6).normalize(),
+            fill: Vector3::new(0.7, -0.1, -0.7).normalize(),
+            exponent: Exponent::new(o.shininess),
+            ambient: o.ambient,
+            key_intensity: o.key,
+            fill_intensity: o.fill,
+            specular: o.specular,
+        }
+    }
 }
 
 /// A Blinn–Phong exponent: a small whole number is raised by repeated squaring.
@@ -613,17 +485,19 @@ fn pow_exponent(x: f64, e: Exponent) -> f64 {
     }
 }
 
-impl Lighting<'_> {
+impl Lighting {
     fn shade(&self, n: Vector3<f64>, col: [f32; 3], pos: Vector3<f64>) -> [f32; 3] {
-        let o = self.o;
         let view = -pos.normalize();
         let mut n = if n.norm() > 0.0 { n.normalize() } else { view };
         if n.dot(&view) < 0.0 {
             n = -n;
         }
-        let mut diffuse = o.ambient;
+        let mut diffuse = self.ambient;
         let mut spec = 0.0;
-        for (l, i) in [(&self.key, o.key), (&self.fill, o.fill)] {
+        for (l, i) in [
+            (&self.key, self.key_intensity),
+            (&self.fill, self.fill_intensity),
+        ] {
             let d = n.dot(l).max(0.0);
             diffuse += i * d;
             if d > 0.0 {
@@ -631,14 +505,14 @@ impl Lighting<'_> {
                 spec += i * pow_exponent(n.dot(&hv).max(0.0), self.exponent);
             }
         }
-        col.map(|c| (f64::from(c) * diffuse + o.specular * spec) as f32)
+        col.map(|c| (f64::from(c) * diffuse + self.specular * spec) as f32)
     }
 }
 
 /// An interrogation mode set up for one picture, in camera space (the eye at the origin, `x`
 /// right, `y` up, `z` along the view).
 #[derive(Clone, Copy)]
-enum Probe {
+pub(crate) enum Probe {
     /// Reflection lines: the frame `(e1, e2)` perpendicular to the axis, stripes per radian.
     Reflection {
         e1: Vector3<f64>,
@@ -674,8 +548,14 @@ fn perpendicular(a: &Vector3<f64>, v: Vector3<f64>, fallback: Vector3<f64>) -> V
 }
 
 impl Probe {
-    /// Sets up `shading` for the picture `view` of `scene`; `None` for [`Shading::Lit`].
-    fn new(shading: &Shading, view: &View, scene: &Scene) -> Result<Option<Probe>, RenderError> {
+    /// Sets up `shading` for the picture `view`; `None` for [`Shading::Lit`]. The highlight
+    /// lines are spaced across the scene's bounding sphere, asked of `sphere` (camera space:
+    /// [`CamBox::sphere`]) only then.
+    pub(crate) fn new(
+        shading: &Shading,
+        view: &View,
+        sphere: impl FnOnce() -> (Vector3<f64>, f64),
+    ) -> Result<Option<Probe>, RenderError> {
         let mode = shading.name();
         shading
             .validate()
@@ -728,7 +608,7 @@ impl Probe {
                     });
                 }
                 let e = e.normalize();
-                let (centre, radius) = scene.bounding_sphere();
+                let (centre, radius) = sphere();
                 let radius = if radius > 0.0 { radius } else { 1.0 };
                 let spacing = 2.0 * radius / f64::from(lines);
                 Probe::Highlight {
@@ -789,22 +669,100 @@ impl Probe {
     }
 }
 
-impl Scene {
-    /// Centre and radius of the bounding sphere of the finite vertices' bounding box
-    /// (camera space; the origin and 0 when there are none).
-    fn bounding_sphere(&self) -> (Vector3<f64>, f64) {
-        let mut lo = Vector3::repeat(f64::INFINITY);
-        let mut hi = Vector3::repeat(f64::NEG_INFINITY);
-        for v in &self.verts {
-            if v.c.iter().all(|x| x.is_finite()) {
-                lo = lo.inf(&v.c);
-                hi = hi.sup(&v.c);
-            }
+/// The bounding box of the finite camera-space vertices added so far (the highlight lines'
+/// scale). The box is a minimum and a maximum, so it does not depend on the order the
+/// vertices come in or on how they are split: a scene drawn in chunks gets the same box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct CamBox {
+    lo: Vector3<f64>,
+    hi: Vector3<f64>,
+}
+
+impl Default for CamBox {
+    fn default() -> Self {
+        CamBox {
+            lo: Vector3::repeat(f64::INFINITY),
+            hi: Vector3::repeat(f64::NEG_INFINITY),
         }
+    }
+}
+
+impl CamBox {
+    /// Adds a camera-space vertex (left out when not finite).
+    #[inline]
+    pub(crate) fn add(&mut self, c: &Vector3<f64>) {
+        if c.iter().all(|x| x.is_finite()) {
+            self.lo = self.lo.inf(c);
+            self.hi = self.hi.sup(c);
+        }
+    }
+
+    /// Centre and radius of the box's bounding sphere (the origin and 0 when empty).
+    pub(crate) fn sphere(&self) -> (Vector3<f64>, f64) {
+        let (lo, hi) = (self.lo, self.hi);
         if lo.x > hi.x {
             return (Vector3::zeros(), 0.0);
         }
         ((lo + hi) * 0.5, (hi - lo).norm() * 0.5)
+    }
+}
+
+impl Scene {
+    /// Centre and radius of the bounding sphere of the finite vertices' bounding box
+    /// (camera space; the origin and 0 when there are none).
+    fn bounding_sphere(&self) -> (Vector3<f64>, f64) {
+        let mut b = CamBox::default();
+        for v in &self.verts {
+            b.add(&v.c);
+        }
+        b.sphere()
+    }
+}
+
+/// How a covered pixel is coloured, straight to sRGB bytes: lit, or dark and light stripes of
+/// an interrogation mode. [`render`]'s shading pass and [`crate::canvas::Canvas`] both colour
+/// with it, so a pixel shaded by either from the same triangle and weights has the same bytes.
+pub(crate) struct Painter {
+    lighting: Lighting,
+    probe: Option<Probe>,
+    srgb: &'static Srgb8Table,
+    dark: [u8; 3],
+    light: [u8; 3],
+}
+
+impl Painter {
+    /// The painter of `probe` (`None`: lit with `lighting`).
+    pub(crate) fn new(lighting: Lighting, probe: Option<Probe>) -> Painter {
+        let srgb = Srgb8Table::get();
+        Painter {
+            lighting,
+            probe,
+            srgb,
+            dark: srgb.encode3(DARK),
+            light: srgb.encode3(LIGHT),
+        }
+    }
+
+    /// The bytes of a pixel of the triangle with vertices `v` at the perspective-correct
+    /// barycentric weights `a, b, c`.
+    #[inline]
+    pub(crate) fn paint(&self, v: [&Cv; 3], a: f64, b: f64, c: f64) -> [u8; 3] {
+        let (n, pos) = normal_position(v, a, b, c);
+        match &self.probe {
+            None => {
+                let (af, bf, cf) = (a as f32, b as f32, c as f32);
+                let col =
+                    std::array::from_fn(|k| v[0].col[k] * af + v[1].col[k] * bf + v[2].col[k] * cf);
+                self.srgb.encode3(self.lighting.shade(n, col, pos))
+            }
+            Some(p) => {
+                if p.dark(n, pos) {
+                    self.dark
+                } else {
+                    self.light
+                }
+            }
+        }
     }
 }
 
@@ -871,7 +829,7 @@ impl Frame<'_> {
 
 /// The interpolated normal and camera-space position of a pixel.
 #[inline]
-fn normal_position(v: [&Cv; 3], a: f64, b: f64, c: f64) -> (Vector3<f64>, Vector3<f64>) {
+pub(crate) fn normal_position(v: [&Cv; 3], a: f64, b: f64, c: f64) -> (Vector3<f64>, Vector3<f64>) {
     (
         v[0].n * a + v[1].n * b + v[2].n * c,
         v[0].c * a + v[1].c * b + v[2].c * c,
@@ -935,7 +893,7 @@ pub fn interrogation_field(
     let mut values = Vec::new();
     let (w, h) = draw(mesh, camera, &o, true, |frame, view, lighting| {
         values = vec![0.0f64; frame.w * view.h];
-        match Probe::new(&o.shading, view, frame.scene)? {
+        match Probe::new(&o.shading, view, || frame.scene.bounding_sphere())? {
             None => frame.shade(&mut values, [f64::NAN], None, |v, a, b, c| {
                 let (n, pos) = normal_position(v, a, b, c);
                 let (mut n, d) = Probe::unit(n, pos);
@@ -974,26 +932,11 @@ fn render_with(
             .wireframe
             .map(|c| (srgb.encode3(c), &frame.wire_mask[..]));
         rgb = vec![0u8; 3 * frame.w * view.h];
-        match Probe::new(&options.shading, view, frame.scene)? {
-            None => frame.shade(&mut rgb, background, wire, |v, a, b, c| {
-                let (n, pos) = normal_position(v, a, b, c);
-                let (af, bf, cf) = (a as f32, b as f32, c as f32);
-                let col =
-                    std::array::from_fn(|k| v[0].col[k] * af + v[1].col[k] * bf + v[2].col[k] * cf);
-                srgb.encode3(lighting.shade(n, col, pos))
-            }),
-            Some(p) => {
-                let (dark, light) = (srgb.encode3(DARK), srgb.encode3(LIGHT));
-                frame.shade(&mut rgb, background, wire, |v, a, b, c| {
-                    let (n, pos) = normal_position(v, a, b, c);
-                    if p.dark(n, pos) {
-                        dark
-                    } else {
-                        light
-                    }
-                })
-            }
-        }
+        let probe = Probe::new(&options.shading, view, || frame.scene.bounding_sphere())?;
+        let painter = Painter::new(lighting, probe);
+        frame.shade(&mut rgb, background, wire, |v, a, b, c| {
+            painter.paint(v, a, b, c)
+        });
         Ok(())
     })?;
     Ok(Image {
@@ -1013,7 +956,7 @@ fn draw<S>(
     shade: S,
 ) -> Result<(usize, usize), RenderError>
 where
-    S: FnOnce(&Frame<'_>, &View, &Lighting<'_>) -> Result<(), RenderError>,
+    S: FnOnce(&Frame<'_>, &View, Lighting) -> Result<(), RenderError>,
 {
     // Refused before any drawing (`Probe::new` sets the mode up after the depth pass).
     options
@@ -1028,12 +971,7 @@ where
         options.height.max(1) as usize,
     );
     let view = View::new(camera, (w, h));
-    let lighting = Lighting {
-        key: Vector3::new(-0.45, 0.65, -0.6).normalize(),
-        fill: Vector3::new(0.7, -0.1, -0.7).normalize(),
-        exponent: Exponent::new(options.shininess),
-        o: options,
-    };
+    let lighting = Lighting::new(options);
     let scene = Scene::new(mesh, &view, parallel);
 
     // The triangles reaching each band, in mesh order.
@@ -1114,7 +1052,7 @@ where
         parallel,
         wire_mask,
     };
-    shade(&frame, &view, &lighting)?;
+    shade(&frame, &view, lighting)?;
     Ok((w, h))
 }
 
@@ -1167,13 +1105,28 @@ pub const WIRE_COLOUR: [u8; 3] = [20, 20, 60];
 /// `camera` as [`render`] projects (the testbed's XRender: no hidden lines removed). Points
 /// behind the eye are skipped with their edges; an edge is drawn with at most 10⁵ steps.
 pub fn wire_frame(mesh: &RenderMesh, camera: &Camera, w: u32, h: u32) -> Image {
-    /// Most steps one edge is drawn with: a far longer edge is clipped by the picture anyway.
-    const MAX_STEPS: f64 = 1e5;
-    let mut img = Image {
+    let mut img = blank_wire_frame(w, h);
+    draw_wire_frame(&mut img, mesh, camera);
+    img
+}
+
+/// The white picture [`wire_frame`] draws its lines on.
+pub fn blank_wire_frame(w: u32, h: u32) -> Image {
+    Image {
         width: w,
         height: h,
         rgb: vec![255u8; 3 * w as usize * h as usize],
-    };
+    }
+}
+
+/// Draws the edges of `mesh` onto `img` as [`wire_frame`] does: a picture drawn from a mesh in
+/// parts, one call a part onto the same [`blank_wire_frame`], is the picture of the whole
+/// (every line is drawn in one colour, without a depth test, so neither the order nor the
+/// split changes a byte).
+pub fn draw_wire_frame(img: &mut Image, mesh: &RenderMesh, camera: &Camera) {
+    /// Most steps one edge is drawn with: a far longer edge is clipped by the picture anyway.
+    const MAX_STEPS: f64 = 1e5;
+    let (w, h) = (img.width, img.height);
     let f = (camera.target - camera.eye).normalize();
     let r = f.cross(&camera.up).normalize();
     let u = r.cross(&f);
@@ -1214,7 +1167,6 @@ pub fn wire_frame(mesh: &RenderMesh, camera: &Camera, w: u32, h: u32) -> Image {
             }
         }
     }
-    img
 }
 
 /// Encodes `rgb` (`3 · w · h` bytes) as an 8-bit RGB PNG into `out`.

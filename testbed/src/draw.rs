@@ -7,10 +7,17 @@
 //! where a vertex has none) and colours (the uniform material where a vertex has none). The
 //! camera looks at the centre of the triangles' bounding box from the given azimuth and
 //! elevation, as near as keeps every vertex in the middle 90% of the width and the height.
+//!
+//! In bounded memory: the filters keep the stream's triangles in a [`TriangleStore`] (in
+//! memory up to [`STORE_BYTES`], the rest in a temporary file), frame the camera on them
+//! (their bounding box gathered as they are read, then one replay for the distance:
+//! `render::Camera::framing_box`, the camera of `framing_points` bit for bit), and draw them
+//! chunk by chunk onto a `render::Canvas` (one replay more before it for the highlight lines'
+//! bounds). The picture is byte for byte the one `render::render` draws from the whole mesh.
 
 use std::io::Write;
 
-use render::{Camera, Image, RenderMesh, RenderOptions, Shading};
+use render::{Camera, Canvas, Image, RenderMesh, RenderOptions, SceneBounds, Shading};
 
 use crate::error::FilterError;
 use crate::options::pair;
@@ -18,6 +25,7 @@ use crate::pipe::{Pipe, StreamOptions};
 use crate::record::{self, Vertex};
 use crate::stream::Record;
 use crate::triangle_mesh::{self, TriangleMesh};
+use crate::triangle_store::{TriangleStore, STORE_BYTES};
 
 /// Default view: azimuth and elevation in degrees (the octahedron's three front faces).
 pub const DEFAULT_VIEW: (f64, f64) = (35.0, 25.0);
@@ -25,21 +33,29 @@ pub const DEFAULT_VIEW: (f64, f64) = (35.0, 25.0);
 /// Default picture size (the examples' size).
 pub const DEFAULT_SIZE: (u32, u32) = (400, 300);
 
-/// Largest picture side accepted: an 8192 × 8192 picture takes about 1.3 GB while it is drawn
-/// and encoded (measured 1.25 GB; [`RENDER_BYTES_PER_PIXEL`]; a 16384 × 16384 one took 5.0
-/// GB), the most a
-/// shared machine should be asked for; every size is also checked against the memory
-/// available before anything is drawn ([`check_picture_memory`]).
+/// Largest picture side accepted: an 8192 × 8192 picture takes about 1 GB while it is drawn
+/// and encoded ([`RENDER_BYTES_PER_PIXEL`] and [`PICTURE_FIXED_BYTES`]: 1.07 GB estimated,
+/// 0.80 GB measured; 1.25 GB with the deferred renderer this replaced, which kept a triangle
+/// id a pixel more; a 16384 × 16384 one took 5.0 GB), the most a shared machine should be asked for; every size is also
+/// checked against the memory available before anything is drawn ([`check_picture_memory`]).
 pub const MAX_SIDE: u32 = 8192;
 
-/// Bytes a pixel of a shaded picture takes while drawn and encoded: its depth (8), its nearest
-/// triangle (8), its RGB bytes (3) and, at most, the PNG's compressed copy of them (3).
-/// Measured: 18.6 bytes a pixel at 8192 × 8192 (docs/hostile-input.md).
-pub const RENDER_BYTES_PER_PIXEL: u128 = 22;
+/// Bytes a pixel of a shaded picture takes while drawn and encoded: its depth (8), its RGB
+/// bytes (3) and, at most, the PNG's compressed copy of them (3) (`render::Canvas`; the
+/// deferred renderer before it also kept the nearest triangle's id, 8 more, and measured 18.6
+/// bytes a pixel at 8192 × 8192 against the 22 then estimated: docs/hostile-input.md).
+pub const RENDER_BYTES_PER_PIXEL: u128 = 14;
 
 /// Bytes a pixel of a wire-frame picture takes: its RGB bytes and at most the PNG's
 /// compressed copy (measured: 3.1 bytes a pixel at 8192 × 8192).
 pub const WIRE_BYTES_PER_PIXEL: u128 = 6;
+
+/// Bytes a picture takes besides its pixels, whatever the stream holds: the triangles kept in
+/// memory ([`STORE_BYTES`], 64 MiB) and the work of one chunk of [`crate::triangle_store::CHUNK_TRIANGLES`]: the
+/// chunk being filled and one read back (unwelded at worst, 204 bytes a triangle each) and
+/// the canvas's set-up of it (64 bytes a camera-space vertex, 184 a set-up triangle), under
+/// 48 MiB; 64 MiB is allowed.
+pub const PICTURE_FIXED_BYTES: u128 = STORE_BYTES as u128 + (64 << 20);
 
 /// Reads every Triangle, and every triangle of every TriangleMesh, as three vertices; other
 /// records are ignored.
@@ -156,8 +172,8 @@ pub struct PictureArgs {
     /// View direction `AZ,EL` in degrees.
     #[arg(long, allow_hyphen_values = true)]
     pub view: Option<String>,
-    /// Size `WxH` in pixels, each side from 1 to 8192 (and within memory: 22 bytes a pixel
-    /// shaded, 6 wire-frame).
+    /// Size `WxH` in pixels, each side from 1 to 8192 (and within memory: 14 bytes a pixel
+    /// shaded, 6 wire-frame, and 128 MiB for the triangles).
     #[arg(long)]
     pub size: Option<String>,
 }
@@ -192,8 +208,8 @@ pub struct Seen {
 }
 
 /// Refuses a picture of `view`'s size whose drawing would exceed the memory available
-/// ([`RENDER_BYTES_PER_PIXEL`], [`WIRE_BYTES_PER_PIXEL`]; [`surface::limits::check_memory`]),
-/// before anything is drawn.
+/// ([`RENDER_BYTES_PER_PIXEL`] or [`WIRE_BYTES_PER_PIXEL`] a pixel, and
+/// [`PICTURE_FIXED_BYTES`]; [`surface::limits::check_memory`]), before anything is drawn.
 pub fn check_picture_memory(view: &View) -> Result<(), FilterError> {
     let (w, h) = view.size;
     let per_pixel = if view.wire {
@@ -203,7 +219,9 @@ pub fn check_picture_memory(view: &View) -> Result<(), FilterError> {
     };
     Ok(surface::limits::check_memory(
         &format!("--size {w}x{h}"),
-        (u128::from(w) * u128::from(h)).saturating_mul(per_pixel),
+        (u128::from(w) * u128::from(h))
+            .saturating_mul(per_pixel)
+            .saturating_add(PICTURE_FIXED_BYTES),
     )?)
 }
 
@@ -235,10 +253,10 @@ pub fn blank_reason(name: &str, triangles: usize, seen: &Seen, blank: bool) -> O
     })
 }
 
-/// Runs a picture filter named `name`: the triangles read straight into a render mesh, drawn
-/// with `view`, PNG out. A picture with nothing drawn on it is an error naming the cause
-/// ([`blank_reason`]), and a size whose drawing would not fit in memory is refused before the
-/// stream is read ([`check_picture_memory`]).
+/// Runs a picture filter named `name`: the triangles kept in a store ([`collect_store_seen`]),
+/// drawn with `view` chunk by chunk ([`draw_store`]), PNG out. A picture with nothing drawn on
+/// it is an error naming the cause ([`blank_reason`]), and a size whose drawing would not fit
+/// in memory is refused before the stream is read ([`check_picture_memory`]).
 pub fn picture(name: &'static str, stream: &StreamOptions, view: &View) -> Result<(), FilterError> {
     picture_with(name, stream, view, Shading::Lit)
 }
@@ -253,18 +271,117 @@ pub fn picture_with(
     check_side(view)?;
     check_picture_memory(view)?;
     let mut seen = Seen::default();
-    let mesh = stream.read(name, &mut |p| collect_mesh_seen(p, &mut seen))?;
-    if let Some(why) = blank_reason(name, mesh.faces.len(), &seen, false) {
+    let mut store = stream.read(name, &mut |p| collect_store_seen(p, name, &mut seen))?;
+    if let Some(why) = blank_reason(name, store.triangles(), &seen, false) {
         return Err(FilterError::Blank(why));
     }
-    let image = draw_mesh_with(&mesh, view, shading)?;
+    let image = draw_store(&mut store, view, shading)?;
     // Both pictures are drawn on white (`render`'s default background, `wire_frame`'s).
     let blank = image.rgb.iter().all(|&b| b == u8::MAX);
-    if let Some(why) = blank_reason(name, mesh.faces.len(), &seen, blank) {
+    if let Some(why) = blank_reason(name, store.triangles(), &seen, blank) {
         return Err(FilterError::Blank(why));
     }
-    drop(mesh);
+    drop(store);
     stream.with_output(&mut |out| write_png(&image, out))
+}
+
+/// Reads every Triangle (unwelded) and every TriangleMesh (its vertices shared, as in the
+/// record) into a [`TriangleStore`] as [`collect_mesh_seen`] reads them into a render mesh
+/// (the uniform material where a vertex has no colour), counting the records read in `seen`;
+/// other records are ignored. The store is finished (ready to replay).
+pub fn collect_store_seen(
+    pipe: &mut Pipe,
+    name: &'static str,
+    seen: &mut Seen,
+) -> Result<TriangleStore, FilterError> {
+    let mut store = TriangleStore::new(STORE_BYTES, name);
+    let mut mesh = TriangleMesh::default();
+    let mut rec = Record::default();
+    while pipe.next_good(&mut rec)? {
+        seen.records += 1;
+        match rec.kind() {
+            "BezierTriangle" => seen.patches += 1,
+            "Triangle" => match record::triangle(&rec.tape) {
+                Ok(t) => store.push_triangle(&t, render::colors::MATERIAL)?,
+                Err(e) => pipe.bad_field(&rec, e)?,
+            },
+            triangle_mesh::KIND => match mesh.read(&rec.tape) {
+                Ok(()) => store.push_triangle_mesh(&mesh, render::colors::MATERIAL)?,
+                Err(e) => pipe.bad_field(&rec, e)?,
+            },
+            _ => {}
+        }
+    }
+    pipe.report_skipped();
+    store.finish()?;
+    Ok(store)
+}
+
+/// Draws the stored triangles with a shading mode (ignored by a wire frame): the picture
+/// [`draw_mesh_with`] draws of their whole mesh, byte for byte, from replays of the store
+/// (the camera's distance; for highlight lines their bounds; the drawing), one chunk in
+/// memory at a time besides the store's budget.
+pub fn draw_store(
+    store: &mut TriangleStore,
+    view: &View,
+    shading: Shading,
+) -> Result<Image, FilterError> {
+    check_side(view)?;
+    check_picture_memory(view)?;
+    let (w, h) = view.size;
+    let options = RenderOptions {
+        width: w,
+        height: h,
+        shading,
+        ..RenderOptions::default()
+    };
+    let aspect = f64::from(w) / f64::from(h);
+    let bounds = *store.bounds();
+    let camera = Camera::framing_box(
+        &bounds,
+        |visit| {
+            store.replay(&mut |m| {
+                visit(&m.positions);
+                Ok(())
+            })
+        },
+        view.view.0,
+        view.view.1,
+        aspect,
+    )?;
+    if view.wire {
+        let mut image = render::blank_wire_frame(w, h);
+        store.replay(&mut |m| {
+            render::draw_wire_frame(&mut image, m, &camera);
+            Ok(())
+        })?;
+        return Ok(image);
+    }
+    let mut scene = SceneBounds::new(&camera);
+    if SceneBounds::needed(&shading) {
+        store.replay(&mut |m| {
+            scene.add(&m.positions);
+            Ok(())
+        })?;
+    }
+    let mut canvas = Canvas::new(&camera, &options, &scene).map_err(|e| shading_usage(e, view))?;
+    store.replay(&mut |m| {
+        canvas.draw(m);
+        Ok(())
+    })?;
+    Ok(canvas.finish())
+}
+
+/// A mode the renderer refuses (the highlight lights seen end on: `--direction` along
+/// `--view`) as a usage error naming the view; other errors as they are.
+fn shading_usage(e: render::RenderError, view: &View) -> FilterError {
+    match e {
+        render::RenderError::Shading { mode, message } => FilterError::Usage(format!(
+            "--mode {mode}: {message} (--view {},{})",
+            view.view.0, view.view.1
+        )),
+        other => other.into(),
+    }
 }
 
 /// How a picture is drawn.
@@ -323,16 +440,131 @@ pub fn draw_mesh_with(
     if view.wire {
         return Ok(render::wire_frame(mesh, &camera, w, h));
     }
-    match render::render(mesh, &camera, &options) {
-        Err(render::RenderError::Shading { mode, message }) => Err(FilterError::Usage(format!(
-            "--mode {mode}: {message} (--view {},{})",
-            view.view.0, view.view.1
-        ))),
-        other => Ok(other?),
-    }
+    render::render(mesh, &camera, &options).map_err(|e| shading_usage(e, view))
 }
 
 /// Encodes an image as PNG (`render::write_png`).
 pub fn write_png(image: &Image, out: &mut dyn Write) -> Result<(), FilterError> {
     render::write_png(image, out).map_err(|e| FilterError::Png(e.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::triangle_store::CHUNK_TRIANGLES;
+    use nalgebra::{Point3, Vector3};
+
+    /// A stream's worth of triangles: single Triangles (some without normals or colours, one
+    /// corner not finite now and then) and TriangleMesh strips with and without normals,
+    /// into a store of `budget` bytes and into one mesh as [`collect_mesh`] builds it.
+    fn stored(budget: usize) -> (TriangleStore, RenderMesh) {
+        let mut store = TriangleStore::new(budget, "test");
+        let mut whole = RenderMesh::default();
+        let colour = render::colors::MATERIAL;
+        for r in 0..60 {
+            let t = f64::from(r) * 0.41;
+            if r % 3 == 0 {
+                let mut m = TriangleMesh::default();
+                // One strip longer than a chunk: the store closes chunks before and after it.
+                let n = if r == 30 { CHUNK_TRIANGLES + 100 } else { 38 };
+                for k in 0..n as u32 + 2 {
+                    let a = t + f64::from(k) * 0.15;
+                    m.pos.push(Point3::new(
+                        a.cos(),
+                        a.sin(),
+                        0.3 * f64::from(k % 2) + 0.1 * t,
+                    ));
+                    if r % 2 == 0 {
+                        m.norm.push(Vector3::new(a.cos(), a.sin(), 0.4));
+                        m.color.push([0.2, (k % 5) as f32 / 5.0, 0.7]);
+                    }
+                }
+                m.triangles = (0..n as u32).map(|k| [k, k + 1, k + 2]).collect();
+                store.push_triangle_mesh(&m, colour).unwrap();
+                push_triangle_mesh(&mut whole, &m, colour);
+            } else {
+                let at = |k: f64| Point3::new(t.sin() + 0.5 * k, t.cos() - 0.3 * k, 0.2 * k);
+                let v = |pos, norm, color| Vertex {
+                    pos,
+                    norm,
+                    kg: None,
+                    km: None,
+                    color,
+                };
+                let tri = [
+                    v(
+                        at(0.0),
+                        Some(Vector3::new(0.0, 0.3, 1.0)),
+                        Some([0.9, 0.1, 0.2]),
+                    ),
+                    v(
+                        if r % 11 == 4 {
+                            Point3::new(f64::NAN, 0.0, 0.0)
+                        } else {
+                            at(1.0)
+                        },
+                        None,
+                        None,
+                    ),
+                    v(at(1.7) + Vector3::new(0.0, 0.9, 0.0), None, None),
+                ];
+                store.push_triangle(&tri, colour).unwrap();
+                push_triangle(&mut whole, &tri, colour);
+            }
+        }
+        store.finish().unwrap();
+        (store, whole)
+    }
+
+    /// The store's pictures, in memory and spilled, are `draw_mesh_with`'s of the whole mesh
+    /// byte for byte: shaded in every mode, and the wire frame.
+    #[test]
+    fn stored_pictures_are_the_whole_meshs_pictures() {
+        /// No memory for chunks: all three go to the file.
+        const TINY: usize = 0;
+        let modes = [
+            Shading::Lit,
+            Shading::REFLECTION,
+            Shading::ISOPHOTES,
+            Shading::HIGHLIGHT,
+        ];
+        for budget in [STORE_BYTES, TINY] {
+            let (mut store, whole) = stored(budget);
+            assert_eq!(store.triangles(), whole.faces.len());
+            assert_eq!(store.spilled(), if budget == TINY { 3 } else { 0 });
+            for (wire, size) in [(false, (97, 71)), (true, (64, 80))] {
+                let view = View {
+                    view: (20.0, 35.0),
+                    size,
+                    wire,
+                };
+                for &shading in if wire { &modes[..1] } else { &modes[..] } {
+                    let a = draw_store(&mut store, &view, shading).unwrap();
+                    let b = draw_mesh_with(&whole, &view, shading).unwrap();
+                    assert!(a.rgb.iter().any(|&c| c < 200), "{shading:?}: drawn");
+                    assert!(a == b, "budget {budget}, {shading:?}, wire {wire}");
+                }
+            }
+        }
+    }
+
+    /// A highlight seen end on is the same usage error from the store as from the mesh.
+    #[test]
+    fn a_refused_mode_is_the_same_usage_error() {
+        let (mut store, whole) = stored(STORE_BYTES);
+        let view = View {
+            view: (0.0, 90.0),
+            size: (40, 30),
+            wire: false,
+        };
+        let end_on = Shading::Highlight {
+            lines: 8,
+            direction: Some(Vector3::z()),
+            width: 0.5,
+        };
+        let a = draw_store(&mut store, &view, end_on).unwrap_err();
+        let b = draw_mesh_with(&whole, &view, end_on).unwrap_err();
+        assert!(matches!(a, FilterError::Usage(_)), "{a}");
+        assert_eq!(a.to_string(), b.to_string());
+    }
 }

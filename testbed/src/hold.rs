@@ -9,18 +9,17 @@
 //! whatever the stream holds and the output is the same as with everything in memory.
 //!
 //! The file is created in the system's temporary directory (`TMPDIR`) and unlinked at once
-//! (Unix): the name is gone before anything is written, and the space is returned when the
-//! file is closed — on success, on an error, and on any interrupt or kill, with no handler
-//! needed. Where unlinking an open file is not possible, the file is registered with
-//! [`meshio::outfile::in_flight`] and removed when the holder is dropped.
+//! (Unix; [`crate::scratch_file`]): the name is gone before anything is written, and the
+//! space is returned when the file is closed — on success, on an error, and on any interrupt
+//! or kill, with no handler needed. Where unlinking an open file is not possible, the file is
+//! registered with [`meshio::outfile::in_flight`] and removed when the holder is dropped.
 
 use std::collections::VecDeque;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Seek, Write};
-use std::path::PathBuf;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Position, StreamError};
+use crate::scratch_file::{self, ScratchPath};
 use crate::stream::Record;
 use crate::tape::{Span, Tape, Tok, MAX_RECORD_TOKENS};
 
@@ -32,9 +31,6 @@ pub const HELD_BYTES: usize = 64 << 20;
 
 /// Bookkeeping of one held record besides its tape and values (the queue's entry).
 const ENTRY_BYTES: usize = std::mem::size_of::<(Record, Vec<f64>)>();
-
-/// Distinguishes the temporary files of one process.
-static COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// Records held in order with a value list each (the colouring filters: a record's vertex
 /// values), in memory up to a budget and in a temporary file beyond (module docs).
@@ -145,7 +141,7 @@ struct Spill {
     /// One entry's bytes (reused).
     scratch: Vec<u8>,
     /// The file's path while it still has one (not unlinked): removed on drop.
-    path: Option<PathBuf>,
+    _path: ScratchPath,
 }
 
 /// An I/O error of the temporary file, named.
@@ -156,40 +152,11 @@ fn spill_error(e: std::io::Error) -> StreamError {
 impl Spill {
     /// A new temporary file, unlinked at once where the system allows (module docs).
     fn create() -> Result<Self, StreamError> {
-        let dir = std::env::temp_dir();
-        let mut tries = 0;
-        let (file, path) = loop {
-            let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-            let path = dir.join(format!(".testbed-held-{}-{n}", std::process::id()));
-            match File::options()
-                .read(true)
-                .write(true)
-                .create_new(true)
-                .open(&path)
-            {
-                Ok(f) => break (f, path),
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && tries < 100 => {
-                    tries += 1;
-                }
-                Err(e) => {
-                    return Err(StreamError::io(
-                        format!("creating a temporary file in {}", dir.display()),
-                        e,
-                    ))
-                }
-            }
-        };
-        meshio::outfile::in_flight(&path);
-        let path = if std::fs::remove_file(&path).is_ok() {
-            meshio::outfile::landed(&path);
-            None
-        } else {
-            Some(path)
-        };
+        let (file, path) = scratch_file::create("held")?;
         Ok(Spill {
             file: BufWriter::with_capacity(1 << 16, file),
             scratch: Vec::new(),
-            path,
+            _path: path,
         })
     }
 
@@ -208,15 +175,6 @@ impl Spill {
             file: BufReader::with_capacity(1 << 16, file),
             _owner: self,
         })
-    }
-}
-
-impl Drop for Spill {
-    fn drop(&mut self) {
-        if let Some(path) = self.path.take() {
-            let _ = std::fs::remove_file(&path);
-            meshio::outfile::landed(&path);
-        }
     }
 }
 

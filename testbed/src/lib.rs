@@ -20,7 +20,9 @@
 //!   [`Pipe`](pipe::Pipe) it reads and writes through), [`sample`] (tessellated vertices and
 //!   the `Triangle` records built from them), [`tessellator`] (the patch tessellator),
 //!   [`binders`] (the colour binders of `mat0`, `kcolor`, `radial`), [`hold`] (records held
-//!   back in order in bounded memory, the rest in a temporary file), [`draw`] (reading the
+//!   back in order in bounded memory, the rest in a temporary file), [`triangle_store`] (the
+//!   pictures' triangles kept for replaying, likewise), [`scratch_file`] (those temporary
+//!   files), [`draw`] (reading the
 //!   triangles at the end of the pipeline, the pictures), [`options`] (option values parsed
 //!   alike).
 //!
@@ -40,10 +42,12 @@ pub mod options;
 pub mod pipe;
 pub mod record;
 pub mod sample;
+pub mod scratch_file;
 pub mod stream;
 pub mod tape;
 pub mod tessellator;
 pub mod triangle_mesh;
+pub mod triangle_store;
 
 /// The `g1` filter at its former path (`testbed::g1`).
 pub use filters::g1;

@@ -141,7 +141,9 @@ impl Filter for Render {
         inside the middle 90% of the width and the height. Other \
         records are ignored. A picture with nothing drawn on it (no triangles in the stream: \
         `tess` forgotten) is an error, and a --size whose drawing would not fit in memory is \
-        refused before the stream is read.\n\n\
+        refused before the stream is read. The triangles are kept for drawing in at most 64 MiB \
+        of memory, the rest in a temporary file (TMPDIR, removed when the filter ends), and \
+        drawn chunk by chunk: the memory does not grow with the stream.\n\n\
         --mode reflection|isophotes|highlight draws dark and light stripes instead of the \
         lighting, computed at every pixel from the interpolated normal: reflection lines \
         (Klass 1980), isophotes (Poeschl 1984), highlight lines (Beier and Chen 1994). A \

@@ -16,7 +16,9 @@ impl Filter for Wire {
     const DESCRIPTION: &'static str = "\
         Every edge of every Triangle and of every triangle of a TriangleMesh is drawn, the \
         camera framing their bounding box from --view. Other records are ignored. A picture with \
-        nothing drawn on it (no triangles in the stream: `tess` forgotten) is an error.";
+        nothing drawn on it (no triangles in the stream: `tess` forgotten) is an error. The \
+        triangles are kept for drawing in at most 64 MiB of memory, the rest in a temporary file \
+        (TMPDIR, removed when the filter ends).";
     const SEED: &'static str = "Sgp | XRender";
     type Args = PictureArgs;
 
