@@ -590,13 +590,8 @@ impl Fit {
         let written = py.detach(|| -> Result<(), fitjob::JobError> {
             let raw = fitjob::output::tessellation_mesh(&tess, format);
             let options = fitjob::output::MeshOutputOptions { up }.write_options();
-            let bytes = meshio::write_bytes(&raw, format, &options).map_err(|source| {
-                fitjob::JobError::MeshWrite {
-                    path: path.clone(),
-                    source,
-                }
-            })?;
-            fitjob::output::write_result(Some(&path), &bytes)
+            // Streamed into the file as it is encoded (no copy of the file's bytes in memory).
+            fitjob::output::write_mesh_result(&path, format, &raw, &options)
         });
         written.map_err(job_error)?;
         Ok(path)

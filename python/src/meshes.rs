@@ -211,15 +211,8 @@ pub fn write_mesh(
     }
     let written = {
         let path = path.clone();
-        py.detach(move || -> Result<(), fitjob::JobError> {
-            let bytes = meshio::write_bytes(&raw, format, &options).map_err(|source| {
-                fitjob::JobError::MeshWrite {
-                    path: path.clone(),
-                    source,
-                }
-            })?;
-            fitjob::output::write_result(Some(&path), &bytes)
-        })
+        // Streamed into the file as it is encoded (no copy of the file's bytes in memory).
+        py.detach(move || fitjob::output::write_mesh_result(&path, format, &raw, &options))
     };
     written.map_err(job_error)?;
     Ok(path)

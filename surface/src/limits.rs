@@ -27,19 +27,51 @@ pub const MEMORY_SHARE: f64 = 0.8;
 /// Memory assumed available where the system does not say (`/proc/meminfo` absent).
 pub const FALLBACK_AVAILABLE: u64 = 8 << 30;
 
-/// Memory available to this process, bytes (Linux `MemAvailable`, else
-/// [`FALLBACK_AVAILABLE`]).
+/// Memory available to this process, bytes: the system's (Linux `MemAvailable`, else
+/// [`FALLBACK_AVAILABLE`]), and no more than the room left under the process's address-space
+/// limit (`ulimit -v`, [`address_space_room`]), which a failed allocation would otherwise turn
+/// into an abort.
 pub fn available_memory() -> u64 {
-    std::fs::read_to_string("/proc/meminfo")
+    let system = std::fs::read_to_string("/proc/meminfo")
         .ok()
-        .and_then(|text| {
-            text.lines()
-                .find(|l| l.starts_with("MemAvailable:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|kb| kb.parse::<u64>().ok())
-                .map(|kb| kb * 1024)
-        })
-        .unwrap_or(FALLBACK_AVAILABLE)
+        .and_then(|text| meminfo_field(&text, "MemAvailable:"))
+        .unwrap_or(FALLBACK_AVAILABLE);
+    system.min(address_space_room().unwrap_or(u64::MAX))
+}
+
+/// The field `name` (`MemAvailable:`, `VmSize:`) of a `/proc` status text in kB, as bytes.
+fn meminfo_field(text: &str, name: &str) -> Option<u64> {
+    text.lines()
+        .find(|l| l.starts_with(name))
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|kb| kb.parse::<u64>().ok())
+        .map(|kb| kb.saturating_mul(1024))
+}
+
+/// The soft limit of `Max address space` in a `/proc/self/limits` text, bytes; `None` when
+/// unlimited or not said.
+fn address_space_limit(limits: &str) -> Option<u64> {
+    let line = limits
+        .lines()
+        .find(|l| l.starts_with("Max address space"))?;
+    line["Max address space".len()..]
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
+}
+
+/// Bytes this process may still map under its address-space limit (`RLIMIT_AS`, `ulimit -v`):
+/// the limit less the address space already mapped (`VmSize`); `None` without a limit (or
+/// where `/proc` does not say). Address space, not resident memory, is what the limit counts:
+/// a reservation the allocator has not touched counts too.
+pub fn address_space_room() -> Option<u64> {
+    let limit = address_space_limit(&std::fs::read_to_string("/proc/self/limits").ok()?)?;
+    let used = std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|text| meminfo_field(&text, "VmSize:"))
+        .unwrap_or(0);
+    Some(limit.saturating_sub(used))
 }
 
 /// A plan would need more memory than the run may use ([`check_memory`]).
@@ -140,5 +172,32 @@ mod tests {
             e.to_string(),
             "--sample 100000 would need about 0.0 GB, more than this machine has available (0.0 GB): choose a smaller setting"
         );
+    }
+
+    #[test]
+    fn the_address_space_limit_is_read_from_proc_limits() {
+        let limits = "Limit                     Soft Limit           Hard Limit           Units     \n\
+                      Max cpu time              unlimited            unlimited            seconds   \n\
+                      Max address space         2147483648           unlimited            bytes     \n";
+        assert_eq!(address_space_limit(limits), Some(2 << 30));
+        let unlimited =
+            "Max address space         unlimited            unlimited            bytes\n";
+        assert_eq!(address_space_limit(unlimited), None);
+        assert_eq!(
+            address_space_limit("Max open files 1024 1024 files\n"),
+            None
+        );
+        let status = "Name:\ttestbed\nVmPeak:\t  20000 kB\nVmSize:\t   10240 kB\n";
+        assert_eq!(meminfo_field(status, "VmSize:"), Some(10240 * 1024));
+        assert_eq!(meminfo_field(status, "MemAvailable:"), None);
+    }
+
+    #[test]
+    fn available_memory_is_within_the_room_under_the_address_space_limit() {
+        // Whatever this test process's limit is: never more than the room it leaves.
+        if let Some(room) = address_space_room() {
+            assert!(available_memory() <= room);
+        }
+        assert!(available_memory() > 0);
     }
 }

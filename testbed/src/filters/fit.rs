@@ -88,16 +88,20 @@ pub struct FitArgs {
     #[arg(long)]
     pub km: bool,
     /// With -s (or an evaluated scheme): one shared-vertex TriangleMesh record per
-    /// patch instead of Triangle records (as `tess --mesh`).
-    #[arg(long)]
+    /// patch (as `tess`): the default, accepted for scripts that ask for it.
+    #[arg(long, conflicts_with = "triangles")]
     pub mesh: bool,
+    /// With -s (or an evaluated scheme): the seed's Triangle records instead of one
+    /// TriangleMesh per patch (as `tess --triangles`).
+    #[arg(long)]
+    pub triangles: bool,
 }
 
 impl Filter for Fit {
     const NAME: &'static str = "fit";
     const SUMMARY: &'static str = "\
         A mesh (any format, sniffed; `.m` included) to BezierTriangle records, or with `-s N` \
-        straight to Triangle records";
+        straight to triangles (one TriangleMesh a patch; --triangles: the seed's Triangles)";
     const DESCRIPTION: &'static str = "\
         The mesh (--input, standard input, or --data NAME|FILE with --resolution N) is read \
         whole, its format sniffed from the content, repaired and completed by --estimate (the file's normals kept unless \
@@ -161,7 +165,11 @@ impl Filter for Fit {
                 km: args.km,
                 kp: false,
             },
-            mesh: args.mesh,
+            mesh: match (args.mesh, args.triangles) {
+                (true, _) => Some(true),
+                (_, true) => Some(false),
+                _ => None,
+            },
         };
         let mut input = Some(input);
         stream.with_output(&mut |out| {
@@ -217,9 +225,10 @@ pub struct FitOptions {
     pub segments: Option<usize>,
     /// Curvatures written with sampled triangles.
     pub fields: CurvatureFields,
-    /// Sampled output as one shared-vertex `TriangleMesh` record per patch instead of
-    /// `Triangle` records (`tess --mesh`'s record).
-    pub mesh: bool,
+    /// Sampled output as one shared-vertex `TriangleMesh` record per patch (`None`, the
+    /// default, and `Some(true)`, asked for by `--mesh`: an error without sampling) or as the
+    /// seed's `Triangle` records (`Some(false)`, `--triangles`).
+    pub mesh: Option<bool>,
 }
 
 /// The fit job's input from bytes (`path` names it and may pick the format by extension; the
@@ -295,7 +304,7 @@ pub fn fit<W: std::io::Write>(
         }
         s => s,
     };
-    if options.mesh && sample.is_none() {
+    if options.mesh == Some(true) && sample.is_none() {
         return Err(FilterError::Usage(
             "fit --mesh writes sampled triangles: give -s N (tess --mesh does it for patches)"
                 .into(),
@@ -342,7 +351,7 @@ pub fn fit<W: std::io::Write>(
         let mut t = surface::tessellate_fit(&mesh, &fitted, s)?;
         t.to_world(&frame);
         check_finite(&t, per_face, options.fields, frame.scale)?;
-        if options.mesh {
+        if options.mesh != Some(false) {
             for v in patch_meshes(&t, per_face, &scheme_name, options.fields) {
                 at.record += 1;
                 out.write(&v, at)?;

@@ -244,9 +244,14 @@ const TRIANGLES_BYTES_PER_SAMPLE: u128 = 88;
 /// Bytes one sample of a patch takes in its `TriangleMesh` record, built whole before it is
 /// written: the sample (88 bytes as above), its 16 to 18 tokens (pos, norm, kg, km, two
 /// triangles; 24 bytes each: 432) and its text in the output buffer (about 200 bytes of JSON),
-/// with room for the buffers' growth by doubling. Measured: 630 bytes a sample at `-s 1024`
-/// (docs/hostile-input.md).
-const MESH_BYTES_PER_SAMPLE: u128 = 1000;
+/// with room for the buffers' growth by doubling. Measured (peak resident memory of the whole
+/// process over the samples of one patch): 1573 bytes a sample at `-s 700` in the binary
+/// stream, the default since issue 28 (630 were measured at `-s 1024` over JSON Lines before;
+/// a 1024 record is now refused by the record limit instead). Under `ulimit -v` the check
+/// counts the room left under the limit (`surface::limits::available_memory`): with 1000 here,
+/// `tess -s 700` passed the check at a 360–420 MB limit and then aborted on a failed
+/// allocation; with this figure it is refused with the message.
+const MESH_BYTES_PER_SAMPLE: u128 = 1700;
 
 /// Estimated bytes `tess -s s` holds for one patch of `degree`: its samples and what its
 /// records need ([`TRIANGLES_BYTES_PER_SAMPLE`], [`MESH_BYTES_PER_SAMPLE`]), and the weight

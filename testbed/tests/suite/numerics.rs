@@ -194,14 +194,14 @@ fn fit_sampled_curvature_beyond_a_double_is_an_error() {
     ] {
         obj += &format!("f {} {} {}\n", f[0], f[1], f[2]);
     }
-    let out = testbed(&["fit", "-s", "1", "--kg"], obj.as_bytes());
+    let out = testbed(&["fit", "-s", "1", "--kg", "--triangles"], obj.as_bytes());
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     let err = stderr(&out);
     assert!(
         err.contains("face 0") && err.contains("Gaussian curvature"),
         "{err}"
     );
-    let out = ok(&["fit", "-s", "1", "--km"], obj.as_bytes());
+    let out = ok(&["fit", "-s", "1", "--km", "--triangles"], obj.as_bytes());
     for r in json_records(&out) {
         assert!(
             r["vertex1"]["km"].as_f64().is_some_and(f64::is_finite),
@@ -238,6 +238,49 @@ fn tess_at_a_large_s_holds_the_samples_alone() {
     let bytes =
         testbed::filters::tess::tess_bytes(4096, 4, testbed::filters::TessRecords::Triangles);
     assert!(bytes < 1 << 30, "{bytes}");
+}
+
+/// `tess -s 700` with its default `TriangleMesh` records needs about 0.39 GB (the record is
+/// built whole): under an address-space limit of 200–500 MB it passed the memory check with
+/// the old estimate and aborted on a failed allocation (exit 134). The check now counts the
+/// room under the limit and the record's measured size: a clear error, exit 1, at every limit
+/// where the tessellation does not fit, and the tessellation where it does.
+#[test]
+fn tess_under_an_address_space_limit_is_refused_not_aborted() {
+    let patches = ok(&["fit", "--scheme", "shirman-sequin"], &octa());
+    let one = json_records(&patches)[0].to_string();
+    for limit_kb in [200_000, 360_000, 420_000, 900_000] {
+        let mut child = Command::new("sh")
+            .arg("-c")
+            .arg(format!(
+                "ulimit -v {limit_kb} && exec \"$0\" tess -s 700 --format binary > /dev/null"
+            ))
+            .arg(env!("CARGO_BIN_EXE_testbed"))
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("spawns");
+        child
+            .stdin
+            .take()
+            .expect("stdin")
+            .write_all(one.as_bytes())
+            .unwrap();
+        let out = child.wait_with_output().expect("runs");
+        let err = stderr(&out);
+        match out.status.code() {
+            Some(0) => assert!(limit_kb >= 420_000, "fitted under {limit_kb} kB: {err}"),
+            Some(1) => assert!(
+                err.contains("tess -s 700 --mesh") && err.contains("would need about"),
+                "{limit_kb} kB: {err}"
+            ),
+            other => panic!("{limit_kb} kB: exit {other:?} (an abort?): {err}"),
+        }
+        if limit_kb == 900_000 {
+            assert_eq!(out.status.code(), Some(0), "{err}");
+        }
+    }
 }
 
 /// Sizes out of their range are usage errors naming the range, exit 2: `tess -s`, `fit -s`

@@ -430,15 +430,22 @@ fn mesh_records_give_the_pictures_and_meshes_of_triangle_records() {
     }
 }
 
-/// `fit -s N --mesh` (Example 5's path) writes one `TriangleMesh` per patch: its
-/// records hold the patch's samples once each, and they colour and draw as the `Triangle`
-/// records of `fit -s N` do, byte for byte; without `-s` the flag is refused.
+/// `fit -s N` (Example 5's path) writes one `TriangleMesh` per patch by default and with
+/// `--mesh`: its records hold the patch's samples once each, and they colour and draw as the
+/// `Triangle` records of `fit -s N --triangles` do, byte for byte; without `-s` `--mesh` is
+/// refused.
 #[test]
 fn sampled_fits_write_mesh_records_that_draw_as_their_triangles() {
     for scheme in ["nielson", "shirman-sequin"] {
         let args = ["fit", "--scheme", scheme, "-s", "3", "--kg"];
-        let tris = ok(&args, &octa());
+        let tris = ok(&[&args[..], &["--triangles"]].concat(), &octa());
         let meshes = ok(&[&args[..], &["--mesh"]].concat(), &octa());
+        // TriangleMesh records are the default (issue 28: the fast form), as for `tess`.
+        assert_eq!(
+            ok_as_given(&[&args[..], &["--format", "json"]].concat(), &octa()),
+            meshes,
+            "{scheme}"
+        );
         let recs = json_records(&meshes);
         let patches = if scheme == "nielson" { 8 } else { 24 };
         assert_eq!(recs.len(), patches, "{scheme}");

@@ -9,8 +9,9 @@ use std::process::{Command, Output, Stdio};
 use serde_json::Value;
 
 /// `args` in the forms most tests read as text: `fit` writes JSON Lines unless `--format` is
-/// given (its default into a pipe is the binary form), and `tess` the seed's `Triangle`
-/// records unless `--mesh` or `--triangles` is (its default is one `TriangleMesh` per patch).
+/// given (its default into a pipe is the binary form), and `tess` and a sampling `fit` the
+/// seed's `Triangle` records unless `--mesh` or `--triangles` is (their default is one
+/// `TriangleMesh` per patch).
 /// The defaults themselves are tested with [`testbed_as_given`].
 pub fn seed_forms<'a>(args: &[&'a str]) -> Vec<&'a str> {
     let mut out = args.to_vec();
@@ -19,7 +20,14 @@ pub fn seed_forms<'a>(args: &[&'a str]) -> Vec<&'a str> {
             .any(|a| *a == flag || a.starts_with(&format!("{flag}=")))
     };
     match args.first() {
-        Some(&"fit") if !has("--format") => out.extend(["--format", "json"]),
+        Some(&"fit") => {
+            if !has("--format") {
+                out.extend(["--format", "json"]);
+            }
+            if !has("--mesh") && !has("--triangles") {
+                out.push("--triangles");
+            }
+        }
         Some(&"tess") if !has("--mesh") && !has("--triangles") => out.push("--triangles"),
         _ => {}
     }
