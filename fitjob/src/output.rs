@@ -176,7 +176,7 @@ pub fn tessellation_mesh(
     extras.mesh(
         tess.positions.clone(),
         tess.normals.clone(),
-        &tess.faces,
+        tess.faces.clone(),
         || (tess.gaussian.clone(), tess.mean.clone()),
     )
 }
@@ -194,9 +194,16 @@ pub fn into_tessellation_mesh(
         gaussian,
         mean,
         faces,
+        shapes,
+        patch_of_face,
         ..
     } = tess;
-    extras.mesh(positions, normals, &faces, || (gaussian, mean))
+    // What the file does not store goes before its mesh is built (the shape tensors, 72 B a
+    // vertex, were read by `extras` for the principal directions where the format wants them;
+    // the faces' patches, 8 B a triangle); the triangles become the mesh's polygons in place.
+    drop(shapes);
+    drop(patch_of_face);
+    extras.mesh(positions, normals, faces, || (gaussian, mean))
 }
 
 /// What [`tessellation_mesh`] derives from a tessellation before taking its arrays: the
@@ -235,10 +242,10 @@ impl TessellationExtras {
         self,
         positions: Vec<nalgebra::Point3<f64>>,
         normals: Vec<nalgebra::Vector3<f64>>,
-        faces: &[[usize; 3]],
+        faces: Vec<[usize; 3]>,
         curvature: impl FnOnce() -> (Vec<f64>, Vec<f64>),
     ) -> meshio::RawMesh {
-        let mut raw = meshio::RawMesh::from_triangles(positions, faces);
+        let mut raw = meshio::RawMesh::from_triangle_vec(positions, faces);
         raw.normals = Some(normals);
         raw.colors = Some(self.colors);
         raw.color_map = Some(self.color_map);

@@ -59,6 +59,17 @@ impl Polygons {
         p
     }
 
+    /// Triangles as polygons, taking their storage: the corner list is the triangles' own
+    /// buffer reinterpreted (`Vec::into_flattened`, no copy), so a large mesh is not held twice
+    /// while it becomes polygons; only the offsets are new.
+    pub fn from_triangle_vec(tris: Vec<[usize; 3]>) -> Self {
+        let offsets = (0..=tris.len()).map(|k| 3 * k).collect();
+        Polygons {
+            indices: tris.into_flattened(),
+            offsets,
+        }
+    }
+
     /// Appends one polygon.
     pub fn push(&mut self, corners: &[usize]) {
         self.indices.extend_from_slice(corners);
@@ -178,6 +189,15 @@ impl RawMesh {
         RawMesh {
             positions,
             polygons: Polygons::from_triangles(tris),
+            ..RawMesh::default()
+        }
+    }
+
+    /// [`RawMesh::from_triangles`] taking the triangles' storage ([`Polygons::from_triangle_vec`]).
+    pub fn from_triangle_vec(positions: Vec<Point3<f64>>, tris: Vec<[usize; 3]>) -> Self {
+        RawMesh {
+            positions,
+            polygons: Polygons::from_triangle_vec(tris),
             ..RawMesh::default()
         }
     }

@@ -84,4 +84,6 @@ pub use shirman_sequin::{
     SchemeError,
 };
 pub use tessellate::{tessellate, TessError, Tessellation};
-pub use tessellate_fit::{tessellate_fit, tessellate_fit_rebuilt, welds_by_topology};
+pub use tessellate_fit::{
+    tessellate_fit, tessellate_fit_rebuilt, tessellate_fit_rebuilt_with, welds_by_topology,
+};

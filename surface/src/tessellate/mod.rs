@@ -77,7 +77,7 @@ pub struct Tessellation {
     pub gaussian: Vec<f64>,
     /// Mean curvature `H`.
     pub mean: Vec<f64>,
-    /// Shape tensors.
+    /// Shape tensors (empty when not asked for: `tessellate_fit_rebuilt_with`).
     pub shapes: Vec<Matrix3<f64>>,
     /// Triangles, oriented like their patches.
     pub faces: Vec<[usize; 3]>,

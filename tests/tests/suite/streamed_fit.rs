@@ -19,7 +19,7 @@ use surface::patch_io::{write_patches, PatchFormat};
 use surface::stream::{fit_streamed_with, Output, WINDOW_FACES};
 use surface::{
     fit_scheme, measure_g1, scheme_by_name, tessellate_fit, tessellate_fit_rebuilt,
-    welds_by_topology, Fit, Mesh, SchemeOptions,
+    tessellate_fit_rebuilt_with, welds_by_topology, Fit, Mesh, SchemeOptions,
 };
 
 /// G1 is measured at 9 samples per boundary, as `fit` does.
@@ -103,6 +103,18 @@ fn check(label: &str, mesh: &Mesh, scheme: &str, curves: &str, windows: &[usize]
         assert!(
             rebuilt == expected,
             "{label}/{}: the tessellation at s = {density} differs",
+            whole.scheme
+        );
+        // Without the shape tensors (a format that stores no principal directions): the
+        // same tessellation but for them.
+        let lean = tessellate_fit_rebuilt_with(mesh, &s.fit, scheme.as_ref(), density, false)
+            .unwrap_or_else(|e| panic!("{label}: {e}"));
+        assert!(lean.shapes.is_empty(), "{label}: shape tensors kept");
+        let mut expected_lean = expected;
+        expected_lean.shapes.clear();
+        assert!(
+            lean == expected_lean,
+            "{label}/{}: the tessellation without shape tensors at s = {density} differs",
             whole.scheme
         );
     }
