@@ -51,6 +51,7 @@ pub fn subdivision_surface(
         gaussian: vec![0.0; p.len()],
         mean: vec![0.0; p.len()],
         shapes: vec![nalgebra::Matrix3::zeros(); p.len()],
+        directions: Vec::new(),
         patch_of_face: (0..faces.len()).map(|t| t / per_face.max(1)).collect(),
         faces: faces.clone(),
         ..Tessellation::default()

@@ -187,7 +187,9 @@ pub fn into_tessellation_mesh(
     tess: surface::Tessellation,
     format: &dyn meshio::MeshFormat,
 ) -> meshio::RawMesh {
-    let extras = TessellationExtras::of(&tess, format);
+    let mut tess = tess;
+    let given = std::mem::take(&mut tess.directions);
+    let extras = TessellationExtras::of_given(&tess, format, given);
     let surface::Tessellation {
         positions,
         normals,
@@ -217,6 +219,17 @@ struct TessellationExtras {
 
 impl TessellationExtras {
     fn of(tess: &surface::Tessellation, format: &dyn meshio::MeshFormat) -> Self {
+        Self::of_given(tess, format, Vec::new())
+    }
+
+    /// [`TessellationExtras::of`], with the tessellation's principal directions taken from
+    /// `given` when it has one per vertex (a tessellation that stored them instead of its
+    /// shape tensors), from the tensors otherwise ([`principal_directions`]).
+    fn of_given(
+        tess: &surface::Tessellation,
+        format: &dyn meshio::MeshFormat,
+        given: Vec<[nalgebra::Vector3<f64>; 2]>,
+    ) -> Self {
         let limit = gaussian_colour_limit(&tess.gaussian);
         TessellationExtras {
             colors: tess
@@ -230,9 +243,13 @@ impl TessellationExtras {
                 min: -limit,
                 max: limit,
             },
-            directions: format
-                .writes_curvature()
-                .then(|| principal_directions(tess)),
+            directions: format.writes_curvature().then(|| {
+                if !given.is_empty() && given.len() == tess.positions.len() {
+                    given
+                } else {
+                    principal_directions(tess)
+                }
+            }),
         }
     }
 
@@ -259,8 +276,13 @@ impl TessellationExtras {
 }
 
 /// The unit principal directions `[d1, d2]` (of `κ1 ≥ κ2`, the exported convention) at every
-/// tessellation vertex, from its exact shape tensor and normal (`estimate::principal_frame`).
+/// tessellation vertex, from its exact shape tensor and normal (`estimate::principal_frame`);
+/// the tessellation's own where it stored them instead of the tensors
+/// (`surface::tessellate_fit::Keep::directions`: the same numbers, bit for bit).
 pub fn principal_directions(tess: &surface::Tessellation) -> Vec<[nalgebra::Vector3<f64>; 2]> {
+    if !tess.directions.is_empty() && tess.directions.len() == tess.positions.len() {
+        return tess.directions.clone();
+    }
     tess.shapes
         .iter()
         .zip(&tess.normals)

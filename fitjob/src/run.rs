@@ -317,15 +317,36 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             fitted.alphas = Vec::new();
         }
         let tessellated = if stream {
-            // The shape tensors only for a format that stores principal directions (or a
-            // caller that keeps the tessellation).
-            surface::tessellate_fit_rebuilt_with(
-                &mesh,
-                &fitted,
-                scheme.as_ref(),
-                options.tess,
-                options.keep || format.writes_curvature(),
-            )
+            // A caller that keeps the tessellation gets every array; the file needs only the
+            // principal directions, where its format stores them (48 B a vertex, where the
+            // shape tensors they come from take 72), and not the triangles' patches.
+            let keep = if options.keep {
+                surface::tessellate_fit::Keep::ALL
+            } else {
+                surface::tessellate_fit::Keep {
+                    shapes: false,
+                    directions: format.writes_curvature().then_some(frame.scale),
+                    patches: false,
+                }
+            };
+            if options.keep {
+                surface::tessellate_fit_rebuilt_with(
+                    &mesh,
+                    &fitted,
+                    scheme.as_ref(),
+                    options.tess,
+                    keep,
+                )
+            } else {
+                // The curves are the report's no more: freed once the samples are evaluated.
+                surface::tessellate_fit_rebuilt_taking(
+                    &mesh,
+                    &mut fitted,
+                    scheme.as_ref(),
+                    options.tess,
+                    keep,
+                )
+            }
         } else {
             surface::tessellate_fit(&mesh, &fitted, options.tess)
         };

@@ -85,5 +85,6 @@ pub use shirman_sequin::{
 };
 pub use tessellate::{tessellate, TessError, Tessellation};
 pub use tessellate_fit::{
-    tessellate_fit, tessellate_fit_rebuilt, tessellate_fit_rebuilt_with, welds_by_topology,
+    tessellate_fit, tessellate_fit_rebuilt, tessellate_fit_rebuilt_taking,
+    tessellate_fit_rebuilt_with, welds_by_topology,
 };

@@ -80,6 +80,7 @@ pub(super) fn true_ring(big: f64, small: f64) -> Tessellation {
         mean,
         shapes,
         faces,
+        directions: Vec::new(),
         patch_of_face: vec![0; n],
         welds: 0,
         max_weld_normal_angle: 0.0,

@@ -105,6 +105,7 @@ mod tests {
             mean: vec![h; points.len()],
             shapes: vec![Matrix3::zeros(); points.len()],
             faces: vec![],
+            directions: Vec::new(),
             patch_of_face: vec![],
             welds: 0,
             max_weld_normal_angle: 0.0,

@@ -77,11 +77,15 @@ pub struct Tessellation {
     pub gaussian: Vec<f64>,
     /// Mean curvature `H`.
     pub mean: Vec<f64>,
-    /// Shape tensors (empty when not asked for: `tessellate_fit_rebuilt_with`).
+    /// Shape tensors (empty when not asked for: [`crate::tessellate_fit::Keep`]).
     pub shapes: Vec<Matrix3<f64>>,
+    /// Unit principal directions `[d1, d2]` (of `κ1 ≥ κ2`) per vertex, in world coordinates,
+    /// where asked for instead of the shape tensors ([`crate::tessellate_fit::Keep`]); empty
+    /// otherwise.
+    pub directions: Vec<[Vector3<f64>; 2]>,
     /// Triangles, oriented like their patches.
     pub faces: Vec<[usize; 3]>,
-    /// Patch of each triangle.
+    /// Patch of each triangle (empty when not asked for: [`crate::tessellate_fit::Keep`]).
     pub patch_of_face: Vec<usize>,
     /// Number of boundary samples merged into an existing vertex.
     pub welds: usize,

@@ -28,6 +28,8 @@
 //!
 //! A layout whose corners are not on the sixths lattice is tessellated by the positional weld.
 
+use std::borrow::Cow;
+
 use curves::CubicBez3;
 use nalgebra::{Point3, Vector3};
 use rayon::prelude::*;
@@ -292,7 +294,7 @@ pub fn tessellate_fit(mesh: &Mesh, fit: &Fit, s: usize) -> Result<Tessellation, 
     if fit.points.len() != mesh.num_faces() * per_face {
         return tessellate(&fit.bezier_patches(), s);
     }
-    tessellate_by_topology(mesh, &layout, &plan, s, Nets::Whole(&fit.points), true)
+    tessellate_by_topology(mesh, &layout, &plan, s, Nets::Whole(&fit.points), Keep::ALL)
 }
 
 /// Whether [`tessellate_fit`] welds `layout`'s patches at `s` segments by topology (its corners
@@ -316,20 +318,72 @@ pub fn tessellate_fit_rebuilt(
     scheme: &dyn Scheme,
     s: usize,
 ) -> Result<Tessellation, TessError> {
-    tessellate_fit_rebuilt_with(mesh, fit, scheme, s, true)
+    tessellate_fit_rebuilt_with(mesh, fit, scheme, s, Keep::ALL)
 }
 
-/// [`tessellate_fit_rebuilt`], with the shape tensors kept or not: without them
-/// [`Tessellation::shapes`] is empty and the tessellation takes 72 bytes a vertex less (0.11
-/// GB at 10⁶ faces and `s = 1`), for a caller that writes no principal directions. Every other
-/// array is the same, bit for bit (the tensors are computed either way: `K` and `H` come from
-/// them).
+/// Which of a tessellation's optional arrays to store ([`tessellate_fit_rebuilt_with`]): a
+/// caller that writes a file needs at most the principal directions, not the shape tensors
+/// (72 bytes a vertex) nor each triangle's patch (8 bytes a triangle).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Keep {
+    /// [`Tessellation::shapes`].
+    pub shapes: bool,
+    /// [`Tessellation::directions`], of each sample's shape tensor divided by this scale (the
+    /// working frame's, `mesh::Frame::scale`: the tensor [`Tessellation::to_world`] gives) and
+    /// its normal (`estimate::principal_frame`), so they are, bit for bit, the directions of
+    /// the tessellation's tensors once mapped to world coordinates; 48 bytes a vertex.
+    pub directions: Option<f64>,
+    /// [`Tessellation::patch_of_face`].
+    pub patches: bool,
+}
+
+impl Keep {
+    /// Every array (what [`tessellate_fit_rebuilt`] stores): the tensors, no directions, the
+    /// patches.
+    pub const ALL: Keep = Keep {
+        shapes: true,
+        directions: None,
+        patches: true,
+    };
+}
+
+/// [`tessellate_fit_rebuilt`], storing the optional arrays `keep` asks for (the others are
+/// left empty; at 10⁶ faces and `s = 1`, the tensors are 0.11 GB and the patches 24 MB).
+/// Every other array is the same, bit for bit (the tensors are computed either way: `K` and
+/// `H` come from them).
 pub fn tessellate_fit_rebuilt_with(
     mesh: &Mesh,
     fit: &Fit,
     scheme: &dyn Scheme,
     s: usize,
-    shapes: bool,
+    keep: Keep,
+) -> Result<Tessellation, TessError> {
+    rebuilt(mesh, fit, scheme, s, keep, Cow::Borrowed(&fit.curves))
+}
+
+/// [`tessellate_fit_rebuilt_with`] for a caller done with the fit's curves: they are taken from
+/// `fit` (left empty) and freed as soon as every sample is evaluated, before the triangles are
+/// allocated, so the curves (96 B an edge) and the triangles (72 B a face at `s = 1`) are
+/// never held together. The same tessellation, bit for bit.
+pub fn tessellate_fit_rebuilt_taking(
+    mesh: &Mesh,
+    fit: &mut Fit,
+    scheme: &dyn Scheme,
+    s: usize,
+    keep: Keep,
+) -> Result<Tessellation, TessError> {
+    let curves = std::mem::take(&mut fit.curves);
+    rebuilt(mesh, fit, scheme, s, keep, Cow::Owned(curves))
+}
+
+/// The rebuilt tessellation of `fit` from `curves` (its own, borrowed or taken).
+fn rebuilt(
+    mesh: &Mesh,
+    fit: &Fit,
+    scheme: &dyn Scheme,
+    s: usize,
+    keep: Keep,
+    curves: Cow<'_, [CubicBez3]>,
 ) -> Result<Tessellation, TessError> {
     if s == 0 {
         return Err(TessError::ZeroDensity);
@@ -346,35 +400,32 @@ pub fn tessellate_fit_rebuilt_with(
         &layout,
         &plan,
         s,
-        Nets::Rebuilt {
-            scheme,
-            curves: &fit.curves,
-        },
-        shapes,
+        Nets::Rebuilt { scheme, curves },
+        keep,
     )
 }
 
 /// Where the tessellation reads a face's nets.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 enum Nets<'a> {
     /// A whole fit's points, face after face.
     Whole(&'a [Point3<f64>]),
-    /// Built again per face from the fit's curves.
+    /// Built again per face from the fit's curves (freed after the samples when owned).
     Rebuilt {
         scheme: &'a dyn Scheme,
-        curves: &'a [CubicBez3],
+        curves: Cow<'a, [CubicBez3]>,
     },
 }
 
-/// The tessellation welded by topology (module docs), each face's nets from `nets`; the shape
-/// tensors stored when `keep_shapes` (else [`Tessellation::shapes`] is empty).
+/// The tessellation welded by topology (module docs), each face's nets from `nets`; the
+/// optional arrays those `keep` asks for.
 fn tessellate_by_topology(
     mesh: &Mesh,
     layout: &Layout,
     plan: &Plan,
     s: usize,
     nets: Nets<'_>,
-    keep_shapes: bool,
+    keep: Keep,
 ) -> Result<Tessellation, TessError> {
     debug_assert!(s > 0);
     let layout = *layout;
@@ -476,8 +527,13 @@ fn tessellate_by_topology(
     let mut normals = par_filled(Vector3::zeros(), total);
     let mut gaussian = vec![0.0; total];
     let mut mean = vec![0.0; total];
-    let mut shapes = if keep_shapes {
+    let mut shapes = if keep.shapes {
         par_filled(nalgebra::Matrix3::zeros(), total)
+    } else {
+        Vec::new()
+    };
+    let mut directions = if keep.directions.is_some() {
+        par_filled([Vector3::zeros(); 2], total)
     } else {
         Vec::new()
     };
@@ -487,34 +543,38 @@ fn tessellate_by_topology(
         .chain(std::iter::once(nf))
         .map(|f| start[f])
         .collect();
-    // Without the tensors every task gets an empty block of them.
-    let shape_start = if keep_shapes {
-        chunk_start.clone()
-    } else {
-        vec![0; chunk_start.len()]
+    // An array not kept gives every task an empty block.
+    let blocks = |kept: bool| {
+        if kept {
+            chunk_start.clone()
+        } else {
+            vec![0; chunk_start.len()]
+        }
     };
+    let (shape_start, direction_start) = (blocks(keep.shapes), blocks(keep.directions.is_some()));
     split_blocks(&mut positions, &chunk_start)
         .into_par_iter()
         .zip(split_blocks(&mut normals, &chunk_start))
         .zip(split_blocks(&mut gaussian, &chunk_start))
         .zip(split_blocks(&mut mean, &chunk_start))
         .zip(split_blocks(&mut shapes, &shape_start))
+        .zip(split_blocks(&mut directions, &direction_start))
         .zip(split_blocks(&mut nudged, &chunk_start))
         .enumerate()
         .try_for_each(
-            |(chunk, (((((ps, ns), ks), hs), ss), nu))| -> Result<(), TessError> {
+            |(chunk, ((((((ps, ns), ks), hs), ss), ds), nu))| -> Result<(), TessError> {
                 let mut at = 0;
                 let first = chunk * FACES_PER_TASK;
                 // One face's nets, reused by the task's faces (rebuilt nets only).
-                let mut built = match nets {
+                let mut built = match &nets {
                     Nets::Whole(_) => Vec::new(),
                     Nets::Rebuilt { .. } => vec![Point3::origin(); ppf * np],
                 };
                 for f in first..(first + FACES_PER_TASK).min(nf) {
-                    let face_nets: &[Point3<f64>] = match nets {
+                    let face_nets: &[Point3<f64>] = match &nets {
                         Nets::Whole(points) => &points[f * ppf * np..(f + 1) * ppf * np],
                         Nets::Rebuilt { scheme, curves } => {
-                            build_face(mesh, scheme, curves, f, &mut built)
+                            build_face(mesh, *scheme, curves, f, &mut built)
                                 .map_err(|e| TessError::Rebuild(format!("face {f}: {e}")))?;
                             &built
                         }
@@ -528,6 +588,10 @@ fn tessellate_by_topology(
                         hs[at] = x.c.mean;
                         if let Some(shape) = ss.get_mut(at) {
                             *shape = x.c.shape;
+                        }
+                        if let (Some(d), Some(scale)) = (ds.get_mut(at), keep.directions) {
+                            let p = estimate::principal_frame(&(x.c.shape / scale), &x.c.normal);
+                            *d = [p.d1, p.d2];
                         }
                         nu[at] = x.nudged;
                         at += 1;
@@ -556,6 +620,9 @@ fn tessellate_by_topology(
                 Ok(())
             },
         )?;
+
+    // Every sample is evaluated: curves taken from the fit go now, before the triangles.
+    drop(nets);
 
     // Along a crease each side has its own samples (its own normals), evaluated from its own
     // patch; their positions agree only to rounding. The copies take the first side's position
@@ -611,16 +678,21 @@ fn tessellate_by_topology(
         edge_base,
         crease_base,
     ));
-    let patch_of_face = (0..tris.len())
-        .into_par_iter()
-        .map(|t| t / per_patch.max(1))
-        .collect();
+    let patch_of_face = if keep.patches {
+        (0..tris.len())
+            .into_par_iter()
+            .map(|t| t / per_patch.max(1))
+            .collect()
+    } else {
+        Vec::new()
+    };
     let out = Tessellation {
         positions,
         normals,
         gaussian,
         mean,
         shapes,
+        directions,
         faces: tris,
         patch_of_face,
         welds: nf * ppf * plan.local.len() - total,

@@ -17,9 +17,11 @@ use meshio::RawMesh;
 use nalgebra::Point3;
 use surface::patch_io::{write_patches, PatchFormat};
 use surface::stream::{fit_streamed_with, Output, WINDOW_FACES};
+use surface::tessellate_fit::Keep;
 use surface::{
     fit_scheme, measure_g1, scheme_by_name, tessellate_fit, tessellate_fit_rebuilt,
-    tessellate_fit_rebuilt_with, welds_by_topology, Fit, Mesh, SchemeOptions,
+    tessellate_fit_rebuilt_taking, tessellate_fit_rebuilt_with, welds_by_topology, Fit, Mesh,
+    SchemeOptions,
 };
 
 /// G1 is measured at 9 samples per boundary, as `fit` does.
@@ -105,18 +107,62 @@ fn check(label: &str, mesh: &Mesh, scheme: &str, curves: &str, windows: &[usize]
             "{label}/{}: the tessellation at s = {density} differs",
             whole.scheme
         );
-        // Without the shape tensors (a format that stores no principal directions): the
-        // same tessellation but for them.
-        let lean = tessellate_fit_rebuilt_with(mesh, &s.fit, scheme.as_ref(), density, false)
+        // What a file needs (`fit --mesh-output`): the principal directions instead of the
+        // shape tensors, no patches. The same tessellation but for those, and directions that
+        // are the tensors' once mapped to world coordinates, bit for bit.
+        let scale = 0.37;
+        let keep = Keep {
+            shapes: false,
+            directions: Some(scale),
+            patches: false,
+        };
+        let lean = tessellate_fit_rebuilt_with(mesh, &s.fit, scheme.as_ref(), density, keep)
             .unwrap_or_else(|e| panic!("{label}: {e}"));
-        assert!(lean.shapes.is_empty(), "{label}: shape tensors kept");
-        let mut expected_lean = expected;
-        expected_lean.shapes.clear();
         assert!(
-            lean == expected_lean,
-            "{label}/{}: the tessellation without shape tensors at s = {density} differs",
+            lean.shapes.is_empty() && lean.patch_of_face.is_empty(),
+            "{label}"
+        );
+        // The same with the curves taken from the fit (freed before the triangles).
+        let mut taken = s.fit.clone();
+        let owned = tessellate_fit_rebuilt_taking(mesh, &mut taken, scheme.as_ref(), density, keep)
+            .unwrap_or_else(|e| panic!("{label}: {e}"));
+        assert!(
+            taken.curves.is_empty(),
+            "{label}: the curves were not taken"
+        );
+        assert!(
+            owned == lean,
+            "{label}: taking the curves changed the tessellation"
+        );
+        let mut expected_lean = expected.clone();
+        expected_lean.shapes.clear();
+        expected_lean.patch_of_face.clear();
+        let mut lean_rest = lean.clone();
+        let directions = std::mem::take(&mut lean_rest.directions);
+        assert!(
+            lean_rest == expected_lean,
+            "{label}/{}: the lean tessellation at s = {density} differs",
             whole.scheme
         );
+        assert_eq!(directions.len(), expected.positions.len(), "{label}");
+        for ((d, shape), n) in directions
+            .iter()
+            .zip(&expected.shapes)
+            .zip(&expected.normals)
+        {
+            let p = estimate::principal_frame(&(shape / scale), n);
+            for (a, b) in [p.d1, p.d2]
+                .iter()
+                .flat_map(|v| v.iter())
+                .zip(d.iter().flat_map(|v| v.iter()))
+            {
+                assert_eq!(
+                    a.to_bits(),
+                    b.to_bits(),
+                    "{label}: a principal direction differs"
+                );
+            }
+        }
     }
     whole.face_fallbacks.len()
 }
