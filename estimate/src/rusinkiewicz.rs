@@ -204,6 +204,8 @@ impl Rusinkiewicz {
                 (weight > 0.0).then(|| sum / weight)
             })
             .collect();
+        // The face tensors (80 B a face) are used up: they go before the estimate is built.
+        drop(tensors);
         let mut fallbacks = first.fallbacks.clone();
         let shapes = shapes
             .into_iter()
