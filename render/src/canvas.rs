@@ -139,33 +139,20 @@ impl Canvas {
                 let Some((t, v)) = scene.tri(k) else {
                     continue;
                 };
-                for py in t.y.0.max(r0)..=t.y.1.min(r1 - 1) {
-                    let (row, at) = ((py - r0) * w, t.row(py));
-                    let mut entered = false;
-                    for px in t.x.0..=t.x.1 {
-                        let e = t.at(&at, px);
-                        if !t.inside(&e) {
-                            if entered {
-                                break;
-                            }
-                            continue;
-                        }
-                        entered = true;
-                        let (wt, sum) = t.weights(&e);
-                        let z = 1.0 / sum;
-                        let idx = row + px;
-                        if z >= depth[idx] {
-                            continue;
-                        }
-                        depth[idx] = z;
-                        rgb[3 * idx..3 * idx + 3].copy_from_slice(&painter.paint(
-                            v,
-                            wt[0] / sum,
-                            wt[1] / sum,
-                            wt[2] / sum,
-                        ));
+                t.for_each_pixel((r0, r1), w, |idx, e| {
+                    let (wt, sum) = t.weights(e);
+                    let z = 1.0 / sum;
+                    if z >= depth[idx] {
+                        return;
                     }
-                }
+                    depth[idx] = z;
+                    rgb[3 * idx..3 * idx + 3].copy_from_slice(&painter.paint(
+                        v,
+                        wt[0] / sum,
+                        wt[1] / sum,
+                        wt[2] / sum,
+                    ));
+                });
             }
         };
         self.depth

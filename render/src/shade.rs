@@ -277,6 +277,35 @@ impl Tri {
         std::array::from_fn(|k| row[k] - self.edges[k].dy * (x - self.edges[k].ax))
     }
 
+    /// Calls `pixel(idx, e)` for every pixel of rows `r0..r1` (a band of width `w`, `idx`
+    /// counted from the band's first row) whose centre is inside the triangle, with the edge
+    /// functions `e` there, rows top to bottom and pixels left to right: each row's pixels
+    /// inside are one run ([`Tri::inside`]), so a row stops at the first pixel after it. The
+    /// rasterization both the deferred depth pass and the canvas's forward one use.
+    #[inline]
+    pub(crate) fn for_each_pixel(
+        &self,
+        (r0, r1): (usize, usize),
+        w: usize,
+        mut pixel: impl FnMut(usize, &[f64; 3]),
+    ) {
+        for py in self.y.0.max(r0)..=self.y.1.min(r1 - 1) {
+            let (row, at) = ((py - r0) * w, self.row(py));
+            let mut entered = false;
+            for px in self.x.0..=self.x.1 {
+                let e = self.at(&at, px);
+                if !self.inside(&e) {
+                    if entered {
+                        break;
+                    }
+                    continue;
+                }
+                entered = true;
+                pixel(row + px, &e);
+            }
+        }
+    }
+
     /// Whether edge function values `e` put the pixel centre inside the triangle.
     ///
     /// The test looks at the sign of each edge function against the sign of the area, which is
@@ -992,27 +1021,14 @@ where
             let Some((t, _)) = scene.tri(k) else {
                 continue;
             };
-            for py in t.y.0.max(r0)..=t.y.1.min(r1 - 1) {
-                let (row, at) = ((py - r0) * w, t.row(py));
-                let mut entered = false;
-                for px in t.x.0..=t.x.1 {
-                    let e = t.at(&at, px);
-                    if !t.inside(&e) {
-                        if entered {
-                            break;
-                        }
-                        continue;
-                    }
-                    entered = true;
-                    let z = 1.0 / t.weights(&e).1;
-                    let idx = row + px;
-                    if z >= depth[idx] {
-                        continue;
-                    }
-                    depth[idx] = z;
-                    nearest[idx] = k;
+            t.for_each_pixel((r0, r1), w, |idx, e| {
+                let z = 1.0 / t.weights(e).1;
+                if z >= depth[idx] {
+                    return;
                 }
-            }
+                depth[idx] = z;
+                nearest[idx] = k;
+            });
         }
     };
     if parallel {

@@ -317,15 +317,10 @@ pub fn collect_store_seen(
     Ok(store)
 }
 
-/// Draws the stored triangles with a shading mode (ignored by a wire frame): the picture
-/// [`draw_mesh_with`] draws of their whole mesh, byte for byte, from replays of the store
-/// (the camera's distance; for highlight lines their bounds; the drawing), one chunk in
-/// memory at a time besides the store's budget.
-pub fn draw_store(
-    store: &mut TriangleStore,
-    view: &View,
-    shading: Shading,
-) -> Result<Image, FilterError> {
+/// The renderer's options for a picture of `view` with `shading`, and its aspect (width over
+/// height), once its size is checked: each side in range ([`check_side`]) and its drawing
+/// within memory ([`check_picture_memory`]).
+fn picture_options(view: &View, shading: Shading) -> Result<(RenderOptions, f64), FilterError> {
     check_side(view)?;
     check_picture_memory(view)?;
     let (w, h) = view.size;
@@ -335,7 +330,20 @@ pub fn draw_store(
         shading,
         ..RenderOptions::default()
     };
-    let aspect = f64::from(w) / f64::from(h);
+    Ok((options, f64::from(w) / f64::from(h)))
+}
+
+/// Draws the stored triangles with a shading mode (ignored by a wire frame): the picture
+/// [`draw_mesh_with`] draws of their whole mesh, byte for byte, from replays of the store
+/// (the camera's distance; for highlight lines their bounds; the drawing), one chunk in
+/// memory at a time besides the store's budget.
+pub fn draw_store(
+    store: &mut TriangleStore,
+    view: &View,
+    shading: Shading,
+) -> Result<Image, FilterError> {
+    let (options, aspect) = picture_options(view, shading)?;
+    let (w, h) = view.size;
     let bounds = *store.bounds();
     let camera = Camera::framing_box(
         &bounds,
@@ -426,16 +434,8 @@ pub fn draw_mesh_with(
     view: &View,
     shading: Shading,
 ) -> Result<Image, FilterError> {
-    check_side(view)?;
-    check_picture_memory(view)?;
+    let (options, aspect) = picture_options(view, shading)?;
     let (w, h) = view.size;
-    let options = RenderOptions {
-        width: w,
-        height: h,
-        shading,
-        ..RenderOptions::default()
-    };
-    let aspect = f64::from(w) / f64::from(h);
     let camera = Camera::framing_points(&mesh.positions, view.view.0, view.view.1, aspect);
     if view.wire {
         return Ok(render::wire_frame(mesh, &camera, w, h));

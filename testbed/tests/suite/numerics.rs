@@ -210,16 +210,14 @@ fn fit_sampled_curvature_beyond_a_double_is_an_error() {
     }
 }
 
-/// `tess -s 700` on one quartic held its 0.4 GB weight table (290 bytes × s² a patch in all:
-/// `-s 4096` took 18 GB): under a 400 MB address space it aborted. Now a table beyond
-/// 64 MiB is not kept and one patch's Triangles take 88 bytes a sample.
-#[test]
-fn tess_at_a_large_s_holds_the_samples_alone() {
-    let patches = ok(&["fit", "--scheme", "shirman-sequin"], &octa());
-    let one = json_records(&patches)[0].to_string();
+/// `testbed ARGS > /dev/null` under an address-space limit of `limit_kb` kB (`ulimit -v`), fed
+/// `input` on its standard input.
+fn under_address_limit(limit_kb: u32, args: &str, input: &str) -> Output {
     let mut child = Command::new("sh")
         .arg("-c")
-        .arg("ulimit -v 400000 && exec \"$0\" tess -s 700 --triangles --format binary > /dev/null")
+        .arg(format!(
+            "ulimit -v {limit_kb} && exec \"$0\" {args} > /dev/null"
+        ))
         .arg(env!("CARGO_BIN_EXE_testbed"))
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
@@ -230,9 +228,19 @@ fn tess_at_a_large_s_holds_the_samples_alone() {
         .stdin
         .take()
         .expect("stdin")
-        .write_all(one.as_bytes())
+        .write_all(input.as_bytes())
         .unwrap();
-    let out = child.wait_with_output().expect("runs");
+    child.wait_with_output().expect("runs")
+}
+
+/// `tess -s 700` on one quartic held its 0.4 GB weight table (290 bytes × s² a patch in all:
+/// `-s 4096` took 18 GB): under a 400 MB address space it aborted. Now a table beyond
+/// 64 MiB is not kept and one patch's Triangles take 88 bytes a sample.
+#[test]
+fn tess_at_a_large_s_holds_the_samples_alone() {
+    let patches = ok(&["fit", "--scheme", "shirman-sequin"], &octa());
+    let one = json_records(&patches)[0].to_string();
+    let out = under_address_limit(400_000, "tess -s 700 --triangles --format binary", &one);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     // The estimate is the honest one: 0.7 GB at the largest -s, not 18 GB.
     let bytes =
@@ -250,24 +258,7 @@ fn tess_under_an_address_space_limit_is_refused_not_aborted() {
     let patches = ok(&["fit", "--scheme", "shirman-sequin"], &octa());
     let one = json_records(&patches)[0].to_string();
     for limit_kb in [200_000, 360_000, 420_000, 900_000] {
-        let mut child = Command::new("sh")
-            .arg("-c")
-            .arg(format!(
-                "ulimit -v {limit_kb} && exec \"$0\" tess -s 700 --format binary > /dev/null"
-            ))
-            .arg(env!("CARGO_BIN_EXE_testbed"))
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("spawns");
-        child
-            .stdin
-            .take()
-            .expect("stdin")
-            .write_all(one.as_bytes())
-            .unwrap();
-        let out = child.wait_with_output().expect("runs");
+        let out = under_address_limit(limit_kb, "tess -s 700 --format binary", &one);
         let err = stderr(&out);
         match out.status.code() {
             Some(0) => assert!(limit_kb >= 420_000, "fitted under {limit_kb} kB: {err}"),
