@@ -95,6 +95,33 @@ pub fn collect_mesh_seen(pipe: &mut Pipe, seen: &mut Seen) -> Result<RenderMesh,
         colors: Vec::new(),
         faces: Vec::new(),
     };
+    read_triangles(pipe, seen, &mut |t| {
+        match t {
+            Triangles::One(t) => push_triangle(&mut m, t, render::colors::MATERIAL),
+            Triangles::Mesh(mesh) => push_triangle_mesh(&mut m, mesh, render::colors::MATERIAL),
+        }
+        Ok(())
+    })?;
+    Ok(m)
+}
+
+/// The triangles of one record, as [`read_triangles`] gives them.
+pub enum Triangles<'a> {
+    /// A `Triangle` record's three vertices.
+    One(&'a [Vertex; 3]),
+    /// A `TriangleMesh` record.
+    Mesh(&'a TriangleMesh),
+}
+
+/// Reads the stream, giving `take` the triangles of every Triangle and TriangleMesh record in
+/// order and counting the records read in `seen` (other records are ignored; a record that is
+/// not well formed goes as the pipe's `--keep-going` policy says) — the one reader of the
+/// pictures and of `collect_mesh_seen`.
+pub fn read_triangles(
+    pipe: &mut Pipe,
+    seen: &mut Seen,
+    take: &mut dyn FnMut(Triangles<'_>) -> Result<(), FilterError>,
+) -> Result<(), FilterError> {
     let mut mesh = TriangleMesh::default();
     let mut rec = Record::default();
     while pipe.next_good(&mut rec)? {
@@ -102,18 +129,18 @@ pub fn collect_mesh_seen(pipe: &mut Pipe, seen: &mut Seen) -> Result<RenderMesh,
         match rec.kind() {
             "BezierTriangle" => seen.patches += 1,
             "Triangle" => match record::triangle(&rec.tape) {
-                Ok(t) => push_triangle(&mut m, &t, render::colors::MATERIAL),
+                Ok(t) => take(Triangles::One(&t))?,
                 Err(e) => pipe.bad_field(&rec, e)?,
             },
             triangle_mesh::KIND => match mesh.read(&rec.tape) {
-                Ok(()) => push_triangle_mesh(&mut m, &mesh, render::colors::MATERIAL),
+                Ok(()) => take(Triangles::Mesh(&mesh))?,
                 Err(e) => pipe.bad_field(&rec, e)?,
             },
             _ => {}
         }
     }
     pipe.report_skipped();
-    Ok(m)
+    Ok(())
 }
 
 /// Appends a TriangleMesh record's triangles to a render mesh: with its vertices shared when
@@ -295,24 +322,10 @@ pub fn collect_store_seen(
     seen: &mut Seen,
 ) -> Result<TriangleStore, FilterError> {
     let mut store = TriangleStore::new(STORE_BYTES, name);
-    let mut mesh = TriangleMesh::default();
-    let mut rec = Record::default();
-    while pipe.next_good(&mut rec)? {
-        seen.records += 1;
-        match rec.kind() {
-            "BezierTriangle" => seen.patches += 1,
-            "Triangle" => match record::triangle(&rec.tape) {
-                Ok(t) => store.push_triangle(&t, render::colors::MATERIAL)?,
-                Err(e) => pipe.bad_field(&rec, e)?,
-            },
-            triangle_mesh::KIND => match mesh.read(&rec.tape) {
-                Ok(()) => store.push_triangle_mesh(&mesh, render::colors::MATERIAL)?,
-                Err(e) => pipe.bad_field(&rec, e)?,
-            },
-            _ => {}
-        }
-    }
-    pipe.report_skipped();
+    read_triangles(pipe, seen, &mut |t| match t {
+        Triangles::One(t) => store.push_triangle(t, render::colors::MATERIAL),
+        Triangles::Mesh(mesh) => store.push_triangle_mesh(mesh, render::colors::MATERIAL),
+    })?;
     store.finish()?;
     Ok(store)
 }
