@@ -45,23 +45,36 @@ pub static RUSINKIEWICZ: Rusinkiewicz = Rusinkiewicz {
     weighting: NormalWeighting::Max,
 };
 
-/// The world tensor of a face `(p0, p1, p2)` with vertex normals `(n0, n1, n2)` (step 2) and its
-/// unit normal; `None` for a zero-area face or a singular system.
-pub fn face_tensor(
+/// The frame of step 2 of the face `(p0, p1, p2)`: its unit normal `n_f`, `u = e₂/|e₂|` and
+/// `w = n_f × u`; `None` for a zero-area face.
+fn face_frame(p: [&Point3<f64>; 3]) -> Option<[Vector3<f64>; 3]> {
+    let nf = face_unit_normal(p[0], p[1], p[2])?;
+    let u = (p[1] - p[0]).try_normalize(0.0)?;
+    Some([nf, u, nf.cross(&u)])
+}
+
+/// The world tensor `−(a uuᵀ + b (uwᵀ + wuᵀ) + c wwᵀ)` of the form `(a, b, c)` in the frame
+/// `(u, w)` (step 2).
+fn form_tensor(u: &Vector3<f64>, w: &Vector3<f64>, [a, b, c]: [f64; 3]) -> Matrix3<f64> {
+    -(u * u.transpose() * a + (u * w.transpose() + w * u.transpose()) * b + w * w.transpose() * c)
+}
+
+/// The second fundamental form `(e, f, g)` of the face `(p0, p1, p2)` with vertex normals
+/// `(n0, n1, n2)` in its [`face_frame`] `[n_f, u, w]` (step 2); `None` for a singular system or
+/// a tensor ([`form_tensor`]) with a non-finite entry.
+fn face_form(
     p: [&Point3<f64>; 3],
     n: [&Vector3<f64>; 3],
-) -> Option<(Matrix3<f64>, Vector3<f64>)> {
-    let nf = face_unit_normal(p[0], p[1], p[2])?;
+    [_, u, w]: &[Vector3<f64>; 3],
+) -> Option<[f64; 3]> {
     let e = [p[2] - p[1], p[0] - p[2], p[1] - p[0]];
     let dn = [n[2] - n[1], n[0] - n[2], n[1] - n[0]];
-    let u = e[2].try_normalize(0.0)?;
-    let w = nf.cross(&u);
     // Normal equations of the 6×3 system in (e, f, g).
     let mut ata = Matrix3::zeros();
     let mut atb = Vector3::zeros();
     for i in 0..3 {
-        let (eu, ew) = (e[i].dot(&u), e[i].dot(&w));
-        let (du, dw) = (dn[i].dot(&u), dn[i].dot(&w));
+        let (eu, ew) = (e[i].dot(u), e[i].dot(w));
+        let (du, dw) = (dn[i].dot(u), dn[i].dot(w));
         // Row (eu, ew, 0) → du ; row (0, eu, ew) → dw.
         let r1 = Vector3::new(eu, ew, 0.0);
         let r2 = Vector3::new(0.0, eu, ew);
@@ -69,43 +82,23 @@ pub fn face_tensor(
         atb += r1 * du + r2 * dw;
     }
     let sol = ata.cholesky()?.solve(&atb);
-    let (a, b, c) = (sol[0], sol[1], sol[2]);
-    let s = -(u * u.transpose() * a
-        + (u * w.transpose() + w * u.transpose()) * b
-        + w * w.transpose() * c);
-    s.iter().all(|x| x.is_finite()).then_some((s, nf))
+    let form = [sol[0], sol[1], sol[2]];
+    form_tensor(u, w, form)
+        .iter()
+        .all(|x| x.is_finite())
+        .then_some(form)
 }
 
-/// A face's tensor and unit normal as [`face_tensor`] gives them, in 72 bytes instead of 96:
-/// the tensor is symmetric to the bit (entry `(i, j)` is `(uᵢuⱼ)a + (uᵢwⱼ + wᵢuⱼ)b + (wᵢwⱼ)c`,
-/// negated, and `(j, i)` adds the same products: IEEE products and sums commute), so its upper
-/// triangle holds it whole. At 10⁶ faces the table of all faces is 80 MB, held during the
-/// per-vertex averaging only.
-#[derive(Clone, Copy, Debug)]
-struct PackedTensor([f64; 9]);
-
-impl PackedTensor {
-    fn pack(s: &Matrix3<f64>, n: &Vector3<f64>) -> Self {
-        PackedTensor([
-            s[(0, 0)],
-            s[(0, 1)],
-            s[(0, 2)],
-            s[(1, 1)],
-            s[(1, 2)],
-            s[(2, 2)],
-            n.x,
-            n.y,
-            n.z,
-        ])
-    }
-
-    fn unpack(&self) -> (Matrix3<f64>, Vector3<f64>) {
-        let [a, b, c, d, e, f, x, y, z] = self.0;
-        (
-            Matrix3::new(a, b, c, b, d, e, c, e, f),
-            Vector3::new(x, y, z),
-        )
-    }
+/// The world tensor of a face `(p0, p1, p2)` with vertex normals `(n0, n1, n2)` (step 2) and its
+/// unit normal; `None` for a zero-area face or a singular system.
+pub fn face_tensor(
+    p: [&Point3<f64>; 3],
+    n: [&Vector3<f64>; 3],
+) -> Option<(Matrix3<f64>, Vector3<f64>)> {
+    let frame = face_frame(p)?;
+    let form = face_form(p, n, &frame)?;
+    let [nf, u, w] = frame;
+    Some((form_tensor(&u, &w, form), nf))
 }
 
 /// Meyer et al.'s mixed (Voronoi) area of corner `p` in the triangle `(p, q, r)` (module docs).
@@ -161,14 +154,17 @@ impl Rusinkiewicz {
         let verts = mesh.vertices();
         let faces = mesh.faces();
         let normals = &first.normals;
-        // Step 2 once per face (each of its three corners uses it), packed.
-        let tensors: Vec<Option<PackedTensor>> = faces
+        // Step 2's least-squares solve once per face, kept as the form (e, f, g) alone (32 B a
+        // face; the tensor and the normal with it were 80): each of the face's corners rebuilds
+        // the frame and the tensor from it by the same operations (`face_tensor`'s), bit for
+        // bit.
+        let forms: Vec<Option<[f64; 3]>> = faces
             .par_iter()
             .with_min_len(1024)
             .map(|face| {
                 let p = face.map(|i| &verts[i].data.p);
                 let n = face.map(|i| &normals[i]);
-                face_tensor(p, n).map(|(s, nf)| PackedTensor::pack(&s, &nf))
+                face_frame(p).and_then(|frame| face_form(p, n, &frame))
             })
             .collect();
         let shapes: Vec<Option<Matrix3<f64>>> = (0..mesh.num_vertices())
@@ -185,11 +181,14 @@ impl Rusinkiewicz {
                     let Some(c) = face.iter().position(|&x| x == v) else {
                         continue;
                     };
-                    let Some((s, mut nf)) = tensors.get(f).copied().flatten().map(|t| t.unpack())
-                    else {
+                    let Some(form) = forms.get(f).copied().flatten() else {
                         continue;
                     };
                     let p = face.map(|i| &verts[i].data.p);
+                    let Some([mut nf, u, w]) = face_frame(p) else {
+                        continue;
+                    };
+                    let s = form_tensor(&u, &w, form);
                     let w = mixed_area(p[c], p[(c + 1) % 3], p[(c + 2) % 3]);
                     if !(w > 0.0 && w.is_finite()) {
                         continue;
@@ -204,8 +203,8 @@ impl Rusinkiewicz {
                 (weight > 0.0).then(|| sum / weight)
             })
             .collect();
-        // The face tensors (80 B a face) are used up: they go before the estimate is built.
-        drop(tensors);
+        // The face forms are used up: they go before the estimate is built.
+        drop(forms);
         let mut fallbacks = first.fallbacks.clone();
         let shapes = shapes
             .into_iter()

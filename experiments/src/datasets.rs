@@ -106,7 +106,7 @@ pub type EdgeProblems = Vec<((usize, usize), BoundaryProblem)>;
 pub fn edge_problems(name: &str) -> Result<(EdgeProblems, usize), ExperimentError> {
     let data = load(name)?;
     let verts = data.mesh.vertices();
-    let mut out = Vec::with_capacity(data.mesh.edges().len());
+    let mut out = Vec::with_capacity(data.mesh.num_edges());
     let mut skipped = 0;
     for e in data.mesh.edges() {
         let [a, b] = e.vertices;

@@ -168,7 +168,6 @@ fn mean_edge(mesh: &Mesh) -> f64 {
     let v = mesh.vertices();
     let total: f64 = mesh
         .edges()
-        .iter()
         .map(|e| (v[e.vertices[1]].data.p - v[e.vertices[0]].data.p).norm())
         .sum();
     total / mesh.num_edges().max(1) as f64

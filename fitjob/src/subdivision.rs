@@ -37,7 +37,6 @@ fn raw_creases(raw: &meshio::RawMesh, rule: mesh::features::CreaseRule) -> Vec<[
     let mut out: Vec<[usize; 2]> = repaired
         .mesh
         .edges()
-        .iter()
         .zip(&features.crease)
         .filter(|(_, &c)| c)
         .filter_map(|(e, _)| {

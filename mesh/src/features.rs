@@ -134,7 +134,7 @@ fn tessellated_components(mesh: &Mesh, dihedral: &[Option<f64>]) -> (Vec<usize>,
         .collect();
     let mut interior = vec![0usize; count];
     let mut flat = vec![0usize; count];
-    for (e, d) in mesh.edges().iter().zip(dihedral) {
+    for (e, d) in mesh.edges().zip(dihedral) {
         if let Some(t) = d {
             let c = component[e.first.0];
             interior[c] += 1;
@@ -154,7 +154,7 @@ fn tessellated_components(mesh: &Mesh, dihedral: &[Option<f64>]) -> (Vec<usize>,
 /// The kind of every vertex given the crease flags (module rules).
 fn classify(mesh: &Mesh, crease: &[bool]) -> Vec<VertexKind> {
     let mut at_vertex: Vec<Vec<usize>> = vec![Vec::new(); mesh.num_vertices()];
-    for (e, edge) in mesh.edges().iter().enumerate() {
+    for (e, edge) in mesh.edges().enumerate() {
         if crease[e] {
             for &v in &edge.vertices {
                 at_vertex[v].push(e);
@@ -163,7 +163,7 @@ fn classify(mesh: &Mesh, crease: &[bool]) -> Vec<VertexKind> {
     }
     let corner_turn = CORNER_TURN_DEG.to_radians();
     let mut on_boundary = vec![false; mesh.num_vertices()];
-    for edge in mesh.edges().iter().filter(|e| e.is_boundary()) {
+    for edge in mesh.edges().filter(|e| e.is_boundary()) {
         for &v in &edge.vertices {
             on_boundary[v] = true;
         }
@@ -177,7 +177,7 @@ fn classify(mesh: &Mesh, crease: &[bool]) -> Vec<VertexKind> {
             1 => VertexKind::Dart,
             2 => {
                 let away = |e: usize| -> Option<Vector3<f64>> {
-                    let [a, b] = mesh.edges()[e].vertices;
+                    let [a, b] = mesh.edge(e).vertices;
                     let other = if a == v { b } else { a };
                     let d = mesh.vertex(other)?.data.p - mesh.vertex(v)?.data.p;
                     let len = d.norm();
@@ -225,16 +225,14 @@ impl Features {
             .map(|f| mesh.face_unit_normal(f))
             .collect();
         let dihedral: Vec<Option<f64>> = mesh
-            .edges()
-            .par_iter()
+            .par_edges()
             .map(|e| {
                 let (f2, _) = e.second?;
                 Some(angle(&normals[e.first.0]?, &normals[f2]?))
             })
             .collect();
         let undefined = mesh
-            .edges()
-            .par_iter()
+            .par_edges()
             .zip(&dihedral)
             .filter(|(e, d)| e.second.is_some() && d.is_none())
             .count();
@@ -243,7 +241,7 @@ impl Features {
             let over = d.is_some_and(|t| t > threshold);
             match rule {
                 CreaseRule::Angle(_) => over,
-                CreaseRule::Auto => over && tessellated[component[mesh.edges()[e].first.0]],
+                CreaseRule::Auto => over && tessellated[component[mesh.edge(e).first.0]],
                 CreaseRule::None => false,
             }
         };
@@ -256,7 +254,7 @@ impl Features {
         if rule != CreaseRule::None {
             for &[a, b] in file_creases {
                 if let Some(e) = mesh.find_edge(a, b) {
-                    if !mesh.edges()[e].is_boundary() && !crease[e] {
+                    if !mesh.edge(e).is_boundary() && !crease[e] {
                         crease[e] = true;
                         by_file[e] = true;
                     }
@@ -483,7 +481,7 @@ mod tests {
         let f = Features::detect(&m, DEFAULT_CREASE_ANGLE_DEG);
         // The slopes' normals are (0, ±1, 1)/√2: they meet at 90°.
         for e in 0..m.num_edges() {
-            let [a, b] = m.edges()[e].vertices;
+            let [a, b] = m.edge(e).vertices;
             let on_ridge = a <= 2 && b <= 2;
             assert_eq!(f.crease[e], on_ridge, "edge {a}–{b}");
             if on_ridge {

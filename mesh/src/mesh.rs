@@ -207,7 +207,9 @@ pub struct Mesh {
     twin: Vec<usize>,
     /// Undirected edge of each half-edge.
     edge_of: Vec<usize>,
-    edges: Vec<Edge>,
+    /// The first half-edge of each undirected edge: the edge's [`Edge`] is read from it and its
+    /// twin ([`Mesh::edge`]), 8 bytes an edge instead of the 56 of a stored `Edge`.
+    edge_first: Vec<usize>,
     /// One outgoing half-edge per vertex, `None` for an isolated vertex.
     outgoing: Vec<Option<usize>>,
     /// Per-mesh fields a reader kept.
@@ -269,7 +271,7 @@ fn twins(faces: &[[usize; 3]]) -> Result<Vec<usize>, MeshError> {
 struct Adjacency {
     twin: Vec<usize>,
     edge_of: Vec<usize>,
-    edges: Vec<Edge>,
+    edge_first: Vec<usize>,
     outgoing: Vec<Option<usize>>,
 }
 
@@ -279,29 +281,29 @@ impl Adjacency {
     /// their first half-edge ([`number_edges`]) and picks each vertex's outgoing half-edge
     /// ([`outgoing_half_edges`]), side by side.
     fn new(faces: &[[usize; 3]], twin: Vec<usize>, vertex_count: usize) -> Self {
-        let ((edge_of, edges), outgoing) = rayon::join(
-            || number_edges(faces, &twin),
+        let ((edge_of, edge_first), outgoing) = rayon::join(
+            || number_edges(&twin),
             || outgoing_half_edges(faces, &twin, vertex_count),
         );
         Adjacency {
             twin,
             edge_of,
-            edges,
+            edge_first,
             outgoing,
         }
     }
 }
 
 /// The undirected edges of valid faces with twins `twin`, numbered in the order of their first
-/// half-edge, and the edge of every half-edge.
+/// half-edge: the edge of every half-edge and the first half-edge of every edge.
 ///
 /// Walking the half-edges in order, a half-edge starts an edge unless its twin came before
 /// it; an edge's number is then the count of starting half-edges before it. That count is
 /// taken per block of half-edges in parallel, summed, and each block then numbers its own
 /// starting half-edges and their twins (every half-edge is written once, by the block of its
 /// edge's first half-edge, hence the atomics, which cost nothing uncontended) and notes the
-/// half-edge each edge starts at; the edges are built from these in parallel.
-fn number_edges(faces: &[[usize; 3]], twin: &[usize]) -> (Vec<usize>, Vec<Edge>) {
+/// half-edge each edge starts at.
+fn number_edges(twin: &[usize]) -> (Vec<usize>, Vec<usize>) {
     use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
     let nh = twin.len();
     let starts = |h: usize| twin[h] == NO_TWIN || twin[h] > h;
@@ -337,19 +339,8 @@ fn number_edges(faces: &[[usize; 3]], twin: &[usize]) -> (Vec<usize>, Vec<Edge>)
         }
     });
     let edge_of = edge_of.into_iter().map(AtomicUsize::into_inner).collect();
-    let edges = first
-        .into_par_iter()
-        .map(|h| {
-            let h = h.into_inner();
-            let (f, l, t) = (h / 3, h % 3, twin[h]);
-            Edge {
-                vertices: [faces[f][l], faces[f][(l + 1) % 3]],
-                first: (f, l),
-                second: (t != NO_TWIN).then_some((t / 3, t % 3)),
-            }
-        })
-        .collect();
-    (edge_of, edges)
+    let first = first.into_iter().map(AtomicUsize::into_inner).collect();
+    (edge_of, first)
 }
 
 /// One half-edge leaving each of `vertex_count` vertices (`None` for a vertex in no face):
@@ -560,7 +551,7 @@ impl Mesh {
         let Adjacency {
             twin,
             edge_of,
-            edges,
+            edge_first,
             outgoing,
         } = adjacency;
         Mesh {
@@ -569,7 +560,7 @@ impl Mesh {
             faces,
             twin,
             edge_of,
-            edges,
+            edge_first,
             outgoing,
             extra: ExtraFields::new(),
             sectors: None,
@@ -608,7 +599,7 @@ impl Mesh {
 
     /// Number of undirected edges `E`.
     pub fn num_edges(&self) -> usize {
-        self.edges.len()
+        self.edge_first.len()
     }
 
     /// Euler characteristic `V − E + F` (2 for a sphere, 0 for a torus).
@@ -746,9 +737,29 @@ impl Mesh {
         Ok(self.edge_of[h])
     }
 
-    /// All undirected edges, in index order.
-    pub fn edges(&self) -> &[Edge] {
-        &self.edges
+    /// Undirected edge `e`: its vertices in the direction of its first face, and its one or two
+    /// (face, local edge) pairs, read from its first half-edge and that half-edge's twin.
+    ///
+    /// # Panics
+    /// When `e` is not below [`Mesh::num_edges`] (as indexing a slice of the edges would).
+    pub fn edge(&self, e: usize) -> Edge {
+        let h = self.edge_first[e];
+        let (f, l, t) = (h / 3, h % 3, self.twin[h]);
+        Edge {
+            vertices: [self.faces[f][l], self.faces[f][(l + 1) % 3]],
+            first: (f, l),
+            second: (t != NO_TWIN).then_some((t / 3, t % 3)),
+        }
+    }
+
+    /// All undirected edges, in index order ([`Mesh::edge`] of each).
+    pub fn edges(&self) -> impl ExactSizeIterator<Item = Edge> + DoubleEndedIterator + Clone + '_ {
+        (0..self.num_edges()).map(|e| self.edge(e))
+    }
+
+    /// [`Mesh::edges`] as a parallel iterator.
+    pub fn par_edges(&self) -> impl IndexedParallelIterator<Item = Edge> + '_ {
+        (0..self.num_edges()).into_par_iter().map(|e| self.edge(e))
     }
 
     /// The undirected edge between vertices `a` and `b`, if there is one.
@@ -768,14 +779,14 @@ impl Mesh {
 
     /// Indices of the boundary edges (used by one face), in index order; empty for a closed mesh.
     pub fn boundary_edges(&self) -> Vec<usize> {
-        (0..self.edges.len())
-            .filter(|&e| self.edges[e].is_boundary())
+        (0..self.num_edges())
+            .filter(|&e| self.twin[self.edge_first[e]] == NO_TWIN)
             .collect()
     }
 
     /// True when every edge has two faces.
     pub fn is_closed(&self) -> bool {
-        self.edges.iter().all(|e| !e.is_boundary())
+        self.twin.iter().all(|&t| t != NO_TWIN)
     }
 
     /// The undirected edge of half-edge `h` (which must exist).
@@ -936,7 +947,7 @@ mod tests {
     fn edges_have_stable_indices_each_once() {
         let m = strip();
         let mut seen = std::collections::BTreeSet::new();
-        for (e, edge) in m.edges().iter().enumerate() {
+        for (e, edge) in m.edges().enumerate() {
             let [a, b] = edge.vertices;
             assert!(seen.insert((a.min(b), a.max(b))));
             assert_eq!(m.edge_index(edge.first.0, edge.first.1).unwrap(), e);

@@ -587,7 +587,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
             .collect()
     });
     report.components = components.unwrap_or_else(|| count_components(&mesh));
-    report.boundary_edges = mesh.edges().par_iter().filter(|e| e.is_boundary()).count();
+    report.boundary_edges = mesh.par_edges().filter(|e| e.is_boundary()).count();
     let crease_edges = mesh_creases(raw, &mesh, &vertex_source, &mut report);
     Ok(Repaired {
         normals_given: given_normals.is_some(),

@@ -104,7 +104,7 @@ impl Sectors {
         let corner_at = |f: usize, v: usize| -> Option<usize> {
             faces[f].iter().position(|&x| x == v).map(|c| 3 * f + c)
         };
-        for (e, edge) in edges.iter().enumerate() {
+        for (e, edge) in edges.clone().enumerate() {
             let Some((g, _)) = edge.second else { continue };
             if crease[e] {
                 continue;
@@ -129,7 +129,6 @@ impl Sectors {
         let slot_of = |f: usize, v: usize| corner_at(f, v).map(|c| corner_slot[c]);
         let mut demoted = 0;
         let effective: Vec<bool> = edges
-            .iter()
             .zip(crease)
             .map(|(edge, &asked)| {
                 let Some((g, _)) = edge.second else {

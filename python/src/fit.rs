@@ -504,7 +504,7 @@ impl Fit {
     #[getter]
     fn edges<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let (mesh, _) = self.kept()?;
-        let e: Vec<[usize; 2]> = mesh.edges().iter().map(|e| e.vertices).collect();
+        let e: Vec<[usize; 2]> = mesh.edges().map(|e| e.vertices).collect();
         arrays::indices_out(py, &e)
     }
 

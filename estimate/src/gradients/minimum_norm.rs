@@ -82,7 +82,6 @@ impl Edge {
 fn network(mesh: &Mesh) -> Vec<Edge> {
     let verts = mesh.vertices();
     mesh.edges()
-        .iter()
         .filter_map(|edge| {
             let [i, j] = edge.vertices;
             let (p, q) = (verts[i].data.p, verts[j].data.p);

@@ -164,7 +164,7 @@ fn open_hemisphere_boundary_vertices_are_sensible() {
     let rim: Vec<usize> = mesh
         .boundary_edges()
         .iter()
-        .flat_map(|&e| mesh.edges()[e].vertices)
+        .flat_map(|&e| mesh.edge(e).vertices)
         .collect();
     assert!(!rim.is_empty());
     for est in ESTIMATORS {

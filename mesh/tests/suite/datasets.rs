@@ -152,7 +152,6 @@ fn ring_edges_are_the_curve_layers_grid_edges() {
     let mesh_edges: std::collections::BTreeSet<_> = d
         .mesh
         .edges()
-        .iter()
         .map(|e| {
             let [a, b] = e.vertices.map(|v| key(&d.mesh.vertex(v).unwrap().data.p));
             (a.min(b), a.max(b))

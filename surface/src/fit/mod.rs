@@ -220,7 +220,7 @@ pub fn face_curves(
     for (l, slot) in out.iter_mut().enumerate() {
         let ei = mesh.edge_index(f, l)?;
         let c = curves[ei];
-        *slot = if mesh.edges()[ei].vertices[0] == face[l] {
+        *slot = if mesh.edge(ei).vertices[0] == face[l] {
             c
         } else {
             c.reversed()
@@ -355,7 +355,7 @@ pub struct EdgeEnds {
 /// (the construction is symmetric in the two sectors), so the curve is shared and the surface
 /// stays C0 along the crease while each face keeps its own sector's tangent plane.
 pub fn edge_ends(mesh: &Mesh, e: usize) -> EdgeEnds {
-    let edge = mesh.edges()[e];
+    let edge = mesh.edge(e);
     let corner = |f: usize, v: usize| mesh.faces()[f].iter().position(|&x| x == v).unwrap_or(0);
     let (f1, _) = edge.first;
     let data_at = |f: usize, v: usize| {
@@ -432,7 +432,7 @@ fn face_creases(mesh: &Mesh, f: usize) -> [[Option<nalgebra::Vector3<f64>>; 2]; 
             continue;
         }
         let t = edge_ends(mesh, ei).lines;
-        *slot = if mesh.edges()[ei].vertices[0] == face[l] {
+        *slot = if mesh.edge(ei).vertices[0] == face[l] {
             t
         } else {
             [t[1], t[0]]
@@ -518,7 +518,7 @@ pub fn fit_curves_into(
     // bits 2–3: number of flipped tangents, 4: crease, 5: a crease end off the crease line,
     // 6–7: number of clamped tangents, 8: lengths shortened), so no intermediate collection is
     // copied.
-    let n_edges = if uses_curves { mesh.edges().len() } else { 0 };
+    let n_edges = if uses_curves { mesh.num_edges() } else { 0 };
     let Fit {
         curves,
         alphas,
@@ -540,7 +540,7 @@ pub fn fit_curves_into(
         .zip(alphas.par_iter_mut())
         .zip(flags.par_iter_mut())
         .zip(edge_errors.par_iter_mut())
-        .zip(mesh.edges().par_iter().enumerate())
+        .zip(mesh.par_edges().enumerate())
         .for_each(|((((curve, alpha), flag), err), (ei, e))| {
             let [a, b] = e.vertices;
             let ends = edge_ends(mesh, ei);

@@ -178,7 +178,7 @@ pub fn fit_streamed_with(
                                 let ei = mesh
                                     .edge_index(f, l)
                                     .map_err(|e| FitError::Mesh(e.to_string()))?;
-                                let e = &mesh.edges()[ei];
+                                let e = &mesh.edge(ei);
                                 let (Some((g, _)), true) = (e.second, e.first == (f, l)) else {
                                     continue;
                                 };
@@ -267,7 +267,7 @@ pub fn fit_streamed_with(
     result?;
     // Every edge between two faces was measured exactly once (by the window of its first
     // face), or the report would not be the whole fit's.
-    let shared = mesh.edges().iter().filter(|e| e.second.is_some()).count();
+    let shared = mesh.edges().filter(|e| e.second.is_some()).count();
     if measured_edges != shared {
         return Err(StreamError::Fit(FitError::Mesh(format!(
             "the streamed G1 measured {measured_edges} of {shared} shared edges"

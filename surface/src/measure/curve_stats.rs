@@ -11,7 +11,6 @@ use crate::metrics::median;
 /// crease data, [`crate::fit::edge_ends`]); the first degenerate edge is an error naming it.
 pub fn edge_problems(mesh: &Mesh) -> Result<Vec<BoundaryProblem>, EdgeError> {
     mesh.edges()
-        .iter()
         .enumerate()
         .map(|(ei, e)| {
             let [a, b] = e.vertices;

@@ -168,7 +168,7 @@ pub fn measure(mesh: &Mesh, fit: &Fit, truth: Option<&dyn AnalyticSurface>) -> E
     let mut truths = Vec::new();
     if fit.layout.is_bezier() {
         let (ends, middle) = stretches();
-        for e in mesh.edges().iter().step_by(stride(mesh.num_edges())) {
+        for e in mesh.edges().step_by(stride(mesh.num_edges())) {
             let (f, l) = e.first;
             // Each sample's point, tangent and the fit's shape tensor, once.
             let at = |ts: &[f64]| {

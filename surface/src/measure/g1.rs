@@ -406,8 +406,7 @@ pub fn measure(mesh: &Mesh, fit: &Fit, samples: usize) -> G1Report {
         })
         .reduce(G1Report::empty, G1Report::merge);
     let edges = mesh
-        .edges()
-        .par_iter()
+        .par_edges()
         .enumerate()
         .fold(G1Report::empty, |mut r, (ei, e)| {
             let (Some((g, _)), (f, _)) = (e.second, e.first) else {
@@ -604,7 +603,7 @@ impl Plan {
         fallback: [bool; 2],
         r: &mut G1Report,
     ) {
-        let e = &mesh.edges()[ei];
+        let e = &mesh.edge(ei);
         let (Some((_, lg)), (_, lf)) = (e.second, e.first) else {
             return;
         };

@@ -443,15 +443,14 @@ pub fn measure(mesh: &Mesh, fit: &Fit) -> Result<SharpReport, SharpError> {
     let crease_above = CREASE_CANDIDATE_DEG.to_radians();
     let probes = CREASE_PROBES.map(|t| (t * (EDGE_SAMPLES - 1) as f64).round() as usize);
     let scan = mesh
-        .edges()
-        .par_iter()
+        .par_edges()
         .enumerate()
         .fold(EdgeScan::default, |mut s, (ei, e)| {
             let Some((g, lg)) = e.second else {
                 return s;
             };
             s.interior += 1;
-            let Some(theta) = dihedral(e) else {
+            let Some(theta) = dihedral(&e) else {
                 s.undefined += 1;
                 return s;
             };
@@ -540,12 +539,11 @@ fn flat_regions(
     let mut out = FlatRegions::default();
     // Union by smaller root: every root is its component's smallest face.
     let flat_edges: Vec<bool> = mesh
-        .edges()
-        .par_iter()
-        .map(|e| dihedral(e).is_some_and(|t| t <= FLAT_DIHEDRAL))
+        .par_edges()
+        .map(|e| dihedral(&e).is_some_and(|t| t <= FLAT_DIHEDRAL))
         .collect();
     let mut sets = mesh::disjoint::DisjointSets::new(nf);
-    for (e, _) in mesh.edges().iter().zip(&flat_edges).filter(|(_, f)| **f) {
+    for (e, _) in mesh.edges().zip(&flat_edges).filter(|(_, f)| **f) {
         let Some((g, _)) = e.second else { continue };
         sets.union(e.first.0, g);
     }
@@ -613,7 +611,7 @@ fn flat_regions(
     for e in mesh.edges() {
         let Some((g, _)) = e.second else { continue };
         let (rf, rg) = (region_of[e.first.0], region_of[g]);
-        if rf == rg || dihedral(e).is_some_and(|t| t > crease) {
+        if rf == rg || dihedral(&e).is_some_and(|t| t > crease) {
             continue;
         }
         for r in [rf, rg] {
@@ -812,7 +810,7 @@ mod tests {
     #[test]
     fn a_plane_fitted_by_a_scheme_that_reproduces_planes_is_flat_and_unkinked() {
         let m = tilted_grid(6);
-        let interior = m.edges().iter().filter(|e| !e.is_boundary()).count();
+        let interior = m.edges().filter(|e| !e.is_boundary()).count();
         for scheme in ["flat", "shirman-sequin"] {
             let r = measure(&m, &fit(&m, scheme)).unwrap();
             assert_eq!(r.interior_edges, interior);
@@ -900,7 +898,7 @@ mod tests {
         let normals: Vec<_> = (0..m.num_faces())
             .map(|f| data_normal(&m, f).unwrap())
             .collect();
-        let folds = m.edges().iter().filter_map(|e| {
+        let folds = m.edges().filter_map(|e| {
             e.second
                 .map(|(g, _)| angle(&normals[e.first.0], &normals[g]))
         });

@@ -456,9 +456,8 @@ fn tessellate_by_topology(
             }
         }
     }
-    let edges = mesh.edges();
     let mut owned_edges = vec![[false; 3]; nf];
-    for (ei, e) in edges.iter().enumerate() {
+    for (ei, e) in mesh.edges().enumerate() {
         owned_edges[e.first.0][e.first.1] = true;
         if let Some((g, lg)) = e.second.filter(|_| mesh.is_crease(ei)) {
             owned_edges[g][lg] = true;
@@ -477,8 +476,8 @@ fn tessellate_by_topology(
     start.push(total);
     let mut vertex_id = vec![usize::MAX; keys];
     // Per edge: the samples' first id for its first face, and for its second on a crease.
-    let mut edge_base = vec![usize::MAX; edges.len()];
-    let mut crease_base = vec![usize::MAX; edges.len()];
+    let mut edge_base = vec![usize::MAX; mesh.num_edges()];
+    let mut crease_base = vec![usize::MAX; mesh.num_edges()];
     for f in 0..nf {
         let mut at = start[f];
         for c in 0..3 {
@@ -490,7 +489,7 @@ fn tessellate_by_topology(
         for l in 0..3 {
             if owned_edges[f][l] {
                 let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
-                if edges[ei].first == (f, l) {
+                if mesh.edge(ei).first == (f, l) {
                     edge_base[ei] = at;
                 } else {
                     crease_base[ei] = at;
@@ -507,8 +506,8 @@ fn tessellate_by_topology(
             Slot::Edge(l, k) => {
                 let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
                 // Samples are stored along the edge from `vertices[0]`.
-                let forward = edges[ei].vertices[0] == faces[f][l];
-                let base = if edges[ei].first == (f, l) || crease_base[ei] == usize::MAX {
+                let forward = mesh.edge(ei).vertices[0] == faces[f][l];
+                let base = if mesh.edge(ei).first == (f, l) || crease_base[ei] == usize::MAX {
                     edge_base[ei]
                 } else {
                     crease_base[ei]
@@ -605,7 +604,7 @@ fn tessellate_by_topology(
                         for l in 0..3 {
                             if owned_edges[f][l] {
                                 let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
-                                let forward = edges[ei].vertices[0] == faces[f][l];
+                                let forward = mesh.edge(ei).vertices[0] == faces[f][l];
                                 for k in 0..per_edge {
                                     let kk = if forward { k } else { per_edge - 1 - k };
                                     put(plan.edge_src[l][kk]);

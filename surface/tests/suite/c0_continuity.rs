@@ -183,7 +183,6 @@ fn largest_dihedral(mesh: &Mesh) -> f64 {
         (v[1] - v[0]).cross(&(v[2] - v[0])).normalize()
     };
     mesh.edges()
-        .iter()
         .filter_map(|e| e.second.map(|(g, _)| angle(&normal(e.first.0), &normal(g))))
         .fold(0.0, f64::max)
 }
@@ -281,7 +280,7 @@ fn c0_schemes_meet_on_every_shared_edge_with_the_recorded_normal_jump() {
         let mesh = &data.mesh;
         let dihedral = largest_dihedral(mesh);
         // The data sets are closed: every edge is shared, so "every shared edge" is every edge.
-        assert!(mesh.edges().iter().all(|e| e.second.is_some()), "{name}");
+        assert!(mesh.edges().all(|e| e.second.is_some()), "{name}");
         for s in &schemes {
             let methods: Vec<&str> = if s.uses_curves() {
                 curves::REGISTRY.iter().map(|m| m.name).collect()
@@ -303,7 +302,7 @@ fn c0_schemes_meet_on_every_shared_edge_with_the_recorded_normal_jump() {
                     f.face_fallbacks
                 );
                 let got = measure(mesh, &f);
-                assert_eq!(got.shared_edges, mesh.edges().len(), "{what}");
+                assert_eq!(got.shared_edges, mesh.num_edges(), "{what}");
                 assert!(got.edge_gap < C0_TOL, "{what}: edge gap {:e}", got.edge_gap);
                 assert!(
                     got.interior_gap < C0_TOL,

@@ -165,7 +165,7 @@ fn fallback_face_is_c0_with_its_neighbours() {
     }
     for l in 0..3 {
         let ei = data.mesh.edge_index(5, l).unwrap();
-        let e = data.mesh.edges()[ei];
+        let e = data.mesh.edge(ei);
         let (Some((g, lg)), (fa, la)) = (e.second, e.first) else {
             continue;
         };

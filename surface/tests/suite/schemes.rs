@@ -198,7 +198,6 @@ fn largest_dihedral(mesh: &Mesh) -> f64 {
         (v[1] - v[0]).cross(&(v[2] - v[0])).normalize()
     };
     mesh.edges()
-        .iter()
         .filter_map(|e| {
             let (a, b) = (normal(e.first.0), normal(e.second?.0));
             Some(a.cross(&b).norm().atan2(a.dot(&b)))
@@ -286,7 +285,7 @@ fn every_scheme_interpolates_is_c0_and_meets_its_continuity_claim() {
                 }
                 assert_eq!(
                     shared,
-                    data.mesh.edges().len(),
+                    data.mesh.num_edges(),
                     "{name}: closed, every edge shared"
                 );
             }

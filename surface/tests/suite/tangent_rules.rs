@@ -94,7 +94,7 @@ fn ring_and_sphere_stay_g1_on_every_tangent_rule() {
                 assert!(g1.interior_max <= G1_TOL, "{what}");
                 assert!(g1.position_error < INTERPOLATION, "{what}");
                 // Every curve leaves and enters its ends in the vertex's tangent plane.
-                for (e, c) in mesh.edges().iter().zip(&f.curves) {
+                for (e, c) in mesh.edges().zip(&f.curves) {
                     let [a, b] = e.vertices.map(|v| mesh.vertices()[v].data.n.normalize());
                     let [p0, p1, p2, p3] = c.points;
                     assert!((p1 - p0).normalize().dot(&a).abs() < IN_PLANE, "{what}");

@@ -232,7 +232,7 @@ fn ties_name_the_first_edge_as_the_sequential_scan_does() {
     let method = method_by_name("chord", &MethodOptions::default()).unwrap();
     let s = fit_streamed_with(&mesh, scheme.as_ref(), method.as_ref(), SAMPLES, None, 3).unwrap();
     assert_eq!(s.g1.exterior_max, 0.0);
-    let first_inner = mesh.edges().iter().position(|e| e.second.is_some());
+    let first_inner = mesh.edges().position(|e| e.second.is_some());
     assert_eq!(
         s.g1.exterior_at,
         first_inner.map(|edge| (surface::Boundary::Exterior { edge }, 0.0))

@@ -202,7 +202,6 @@ impl FunctionalCloughTocher {
         };
         let per_edge: Vec<Option<(usize, f64)>> = mesh
             .edges()
-            .iter()
             .map(|e| {
                 let (g, _) = e.second?;
                 let [mut a, mut b] = e.vertices;

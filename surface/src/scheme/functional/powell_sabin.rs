@@ -117,7 +117,6 @@ impl FunctionalPowellSabin {
             mesh.faces().iter().map(|f| incentre(&f.map(xy))).collect();
         let edge_tau: Vec<f64> = mesh
             .edges()
-            .iter()
             .map(|e| {
                 let (a, b) = (xy(e.vertices[0]), xy(e.vertices[1]));
                 let (p, q) = if first(&a, &b) { (a, b) } else { (b, a) };
