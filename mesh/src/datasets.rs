@@ -424,7 +424,11 @@ pub fn octa() -> Result<DataSet, DataSetError> {
 pub fn sphere(levels: usize) -> Result<DataSet, DataSetError> {
     let base = read_testbed(OCTA_M)?;
     let mut dirs: Vec<Vector3<f64>> = base.vertices().iter().map(|v| v.data.p.coords).collect();
-    let mut names: Vec<Option<String>> = base.vertices().iter().map(|v| v.name.clone()).collect();
+    let mut names: Vec<Option<String>> = base
+        .vertices()
+        .iter()
+        .map(|v| v.name().map(str::to_string))
+        .collect();
     let mut faces = base.faces().to_vec();
     for _ in 0..levels {
         let mut mid: HashMap<(usize, usize), usize> = HashMap::new();
@@ -449,7 +453,7 @@ pub fn sphere(levels: usize) -> Result<DataSet, DataSetError> {
         .zip(names)
         .map(|(d, name)| {
             let mut v = Vertex::new(sphere_point(d, 1.0));
-            v.name = name;
+            v.set_name(name);
             v
         })
         .collect();

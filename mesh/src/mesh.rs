@@ -52,17 +52,39 @@ pub(crate) const NO_TWIN: usize = usize::MAX;
 
 /// One vertex: position, normal and shape tensor, whether the curvature is known, a name and
 /// extra fields.
-#[derive(Clone, Debug, PartialEq)]
+///
+/// The name and the extra fields, which few files have, live behind one optional box
+/// ([`Vertex::name`], [`Vertex::extra`]): a vertex is 136 bytes instead of the 176 it took with
+/// both inline (20 MB at 500 000 vertices).
+#[derive(Clone, Debug)]
 pub struct Vertex {
     /// Position, normal and shape tensor `S` (`κn(d) = dᵀ S d`).
     pub data: VertexData,
     /// False when the source gave no curvature: `data.shape` is then the zero matrix and a
     /// method that needs curvature must say so rather than use it.
     pub curvature_known: bool,
-    /// The vertex's name in its source file, if it had one.
-    pub name: Option<String>,
-    /// Fields the reader kept without interpreting them.
-    pub extra: ExtraFields,
+    /// The name and the extra fields; `None` when it has neither.
+    labels: Option<Box<VertexLabels>>,
+}
+
+/// A vertex's name in its source file and the fields a reader kept without interpreting them.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct VertexLabels {
+    name: Option<String>,
+    extra: ExtraFields,
+}
+
+/// The extra fields of a vertex that has none.
+static NO_EXTRA: ExtraFields = ExtraFields::new();
+
+impl PartialEq for Vertex {
+    /// Equal data, curvature flag, name and extra fields (however the labels are stored).
+    fn eq(&self, other: &Self) -> bool {
+        self.data == other.data
+            && self.curvature_known == other.curvature_known
+            && self.name() == other.name()
+            && self.extra() == other.extra()
+    }
 }
 
 impl Vertex {
@@ -71,8 +93,7 @@ impl Vertex {
         Vertex {
             data,
             curvature_known: true,
-            name: None,
-            extra: ExtraFields::new(),
+            labels: None,
         }
     }
 
@@ -81,15 +102,43 @@ impl Vertex {
         Vertex {
             data: VertexData::new(p, n, Matrix3::zeros()),
             curvature_known: false,
-            name: None,
-            extra: ExtraFields::new(),
+            labels: None,
         }
     }
 
     /// The same vertex with a name.
     pub fn named(mut self, name: impl Into<String>) -> Self {
-        self.name = Some(name.into());
+        self.set_name(Some(name.into()));
         self
+    }
+
+    /// The vertex's name in its source file, if it had one.
+    pub fn name(&self) -> Option<&str> {
+        self.labels.as_ref()?.name.as_deref()
+    }
+
+    /// Sets (or, with `None`, removes) the vertex's name.
+    pub fn set_name(&mut self, name: Option<String>) {
+        match (&mut self.labels, name) {
+            (Some(labels), name) => labels.name = name,
+            (None, None) => {}
+            (None, name) => {
+                self.labels = Some(Box::new(VertexLabels {
+                    name,
+                    ..VertexLabels::default()
+                }))
+            }
+        }
+    }
+
+    /// Fields the reader kept without interpreting them (empty when there are none).
+    pub fn extra(&self) -> &ExtraFields {
+        self.labels.as_ref().map_or(&NO_EXTRA, |l| &l.extra)
+    }
+
+    /// [`Vertex::extra`], to change.
+    pub fn extra_mut(&mut self) -> &mut ExtraFields {
+        &mut self.labels.get_or_insert_with(Box::default).extra
     }
 }
 
@@ -941,6 +990,24 @@ mod tests {
             })
         );
         assert_eq!(m.neighbour(0, 3), Err(MeshError::NoSuchLocalEdge(3)));
+    }
+
+    #[test]
+    fn a_vertex_keeps_its_name_and_fields_and_compares_by_them_alone() {
+        let plain = v(1.0, 2.0, 3.0);
+        assert_eq!((plain.name(), plain.extra().len()), (None, 0));
+        let mut labelled = plain.clone().named("tip");
+        labelled
+            .extra_mut()
+            .insert("temperature".into(), vec![21.5]);
+        assert_eq!(labelled.name(), Some("tip"));
+        assert_eq!(labelled.extra()["temperature"], vec![21.5]);
+        assert_ne!(labelled, plain);
+        // Emptied labels (a box with nothing in it) equal none at all.
+        labelled.set_name(None);
+        labelled.extra_mut().clear();
+        assert_eq!(labelled, plain);
+        assert_eq!(std::mem::size_of::<Vertex>(), 136);
     }
 
     #[test]

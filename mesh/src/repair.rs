@@ -746,7 +746,7 @@ fn file_vertex(raw: &RawMesh, given_normals: Option<&[Vector3<f64>]>, s: usize) 
         v.data.shape = symmetric(&v.data.shape);
     }
     if let Some(name) = raw.vertex_name(s) {
-        v.name = Some(name.into_owned());
+        v.set_name(Some(name.into_owned()));
     }
     if !raw.properties.is_empty() {
         let mut extra = ExtraFields::new();
@@ -755,7 +755,7 @@ fn file_vertex(raw: &RawMesh, given_normals: Option<&[Vector3<f64>]>, s: usize) 
                 extra.insert(k.clone(), vec![*x]);
             }
         }
-        v.extra = extra;
+        *v.extra_mut() = extra;
     }
     v
 }
@@ -1201,11 +1201,11 @@ pub fn mesh_to_raw(mesh: &Mesh, with_normals: bool) -> RawMesh {
     if !vs.is_empty() && vs.iter().all(|v| v.curvature_known) {
         raw.shapes = Some(vs.iter().map(|v| v.data.shape).collect());
     }
-    if vs.iter().any(|v| v.name.is_some()) {
+    if vs.iter().any(|v| v.name().is_some()) {
         raw.vertex_names = Some(
             vs.iter()
                 .enumerate()
-                .map(|(i, v)| v.name.clone().unwrap_or_else(|| format!("v{i}")))
+                .map(|(i, v)| v.name().map_or_else(|| format!("v{i}"), str::to_string))
                 .collect(),
         );
     }
@@ -1221,10 +1221,10 @@ pub fn mesh_to_raw(mesh: &Mesh, with_normals: bool) -> RawMesh {
     }
     // A property is written only when every vertex has it with exactly one value.
     if let Some(first) = vs.first() {
-        for key in first.extra.keys() {
+        for key in first.extra().keys() {
             let values: Option<Vec<f64>> = vs
                 .iter()
-                .map(|v| match v.extra.get(key).map(Vec::as_slice) {
+                .map(|v| match v.extra().get(key).map(Vec::as_slice) {
                     Some([x]) => Some(*x),
                     _ => None,
                 })

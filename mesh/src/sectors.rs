@@ -237,12 +237,13 @@ impl Sectors {
         let vertices: Vec<Vertex> = (0..self.num_slots())
             .map(|s| {
                 let v = &verts[self.slot_vertex[s]];
-                Vertex {
-                    data: VertexData::new(v.data.p, self.normals[s], self.shapes[s]),
-                    curvature_known: self.curvature_known[s],
-                    name: None,
-                    extra: Default::default(),
-                }
+                let mut slot = Vertex::new(VertexData::new(
+                    v.data.p,
+                    self.normals[s],
+                    self.shapes[s],
+                ));
+                slot.curvature_known = self.curvature_known[s];
+                slot
             })
             .collect();
         let faces: Vec<[usize; 3]> = (0..mesh.num_faces())

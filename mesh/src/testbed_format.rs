@@ -109,10 +109,10 @@ fn strict(raw: RawMesh) -> Result<Mesh, TestbedError> {
                 Some(s) => crate::Vertex::new(crate::VertexData::new(p, n, s[i])),
                 None => crate::Vertex::without_curvature(p, n),
             };
-            v.name = raw.vertex_name(i).map(|n| n.into_owned());
+            v.set_name(raw.vertex_name(i).map(|n| n.into_owned()));
             for (k, vals) in &raw.properties {
                 if let Some(x) = vals.get(i) {
-                    v.extra.insert(k.clone(), vec![*x]);
+                    v.extra_mut().insert(k.clone(), vec![*x]);
                 }
             }
             v

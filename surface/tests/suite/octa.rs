@@ -28,7 +28,7 @@ fn octa_has_the_octahedrons_counts() {
     let names: Vec<&str> = m
         .vertices()
         .iter()
-        .map(|v| v.name.as_deref().unwrap())
+        .map(|v| v.name().unwrap())
         .collect();
     assert_eq!(names, ["px", "py", "pz", "mx", "my", "mz"]);
     assert_eq!(m.face_name(1), Some("PMP"));
