@@ -552,7 +552,7 @@ pub fn noise_level(
             let candidate = !topo.faces(v).is_empty() && ell.get(v).is_some_and(|l| *l > 0.0);
             let own = measure(ws, v);
             let pair = own.and_then(|x| {
-                let u = *topo.neighbours(v).first()?;
+                let u = *topo.neighbours(v).first()? as usize;
                 let y = measure(ws, u)?;
                 Some(0.5 * (x[3] - y[3]).powi(2))
             });
@@ -780,7 +780,7 @@ impl Multiscale {
                     .map_init(Vec::new, |buf: &mut Vec<f64>, v| {
                         buf.clear();
                         buf.extend(rule[v]);
-                        buf.extend(topo.neighbours(v).iter().filter_map(|&u| rule[u]));
+                        buf.extend(topo.neighbours(v).iter().filter_map(|&u| rule[u as usize]));
                         (!buf.is_empty()).then(|| median(buf))
                     })
                     .collect()

@@ -88,7 +88,7 @@ fn weighted_sums<const K: usize>(
     let verts = mesh.vertices();
     let faces = mesh.faces();
     let mut sums = [Vector3::zeros(); K];
-    for &f in topo.faces(v) {
+    for f in topo.faces(v).iter().map(|&f| f as usize) {
         let face = faces[f];
         let Some(c) = face.iter().position(|&x| x == v) else {
             continue;
@@ -203,8 +203,8 @@ fn complete(
                 let s: Vector3<f64> = topo
                     .neighbours(v)
                     .iter()
-                    .filter(|&&u| known[u])
-                    .map(|&u| normals[u])
+                    .filter(|&&u| known[u as usize])
+                    .map(|&u| normals[u as usize])
                     .sum();
                 let len = s.norm();
                 (len > 0.0 && len.is_finite()).then(|| (v, s / len))

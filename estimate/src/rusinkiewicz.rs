@@ -176,7 +176,7 @@ impl Rusinkiewicz {
                 let np = normals[v];
                 let mut sum = Matrix3::zeros();
                 let mut weight = 0.0;
-                for &f in topo.faces(v) {
+                for f in topo.faces(v).iter().map(|&f| f as usize) {
                     let face = faces[f];
                     let Some(c) = face.iter().position(|&x| x == v) else {
                         continue;

@@ -237,11 +237,8 @@ impl Sectors {
         let vertices: Vec<Vertex> = (0..self.num_slots())
             .map(|s| {
                 let v = &verts[self.slot_vertex[s]];
-                let mut slot = Vertex::new(VertexData::new(
-                    v.data.p,
-                    self.normals[s],
-                    self.shapes[s],
-                ));
+                let mut slot =
+                    Vertex::new(VertexData::new(v.data.p, self.normals[s], self.shapes[s]));
                 slot.curvature_known = self.curvature_known[s];
                 slot
             })

@@ -160,11 +160,11 @@ pub fn apply_gradients(mesh: &mut Mesh, g: &Gradients) {
 /// value differences `Δ₁ = z_b − z_a`, `Δ₂ = z_c − z_a`, the linear interpolant's gradient
 /// solves `g · e₁ = Δ₁`, `g · e₂ = Δ₂`; by Cramer's rule with `D = e₁ₓ e₂ᵧ − e₁ᵧ e₂ₓ` (twice the
 /// signed area) `g = ((Δ₁ e₂ᵧ − Δ₂ e₁ᵧ)/D, (Δ₂ e₁ₓ − Δ₁ e₂ₓ)/D)`.
-pub(crate) fn face_gradient_mean(mesh: &Mesh, faces: &[usize]) -> Vector2<f64> {
+pub(crate) fn face_gradient_mean(mesh: &Mesh, faces: &[u32]) -> Vector2<f64> {
     let verts = mesh.vertices();
     let mut sum = Vector2::zeros();
     let mut area = 0.0;
-    for &f in faces {
+    for f in faces.iter().map(|&f| f as usize) {
         let Some(face) = mesh.faces().get(f) else {
             continue;
         };

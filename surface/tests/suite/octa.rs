@@ -25,11 +25,7 @@ fn octa_has_the_octahedrons_counts() {
         assert_eq!(m.vertex_ring(v).len(), 4);
     }
     // Names and order as in the file.
-    let names: Vec<&str> = m
-        .vertices()
-        .iter()
-        .map(|v| v.name().unwrap())
-        .collect();
+    let names: Vec<&str> = m.vertices().iter().map(|v| v.name().unwrap()).collect();
     assert_eq!(names, ["px", "py", "pz", "mx", "my", "mz"]);
     assert_eq!(m.face_name(1), Some("PMP"));
     assert_eq!(m.faces()[1], [2, 4, 0]); // PMP = [pz, my, px]
