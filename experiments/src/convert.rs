@@ -58,12 +58,19 @@ pub fn run(args: &ConvertArgs) -> Result<ExitCode, ExperimentError> {
     crate::output::refuse_overwriting_input("--output", &args.output, &args.input.data)?;
     // The loaded mesh itself is mapped to world coordinates (a copy of it was the largest
     // single allocation of the conversion: 0.2 GB at 10⁶ faces).
-    let notes = loaded.notes;
-    let mut world = loaded.mesh;
-    loaded.frame.mesh_to_world(&mut world);
+    // What the file does not need (the maps back to the input's faces and vertices: 12 bytes
+    // a face at 10⁶ faces) goes at once.
+    let fitjob::input::Loaded {
+        mesh: mut world,
+        frame,
+        notes,
+        ..
+    } = loaded;
+    frame.mesh_to_world(&mut world);
     let mesh = &world;
     let (num_vertices, num_faces) = (mesh.num_vertices(), mesh.num_faces());
-    let mut raw = surface::repair::mesh_to_raw(mesh, true);
+    // The shape tensors only for a format that stores them (72 bytes a vertex).
+    let mut raw = surface::repair::mesh_to_raw_with(mesh, true, format.writes_shapes());
     if format.writes_curvature() && mesh.vertices().iter().all(|v| v.curvature_known) {
         // The workbench's sign internally; the file gets the exported one (H > 0 on a sphere).
         let (k, h): (Vec<f64>, Vec<f64>) = mesh

@@ -1193,12 +1193,18 @@ pub fn count_components(mesh: &Mesh) -> usize {
 /// shape tensors (when every vertex's curvature is known), vertex and face names, extra fields
 /// with one value per vertex as properties, the mesh's own fields.
 pub fn mesh_to_raw(mesh: &Mesh, with_normals: bool) -> RawMesh {
+    mesh_to_raw_with(mesh, with_normals, true)
+}
+
+/// [`mesh_to_raw`], the shape tensors only when `with_shapes` (a writer that does not store
+/// them need not hold a copy: 72 bytes a vertex).
+pub fn mesh_to_raw_with(mesh: &Mesh, with_normals: bool, with_shapes: bool) -> RawMesh {
     let vs = mesh.vertices();
     let mut raw = RawMesh::from_triangles(vs.iter().map(|v| v.data.p).collect(), mesh.faces());
     if with_normals {
         raw.normals = Some(vs.iter().map(|v| v.data.n).collect());
     }
-    if !vs.is_empty() && vs.iter().all(|v| v.curvature_known) {
+    if with_shapes && !vs.is_empty() && vs.iter().all(|v| v.curvature_known) {
         raw.shapes = Some(vs.iter().map(|v| v.data.shape).collect());
     }
     if vs.iter().any(|v| v.name().is_some()) {

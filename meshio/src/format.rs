@@ -88,6 +88,12 @@ pub trait MeshFormat: Sync {
         false
     }
 
+    /// True if its writer stores [`RawMesh::shapes`] (the shape tensors), so that a caller fills
+    /// them (36 bytes a vertex… 72 at f64) only where they are written.
+    fn writes_shapes(&self) -> bool {
+        false
+    }
+
     /// Parses a whole file.
     fn read(&self, bytes: &[u8]) -> Result<RawMesh, ReadError>;
 

@@ -68,6 +68,10 @@ pub const MAX_NESTING_DEPTH: usize = 16;
 pub struct Testbed;
 
 impl MeshFormat for Testbed {
+    fn writes_shapes(&self) -> bool {
+        true
+    }
+
     fn name(&self) -> &'static str {
         NAME
     }
