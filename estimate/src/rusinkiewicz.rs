@@ -154,24 +154,31 @@ impl Rusinkiewicz {
         let verts = mesh.vertices();
         let faces = mesh.faces();
         let normals = &first.normals;
-        // Step 2's least-squares solve once per face, kept as the form (e, f, g) alone (32 B a
-        // face; the tensor and the normal with it were 80): each of the face's corners rebuilds
-        // the frame and the tensor from it by the same operations (`face_tensor`'s), bit for
-        // bit.
-        let forms: Vec<Option<[f64; 3]>> = faces
+        // Step 2's least-squares solve once per face, kept as the form (e, f, g) alone (24 B a
+        // face; the tensor and the normal with it were 80), NaN where the face has none (a form
+        // `face_form` gives is finite): each of the face's corners rebuilds the frame and the
+        // tensor from it by the same operations (`face_tensor`'s), bit for bit.
+        let forms: Vec<[f64; 3]> = faces
             .par_iter()
             .with_min_len(1024)
             .map(|face| {
                 let p = face.map(|i| &verts[i].data.p);
                 let n = face.map(|i| &normals[i]);
-                face_frame(p).and_then(|frame| face_form(p, n, &frame))
+                face_frame(p)
+                    .and_then(|frame| face_form(p, n, &frame))
+                    .unwrap_or([f64::NAN; 3])
             })
             .collect();
-        let shapes: Vec<Option<Matrix3<f64>>> = (0..mesh.num_vertices())
-            .into_par_iter()
-            .map(|v| {
+        // Step 3, each vertex's tensor written in place; the vertices left without weight are
+        // collected.
+        let mut shapes = vec![Matrix3::zeros(); mesh.num_vertices()];
+        let no_area: Vec<usize> = shapes
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(256)
+            .filter_map(|(v, out)| {
                 if topo.faces(v).is_empty() {
-                    return Some(Matrix3::zeros());
+                    return None;
                 }
                 let np = normals[v];
                 let mut sum = Matrix3::zeros();
@@ -181,7 +188,7 @@ impl Rusinkiewicz {
                     let Some(c) = face.iter().position(|&x| x == v) else {
                         continue;
                     };
-                    let Some(form) = forms.get(f).copied().flatten() else {
+                    let Some(&form) = forms.get(f).filter(|form| !form[0].is_nan()) else {
                         continue;
                     };
                     let p = face.map(|i| &verts[i].data.p);
@@ -200,27 +207,23 @@ impl Rusinkiewicz {
                     sum += r * s * r.transpose() * w;
                     weight += w;
                 }
-                (weight > 0.0).then(|| sum / weight)
+                if weight > 0.0 {
+                    *out = sum / weight;
+                    None
+                } else {
+                    Some(v)
+                }
             })
             .collect();
         // The face forms are used up: they go before the estimate is built.
         drop(forms);
         let mut fallbacks = first.fallbacks.clone();
-        let shapes = shapes
-            .into_iter()
-            .enumerate()
-            .map(|(v, s)| {
-                s.unwrap_or_else(|| {
-                    fallbacks.push(Fallback {
-                        vertex: v,
-                        kind: FallbackKind::Planar {
-                            reason: PlanarReason::NoArea,
-                        },
-                    });
-                    Matrix3::zeros()
-                })
-            })
-            .collect();
+        fallbacks.extend(no_area.into_iter().map(|vertex| Fallback {
+            vertex,
+            kind: FallbackKind::Planar {
+                reason: PlanarReason::NoArea,
+            },
+        }));
         finish(normals.clone(), shapes, fallbacks, &first)
     }
 }
