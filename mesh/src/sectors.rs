@@ -249,16 +249,13 @@ impl Sectors {
         // The same twins but across the creases: cutting a valid mesh along edges leaves every
         // face valid and every fan one fan, so the split mesh needs no validation beyond its
         // vertex data ([`Mesh::from_twins`]; debug builds check the rest).
-        let twin: Vec<usize> = mesh
-            .twin_array()
-            .par_iter()
-            .enumerate()
-            .map(|(h, &t)| {
+        let twin: Vec<usize> = (0..mesh.num_half_edges())
+            .into_par_iter()
+            .map(|h| {
                 let e = mesh.edge_of_half_edge(h);
-                if t == NO_TWIN || self.crease.get(e).copied().unwrap_or(false) {
-                    NO_TWIN
-                } else {
-                    t
+                match mesh.twin_of(h) {
+                    Some(t) if !self.crease.get(e).copied().unwrap_or(false) => t,
+                    _ => NO_TWIN,
                 }
             })
             .collect();
