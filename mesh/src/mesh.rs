@@ -84,7 +84,7 @@ impl HalfEdgeSlot for Option<usize> {
     }
 }
 
-/// `h` (below [`MAX_FACES`]` · 3`, or `None`) as a stored `u32`.
+/// `h` (below `3 ·` [`MAX_FACES`], or `None`) as a stored `u32`.
 fn slot32(h: Option<usize>) -> u32 {
     h.map_or(NONE32, |h| h as u32)
 }
