@@ -56,7 +56,7 @@ const NONE32: u32 = u32::MAX;
 
 /// The most faces a [`Mesh`] holds: its half-edge and edge arrays store `u32` indices (half the
 /// memory of `usize`: 36 MB less at 10⁶ faces), and every half-edge `3f + l` must be below
-/// [`NONE32`].
+/// `u32::MAX`, their "none" value.
 pub const MAX_FACES: usize = (u32::MAX as usize - 1) / 3;
 
 /// A stored half-edge index and its "none" value: `usize` in the construction's arrays
