@@ -99,15 +99,6 @@ pub enum PrepareError {
     /// The file has no (usable) normals and no estimation was asked for.
     #[error("the file gives no usable vertex normals and `--estimate none` was asked: name an estimator (jet, quadric, rusinkiewicz, …)")]
     NoNormals,
-    /// The mesh has more faces or vertices than the estimators index (`u32`,
-    /// [`crate::Topology::fits`]).
-    #[error("the mesh has {faces} faces and {vertices} vertices: the estimators index at most {} of each", u32::MAX)]
-    TooLarge {
-        /// Its faces.
-        faces: usize,
-        /// Its vertices.
-        vertices: usize,
-    },
 }
 
 /// A prepared mesh and the record of what was done to it.
@@ -330,12 +321,6 @@ pub fn prepare_with(
     } = repair(&work, &RepairOptions::default())?;
     drop(work);
     let repair_time_seconds = t0.elapsed().as_secs_f64();
-    if !matches!(choice, EstimateChoice::None) && !crate::Topology::fits(&mesh) {
-        return Err(PrepareError::TooLarge {
-            faces: mesh.num_faces(),
-            vertices: mesh.num_vertices(),
-        });
-    }
     let t1 = std::time::Instant::now();
     let mut crease_summary = attach_creases(&mut mesh, creases, &crease_edges);
     let curvature_given = mesh.vertices().iter().all(|v| v.curvature_known);

@@ -9,8 +9,8 @@ use mesh::Mesh;
 /// Faces around and neighbours of every vertex, in compressed-row form.
 ///
 /// The lists hold `u32` indices (a face or a vertex each): half the memory of `usize`, 28 MB
-/// less at 10⁶ faces, held through every estimator's run. A mesh with more than `u32::MAX`
-/// faces or vertices (about 700 GB of [`Mesh`]) has no topology ([`Topology::fits`]).
+/// less at 10⁶ faces, held through every estimator's run. Every [`Mesh`] has at most
+/// `mesh::MAX_FACES` faces and `mesh::MAX_VERTICES` vertices, so each index is a `u32`.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Topology {
     face_start: Vec<usize>,
@@ -20,24 +20,10 @@ pub struct Topology {
 }
 
 impl Topology {
-    /// True when the faces and vertices of `mesh` can be indexed by the `u32` lists.
-    pub fn fits(mesh: &Mesh) -> bool {
-        u32::try_from(mesh.num_faces()).is_ok() && u32::try_from(mesh.num_vertices()).is_ok()
-    }
-
     /// Builds the adjacency of `mesh` in `O(F)` (plus a sort of each vertex's short neighbour
     /// list).
-    ///
-    /// # Panics
-    /// When `mesh` does not [`Topology::fits`] (`estimate::prepare` refuses such a mesh first).
     pub fn new(mesh: &Mesh) -> Self {
-        assert!(
-            Self::fits(mesh),
-            "a mesh of {} faces and {} vertices is beyond the estimators' u32 indices",
-            mesh.num_faces(),
-            mesh.num_vertices()
-        );
-        // (Every index below is below a count that fits: the casts are exact.)
+        // (Every face and vertex index of a mesh is below `u32::MAX`: the casts are exact.)
         let nv = mesh.num_vertices();
         let faces = mesh.faces();
         let mut face_start = vec![0usize; nv + 1];

@@ -44,7 +44,7 @@ pub use datasets::{
     DATASET_NAMES,
 };
 pub use frame::{Frame, FrameError};
-pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex, MAX_FACES};
+pub use mesh::{Edge, ExtraFields, Mesh, MeshError, Vertex, MAX_FACES, MAX_VERTICES};
 pub use sectors::{SectorError, Sectors};
 pub use testbed_format::{
     read_testbed, read_testbed_file, write_testbed, write_testbed_file, TestbedError,

@@ -59,6 +59,10 @@ const NONE32: u32 = u32::MAX;
 /// `u32::MAX`, their "none" value.
 pub const MAX_FACES: usize = (u32::MAX as usize - 1) / 3;
 
+/// The most vertices a [`Mesh`] holds, so that every face and vertex index of a mesh is a `u32`
+/// (the estimators' adjacency lists store them so: `estimate::Topology`).
+pub const MAX_VERTICES: usize = u32::MAX as usize;
+
 /// A stored half-edge index and its "none" value: `usize` in the construction's arrays
 /// ([`NO_TWIN`]), `u32` in the mesh's ([`NONE32`]), so that the fan walks serve both.
 pub(crate) trait HalfEdgeSlot: Copy + Send + Sync {
@@ -259,6 +263,12 @@ pub enum MeshError {
         /// How many faces were given.
         faces: usize,
     },
+    /// More vertices than a mesh holds ([`MAX_VERTICES`]: the estimators index them as `u32`).
+    #[error("{vertices} vertices: a mesh holds at most {MAX_VERTICES}")]
+    TooManyVertices {
+        /// How many vertices were given.
+        vertices: usize,
+    },
     /// A walk tried to cross a boundary edge.
     #[error("walk step {step}: local edge {local_edge} of face {face} is a boundary edge")]
     WalkOffBoundary {
@@ -358,6 +368,14 @@ fn twins(faces: &[[usize; 3]]) -> Result<Vec<usize>, MeshError> {
         }
     }
     Ok(twin)
+}
+
+/// [`MeshError::TooManyVertices`] for more than [`MAX_VERTICES`] vertices.
+fn check_vertex_count(vertices: usize) -> Result<(), MeshError> {
+    if vertices > MAX_VERTICES {
+        return Err(MeshError::TooManyVertices { vertices });
+    }
+    Ok(())
 }
 
 /// [`MeshError::TooLarge`] for more than [`MAX_FACES`] faces.
@@ -593,6 +611,7 @@ impl Mesh {
         allow_degenerate: bool,
     ) -> Result<Self, MeshError> {
         check_size(faces.len())?;
+        check_vertex_count(vertices.len())?;
         let count = vertices.len();
         check_vertices(&vertices)?;
         for (f, face) in faces.iter().enumerate() {
@@ -644,6 +663,7 @@ impl Mesh {
         twin: Vec<usize>,
     ) -> Result<Self, MeshError> {
         check_size(faces.len())?;
+        check_vertex_count(vertices.len())?;
         debug_assert_eq!(twins(&faces).as_ref(), Ok(&twin));
         // The vertex check and the adjacency side by side (they share nothing).
         let (checked, adjacency) = rayon::join(
@@ -1068,6 +1088,18 @@ mod tests {
         assert!(u32::try_from(last).is_ok_and(|h| h != NONE32));
         assert_eq!(slot32(Some(last)).get(), Some(last));
         assert_eq!(slot32(None).get(), None);
+    }
+
+    #[test]
+    fn a_mesh_beyond_u32_vertices_is_refused() {
+        assert_eq!(
+            check_vertex_count(MAX_VERTICES + 1),
+            Err(MeshError::TooManyVertices {
+                vertices: MAX_VERTICES + 1
+            })
+        );
+        assert_eq!(check_vertex_count(MAX_VERTICES), Ok(()));
+        assert!(u32::try_from(MAX_VERTICES - 1).is_ok());
     }
 
     #[test]

@@ -505,9 +505,10 @@ fn tessellate_by_topology(
             Slot::Corner(c) => vertex_id[corner_key(f, c)],
             Slot::Edge(l, k) => {
                 let ei = mesh.edge_index(f, l).map_err(TessError::Mesh)?;
+                let edge = mesh.edge(ei);
                 // Samples are stored along the edge from `vertices[0]`.
-                let forward = mesh.edge(ei).vertices[0] == faces[f][l];
-                let base = if mesh.edge(ei).first == (f, l) || crease_base[ei] == usize::MAX {
+                let forward = edge.vertices[0] == faces[f][l];
+                let base = if edge.first == (f, l) || crease_base[ei] == usize::MAX {
                     edge_base[ei]
                 } else {
                     crease_base[ei]
