@@ -44,7 +44,7 @@ pub use cubicbez::{cross2, CubicBez, CubicBez2, CubicBez3, CurvatureSample, Quar
 pub use dbhs::{Dbhs, DbhsPick, DbhsSolution, DbhsSolutions};
 pub use method::{
     method_by_name, planar_space_curve, Candidates, CurveChoice, CurveMethod, MethodEntry,
-    MethodOptions, SpaceCurve, UnknownMethod, REGISTRY,
+    MethodOptions, SpaceCurve, TangentRule, UnknownMethod, REGISTRY,
 };
 pub use optimized::Optimized;
 pub use problem::{

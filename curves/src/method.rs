@@ -137,6 +137,15 @@ pub trait CurveMethod: Send + Sync {
         true
     }
 
+    /// True if the construction's end tangents are fixed by its source (the original testbed's
+    /// projection rules, [`crate::projection`]): a fit then keeps them as they are, and only
+    /// counts the face corners they leave non-convex, instead of choosing a vertex's tangents
+    /// together from its star (`surface::fit::fan`). False for the constructions on the planar
+    /// problem, whose tangents are the problem's.
+    fn keeps_own_tangents(&self) -> bool {
+        false
+    }
+
     /// True if [`CurveChoice::candidates`] lists all solutions (then outputs show them even
     /// when there are none).
     fn enumerates_solutions(&self) -> bool {
@@ -161,6 +170,78 @@ pub trait CurveMethod: Send + Sync {
     }
 }
 
+/// How a fit chooses the directions in which a vertex's boundary curves leave it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TangentRule {
+    /// Each edge's own end tangents, except in a sector where they leave a face corner that is
+    /// not convex: there the sector's tangents are chosen together from its whole star
+    /// (`surface::fit::fan`). The default.
+    #[default]
+    Star,
+    /// Each edge's end tangents from its own two end normals alone, as the seeds build them
+    /// (the corners they leave non-convex are only counted).
+    PerEdge,
+}
+
+impl TangentRule {
+    /// Every rule, in the order `--help` lists them.
+    pub const ALL: [TangentRule; 2] = [TangentRule::Star, TangentRule::PerEdge];
+
+    /// The name on the command line: `star` or `per-edge`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            TangentRule::Star => "star",
+            TangentRule::PerEdge => "per-edge",
+        }
+    }
+}
+
+impl std::fmt::Display for TangentRule {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for TangentRule {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        TangentRule::ALL
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or_else(|| format!("unknown tangent rule `{s}` (known: star, per-edge)"))
+    }
+}
+
+/// A construction with its tangents kept as it builds them ([`TangentRule::PerEdge`]): every
+/// method delegates to the construction it wraps, and [`CurveMethod::keeps_own_tangents`] is
+/// true.
+struct PerEdgeTangents(Box<dyn CurveMethod>);
+
+impl CurveMethod for PerEdgeTangents {
+    fn name(&self) -> &'static str {
+        self.0.name()
+    }
+    fn construct(&self, problem: &UnitProblem) -> CurveChoice {
+        self.0.construct(problem)
+    }
+    fn needs_curvature(&self) -> bool {
+        self.0.needs_curvature()
+    }
+    fn keeps_own_tangents(&self) -> bool {
+        true
+    }
+    fn enumerates_solutions(&self) -> bool {
+        self.0.enumerates_solutions()
+    }
+    fn space_curve(
+        &self,
+        problem: &BoundaryProblem,
+        lines: [Option<Vector3<f64>>; 2],
+    ) -> SpaceCurve {
+        self.0.space_curve(problem, lines)
+    }
+}
+
 /// Settings the registered constructions read; each ignores what it does not use.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MethodOptions {
@@ -179,6 +260,9 @@ pub struct MethodOptions {
     /// Where the projection family takes its point: the chord's third, or five ninths (the
     /// "four-ninths" variants, [`crate::projection`]).
     pub reach: Reach,
+    /// How a fit chooses the end tangents at a vertex ([`TangentRule`]; default: from the
+    /// star where the per-edge tangents leave a corner that is not convex).
+    pub tangents: TangentRule,
 }
 
 impl Default for MethodOptions {
@@ -194,6 +278,7 @@ impl Default for MethodOptions {
             },
             tweak_t: DEFAULT_TWEAK_T,
             reach: Reach::Third,
+            tangents: TangentRule::Star,
         }
     }
 }
@@ -292,7 +377,13 @@ pub fn method_by_name(
     REGISTRY
         .iter()
         .find(|e| e.name == name)
-        .map(|e| (e.build)(options))
+        .map(|e| {
+            let built = (e.build)(options);
+            match options.tangents {
+                TangentRule::Star => built,
+                TangentRule::PerEdge => Box::new(PerEdgeTangents(built)) as Box<dyn CurveMethod>,
+            }
+        })
         .ok_or_else(|| UnknownMethod {
             name: name.to_string(),
             known: REGISTRY

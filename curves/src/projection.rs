@@ -195,6 +195,11 @@ pub fn projected_chord(
 }
 
 impl CurveMethod for Projection {
+    /// The tangent is the chord projected into the tangent plane: the rule of the source.
+    fn keeps_own_tangents(&self) -> bool {
+        true
+    }
+
     fn name(&self) -> &'static str {
         match self.scaling {
             Scaling::Projected => "projection",

@@ -41,6 +41,7 @@ use mesh::Mesh;
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 
+pub mod facing;
 pub mod fit;
 pub mod gradients;
 pub mod hybrid;

@@ -127,6 +127,9 @@ pub struct Prepared {
     pub estimate_time_seconds: f64,
     /// What the crease detection found.
     pub creases: CreaseSummary,
+    /// Flat sectors set to their plane and normals turned to face their faces
+    /// ([`crate::facing`]).
+    pub facing: crate::facing::FacingSummary,
 }
 
 impl Prepared {
@@ -148,6 +151,22 @@ impl Prepared {
                     String::new()
                 } else {
                     format!(" (fallbacks: {})", counts.join(", "))
+                }
+            ));
+        }
+        let f = &self.facing;
+        if f.flat_sectors + f.normals_turned + f.no_facing_normal + f.given_normals_against_faces
+            > 0
+        {
+            out.push(format!(
+                "sectors: {} flat (given their plane's normal and no curvature), {} normals turned to face every face they touch, {} with no such normal (the data folds there){}",
+                f.flat_sectors,
+                f.normals_turned,
+                f.no_facing_normal,
+                if f.given_normals_against_faces > 0 {
+                    format!(", {} normals from the file at 90° or more from a face (kept)", f.given_normals_against_faces)
+                } else {
+                    String::new()
                 }
             ));
         }
@@ -379,6 +398,16 @@ pub fn prepare_with(
             }
         }
     };
+    // Flat sectors get their plane, normals facing away from a face are turned (`facing`).
+    let facing = if matches!(choice, EstimateChoice::None) {
+        crate::facing::FacingSummary::default()
+    } else {
+        crate::facing::face_the_faces(
+            &mut mesh,
+            normals_given && !replace_normals,
+            curvature_given,
+        )
+    };
     if mesh.sectors().is_none() && crease_summary.creases > 0 {
         // The estimation dropped the sectors (`crate::apply`): say so rather than count
         // creases the fit does not have.
@@ -402,5 +431,6 @@ pub fn prepare_with(
         repair_time_seconds,
         estimate_time_seconds: t1.elapsed().as_secs_f64(),
         creases: crease_summary,
+        facing,
     })
 }

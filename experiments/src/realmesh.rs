@@ -161,6 +161,9 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
         "# Real meshes\n\nThe committed corpora — scans and a tessellated teapot (`data/meshes/`, licences there) and CAD parts made by CSG and remeshed badly on purpose (`data/cad/`, generator there) — each file read as it is, repaired by the stated rules, its creases found by the default rule (docs/conventions.md: the file's, and edges over 40° on tessellated models), its normals and shape tensors estimated per sector, and fitted with the modified Shirman–Séquin scheme and every curve construction.\n\nColumns: *fallback* — faces fitted with the C0 fallback patch; *folded* — faces where a patch normal turns to or past 90° from the data face's normal (`surface::folds`); *kinked* — smooth edges (data dihedral below 10°) where the patches meet at more than 1e-7 rad, of all smooth edges, and the worst; *creases kept* — edges over 40° where the patches meet at least at half the data's angle (`surface::sharp`); *flat* — the largest distance of the surface from a planar face of the data (bounded by creases), relative to the bounding-box diagonal; *G1* — the largest normal angle along smooth boundaries between regular faces (crease edges are C0 by construction).\n\n| mesh | faces | creases | curves | fallback | folded | kinked (of smooth) | worst kink (rad) | creases kept | flat | G1 regular (rad) | fit time (s) |\n|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     let mut notes_md = String::new();
+    let mut causes_md = String::from(
+        "\n## Corners and fallback causes\n\nThe corner test (`surface::fit::fan`): a face corner passes when its two boundary tangents lie in the vertex's tangent plane and turn counter-clockwise about its normal by an angle strictly between 0 and π. *before* — corners failing it with each edge's own end tangents; *after* — failing once every sector with a failing corner has its tangents chosen together from its star (the projection rules keep the tangents their source defines, and are only counted); *fanned*, *no fan* — sectors given a fan, and sectors that have none (fixed crease tangents with no convex fan between them: a straight crease through a single face's corner); *facing away* — sectors left to the per-edge tangents because their normal is at 90° or more from one of their faces (those faces fall back whatever the tangents); *fallback by cause* — `FaceFallbackReason::kind`.\n\n| mesh | curves | corners failing before | after | sectors fanned | no fan | facing away | fallback | fallback by cause |\n|---|---|---:|---:|---:|---:|---:|---:|---|\n",
+    );
     let mut report = Map::new();
     let mut shots: Vec<Vec<Shot>> = corpora.iter().map(|_| Vec::new()).collect();
     // The bar counts the files begun; its message names the one being fitted.
@@ -243,9 +246,34 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 g1.max_angle(),
                 t_fit
             );
+            let mut by_kind: std::collections::BTreeMap<&str, usize> = Default::default();
+            for fb in &f.face_fallbacks {
+                *by_kind.entry(fb.reason.kind()).or_default() += 1;
+            }
+            let _ = writeln!(
+                causes_md,
+                "| {name} | {method} | {} | {} | {} | {} | {} | {} | {} |",
+                f.fan.corners_failing_before,
+                f.fan.corners_failing_after,
+                f.fan.sectors_fanned,
+                f.fan.sectors_unfannable,
+                f.fan.sectors_facing_away,
+                f.face_fallbacks.len(),
+                if by_kind.is_empty() {
+                    "–".to_string()
+                } else {
+                    by_kind
+                        .iter()
+                        .map(|(k, n)| format!("{k} {n}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                }
+            );
             per_method.insert(
                 method.into(),
                 json!({"fallback_faces": f.face_fallbacks.len(),
+                       "fallback_by_reason": by_kind,
+                       "fan": f.fan,
                        "folded_faces": folded_faces,
                        "worst_fold_cosine": worst_fold_cosine,
                        "degenerate_edges": f.degenerate_edges.len(),
@@ -295,6 +323,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             loaded.notes.len()
         ));
     }
+    md.push_str(&causes_md);
     let _ = writeln!(md, "\nWhat was done to each file:\n\n{notes_md}");
 
     let mut limits = Map::new();

@@ -303,7 +303,7 @@ mod tests {
     }
 }
 
-/// `--solver`, `--dbhs-pick`, `--tweak-t` and `--four-ninths`.
+/// `--solver`, `--dbhs-pick`, `--tweak-t`, `--four-ninths` and `--tangents`.
 #[derive(clap::Args, Debug, Clone, Copy)]
 pub struct CurveOptions {
     /// Solver of the optimized construction (and of `--interior` fairing); the names come from
@@ -323,6 +323,20 @@ pub struct CurveOptions {
     /// five ninths along the chord, (4/9) V_a + (5/9) V_b, projected instead of the third.
     #[arg(long)]
     pub four_ninths: bool,
+    /// How the end tangents at a vertex are chosen: `star` (each edge's own, except in a
+    /// sector where they leave a face corner that is not convex: there chosen together from
+    /// the whole star, in the tangent plane, every corner convex) or `per-edge` (each edge's
+    /// from its two end normals alone, as the seeds build them).
+    #[arg(long, default_value_t = curves::TangentRule::Star, value_name = "RULE",
+          value_parser = tangent_rules())]
+    pub tangents: curves::TangentRule,
+}
+
+/// The tangent rules as the values `--tangents` accepts.
+fn tangent_rules() -> impl clap::builder::TypedValueParser<Value = curves::TangentRule> {
+    use clap::builder::TypedValueParser as _;
+    PossibleValuesParser::new(curves::TangentRule::ALL.iter().map(|k| k.name()))
+        .try_map(|name| name.parse::<curves::TangentRule>())
 }
 
 /// `--tweak-t`'s value: a number in (0, 1] (`curves::tweak::check_t`).
@@ -353,6 +367,7 @@ impl CurveOptions {
             } else {
                 curves::Reach::Third
             },
+            tangents: self.tangents,
             ..curves::MethodOptions::default()
         }
     }

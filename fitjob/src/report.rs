@@ -168,6 +168,8 @@ pub struct CurveCounts {
     /// Crease edges with an end where the crease tangent could not be used (the crease leaves
     /// the edge sideways or folds flat): the bisector plane's tangent there.
     pub crease_ends_off_line: usize,
+    /// The corner test before and after the tangent fans (`surface::fit::fan`).
+    pub fan: surface::fit::fan::FanCounts,
 }
 
 /// The per-triangle interior choice.
@@ -385,6 +387,17 @@ impl FitReport {
                     String::new()
                 }
             ));
+            let f = &c.fan;
+            if f.corners_failing_before > 0 {
+                lines.push(format!(
+                    "  corners: {} not convex with each edge's own tangents, {} after the tangent fans ({} sectors fanned, {} without a convex fan, {} left: a normal facing away from a face)",
+                    f.corners_failing_before,
+                    f.corners_failing_after,
+                    f.sectors_fanned,
+                    f.sectors_unfannable,
+                    f.sectors_facing_away
+                ));
+            }
         }
         let t = &self.time;
         if self.streamed {

@@ -484,6 +484,7 @@ pub fn run(mut options: FitOptions, log: &mut dyn FnMut(&str)) -> Result<FitOutc
             shortened_curves: fitted.shortened_curves,
             crease_edges: fitted.crease_edges,
             crease_ends_off_line: fitted.crease_ends_off_line,
+            fan: fitted.fan,
         }),
         interior,
         tessellation,

@@ -2,6 +2,7 @@
 //! file): a module a topic.
 
 mod common;
+mod facing;
 mod gradients;
 mod hybrid;
 mod jet;

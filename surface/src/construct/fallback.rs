@@ -682,10 +682,25 @@ mod tests {
     /// A two-face mesh, face 0 `(0, 1, 2)` beside face 1 `(0, 3, 1)` across the edge 0–1, all in
     /// the plane `z = 0` and seen from `+z`; vertex `i` has the normal `+z` turned by
     /// `turns[i] = (axis angle in the plane, angle)` in degrees. Fitted with `shirman-sequin` on
-    /// `chord` curves; returns face 0's fallback reason, the folded faces and face 0's curves.
+    /// `chord` curves with each edge's own tangents (`curves::TangentRule::PerEdge`: the curves
+    /// this module's rules are about); returns face 0's fallback reason, the folded faces and
+    /// face 0's curves.
     fn fit_two(
         corner2: [f64; 2],
         turns: [(f64, f64); 3],
+    ) -> (
+        Option<crate::fit::FaceFallbackReason>,
+        Vec<usize>,
+        [CubicBez3; 3],
+    ) {
+        fit_two_with(corner2, turns, curves::TangentRule::PerEdge)
+    }
+
+    /// [`fit_two`] with the tangent rule `tangents`.
+    fn fit_two_with(
+        corner2: [f64; 2],
+        turns: [(f64, f64); 3],
+        tangents: curves::TangentRule,
     ) -> (
         Option<crate::fit::FaceFallbackReason>,
         Vec<usize>,
@@ -712,8 +727,11 @@ mod tests {
             &crate::scheme::SchemeOptions::default(),
         )
         .expect("registered");
-        let chord =
-            curves::method_by_name("chord", &curves::MethodOptions::default()).expect("registered");
+        let options = curves::MethodOptions {
+            tangents,
+            ..curves::MethodOptions::default()
+        };
+        let chord = curves::method_by_name("chord", &options).expect("registered");
         let fit = crate::fit::fit_scheme(&mesh, scheme.as_ref(), chord.as_ref()).expect("fits");
         let reason = fit
             .face_fallbacks
@@ -765,6 +783,15 @@ mod tests {
             ))
         );
         assert_unfolded_where_the_old_rule_folds(&folded, &edges);
+        // With the tangents chosen from each vertex's star the same cap is fitted regularly,
+        // and does not fold.
+        let (reason, folded, _) = fit_two_with(
+            [0.5, 0.03],
+            [(0.0, 0.0), (45.0, 50.0), (90.0, 50.0)],
+            curves::TangentRule::Star,
+        );
+        assert_eq!(reason, None);
+        assert!(!folded.contains(&0), "{folded:?}");
         // And with the normal at corner 1 turned 95°, past the face.
         let (reason, folded, edges) = fit_two([0.5, 0.03], [(0.0, 0.0), (45.0, 95.0), (0.0, 0.0)]);
         assert_eq!(

@@ -24,6 +24,7 @@
 //! mesh lacks stop the whole fit: those are the caller's settings, not the data.
 
 pub mod fairing;
+pub mod fan;
 pub mod stream;
 
 use curves::{BoundaryProblem, CubicBez3, CurveMethod, EdgeError};
@@ -58,6 +59,29 @@ pub enum FaceFallbackReason {
         /// The face edge (0, 1, 2).
         edge: usize,
     },
+}
+
+impl FaceFallbackReason {
+    /// A short stable key for counting fallbacks by cause in reports: `zero_area`,
+    /// `normal_against_face`, `tangent_off_plane`, `folded_corner`, `folded_edge`,
+    /// `no_cross_component`, `folds_over_face`, `zero_end_derivative`, `non_finite`,
+    /// `bad_parameter`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            FaceFallbackReason::ZeroArea => "zero_area",
+            FaceFallbackReason::NonFinite => "non_finite",
+            FaceFallbackReason::Folded { .. } => "folded_corner",
+            FaceFallbackReason::FoldedEdge { .. } => "folded_edge",
+            FaceFallbackReason::Scheme(e) => match e {
+                SchemeError::BadParameter { .. } => "bad_parameter",
+                SchemeError::ZeroEndDerivative { .. } => "zero_end_derivative",
+                SchemeError::NormalAgainstFace { .. } => "normal_against_face",
+                SchemeError::TangentOffPlane { .. } => "tangent_off_plane",
+                SchemeError::FoldsOverFace => "folds_over_face",
+                SchemeError::NoCrossComponent { .. } => "no_cross_component",
+            },
+        }
+    }
 }
 
 impl std::fmt::Display for FaceFallbackReason {
@@ -175,6 +199,9 @@ pub struct Fit {
     /// the edge sideways, or folds flat: [`curves::CreaseEnd`]); the curve there takes the
     /// bisector plane's tangent.
     pub crease_ends_off_line: usize,
+    /// What the tangent fans did ([`fan`]): corners failing the corner test before and after,
+    /// sectors fanned and left.
+    pub fan: fan::FanCounts,
     /// Faces fitted with the fallback patch (module docs), in face order.
     pub face_fallbacks: Vec<FaceFallback>,
     /// The control points of every patch, face after face and within a face patch after patch
@@ -202,6 +229,7 @@ impl Default for Fit {
             clamped_tangents: 0,
             shortened_curves: 0,
             crease_ends_off_line: 0,
+            fan: fan::FanCounts::default(),
             face_fallbacks: Vec::new(),
             points: Vec::new(),
         }
@@ -525,6 +553,7 @@ pub fn fit_curves_into(
         points,
         degenerate_edges,
         face_fallbacks,
+        fan: fan_counts,
         ..
     } = &mut *out;
     points.clear();
@@ -573,6 +602,15 @@ pub fn fit_curves_into(
                 }
             }
         });
+    // The tangent fans (`fan`): sectors whose per-edge tangents leave a corner that is not
+    // convex get their tangents chosen together; the rest stay bit for bit.
+    *fan_counts = if !uses_curves {
+        fan::FanCounts::default()
+    } else if method.keeps_own_tangents() {
+        fan::count_failing(mesh, curves)
+    } else {
+        fan::apply_fans(mesh, curves, alphas)
+    };
     *degenerate_edges = edge_errors
         .into_iter()
         .enumerate()

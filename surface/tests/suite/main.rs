@@ -4,6 +4,7 @@
 mod c0_continuity;
 mod creases;
 mod fallback;
+mod fan;
 mod functional;
 mod interior;
 mod mesh_invariants;

@@ -1,0 +1,375 @@
+//! Two rules on every sector's normal and shape tensor after the estimation, from the faces the
+//! sector holds: **flat** sectors get their plane, and a normal **facing away** from one of its
+//! faces is turned, as little as possible, until it faces all of them.
+//!
+//! # Flat sectors
+//!
+//! When every face of a sector (a vertex's star, or its faces between creases) has the same
+//! unit normal up to [`FLAT_ANGLE`], the surface there is a plane whatever the estimator says
+//! (an estimator that looks past the star — a jet on a ball, a multiscale ladder — sees the
+//! curved region two edges away and tilts the normal): the sector gets the area-weighted mean
+//! of its face normals and a zero shape tensor. A face whose three corners are so set, on
+//! straight edge curves, is fitted by its own plane.
+//!
+//! # Normals that face their faces
+//!
+//! Every split-domain patch interpolates its corners' normals, so a normal at 90° or more from
+//! a face it touches folds that face's patch at the corner
+//! (`surface::shirman_sequin::SchemeError::NormalAgainstFace`): the face got the C0 fallback.
+//! On scans this is an estimate that averaged over a thin feature (a fin, a claw, a lip seen
+//! from both sides). The normal `n₀` is replaced by the unit vector nearest to it that makes
+//! an angle of at most `90° −` [`FACING_MARGIN_DEGREES`] with every face of the sector:
+//!
+//! `x* = argmin |x − n₀|²  subject to  N_f · x ≥ δ` (every face `f`, `δ = sin` of the margin),
+//! `n = x*/|x*|`. Every constraint excludes `x = 0` (`δ > 0`), so `x* ≠ 0` and
+//! `N_f · n ≥ δ/|x*| > 0`: the turned normal makes less than 90° with every face (`|x*|` can
+//! exceed 1 by `O(δ²)`, so the margin is `δ` only to that order).
+//!
+//! The projection onto a polyhedron is a strictly convex quadratic program in three unknowns;
+//! it is solved exactly by Seidel's incremental method for LP-type problems (Seidel 1991,
+//! "Small-dimensional linear programming and convex hulls made easy"; the same argument holds
+//! for a strictly convex objective, whose optimum is unique): constraints are added one at a
+//! time, and when the current optimum violates the new one the optimum of the constraints so
+//! far lies on its plane, found by the same method one dimension down (on at most three
+//! planes, where the point is fixed). In a pseudo-random but fixed order of the faces the
+//! expected work is linear in the faces. The problem has no solution exactly when the face
+//! normals lie in no open hemisphere (the data folds over itself at the vertex): no normal
+//! can face all the faces, the sector keeps its estimate and is counted.
+//!
+//! The shape tensor is projected onto the new tangent plane (`P S P`, `P = I − n nᵀ`) so that
+//! `S n = 0` still holds. Normals the file gives are kept: a conflict is only counted.
+
+use mesh::Mesh;
+use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
+
+/// The largest angle (radians) between two face normals of a sector for it to be flat:
+/// 1e-6 rad. Faces of a plane written in single precision (PLY `float`, 2⁻²⁴ ≈ 6e-8 relative
+/// rounding of coordinates in a unit box) on edges down to 1 % of the box tilt by up to
+/// about 1e-5 rad… and one part in 10⁶ of a normal is a bump of 1e-8 over an edge of 1 %,
+/// invisible, while the faces of a finely tessellated cylinder (the flattest curved CAD surface
+/// in the corpus) turn by 1e-2 rad from one to the next. Measured on `data/cad`: the spread of
+/// face normals in planar regions is at most 1.2e-7 rad.
+pub const FLAT_ANGLE: f64 = 1e-6;
+
+/// How far from perpendicular to each of its faces a turned normal must be: 1°. A patch corner
+/// whose normal is within a degree of a face's plane stands almost on edge; more would turn
+/// normals further from the estimate, and stars whose faces span nearly a hemisphere would
+/// have none.
+pub const FACING_MARGIN_DEGREES: f64 = 1.0;
+
+/// What [`face_the_faces`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct FacingSummary {
+    /// Sectors whose faces are coplanar, given their plane's normal and a zero shape tensor.
+    pub flat_sectors: usize,
+    /// Estimated normals at 90° or more from a face of their sector, turned to face them all.
+    pub normals_turned: usize,
+    /// Sectors whose face normals lie in no open hemisphere: no normal faces them all.
+    pub no_facing_normal: usize,
+    /// Normals from the file at 90° or more from a face of their sector (kept as given).
+    pub given_normals_against_faces: usize,
+}
+
+/// The corners of the mesh grouped by sector: `(slot, face)` pairs, slot `v` for a mesh
+/// without sectors.
+fn slot_of(mesh: &Mesh, f: usize, c: usize) -> usize {
+    match mesh.sectors() {
+        Some(s) => s.slot(f, c).unwrap_or(usize::MAX),
+        None => mesh.faces()[f][c],
+    }
+}
+
+/// The number of slots (sectors, or vertices without sectors).
+fn num_slots(mesh: &Mesh) -> usize {
+    mesh.sectors()
+        .map_or(mesh.num_vertices(), |s| s.num_slots())
+}
+
+/// The normal and shape tensor of slot `s`.
+fn slot_data(mesh: &Mesh, s: usize) -> Option<(Vector3<f64>, Matrix3<f64>)> {
+    match mesh.sectors() {
+        Some(sec) => Some((*sec.normal(s)?, *sec.shape(s)?)),
+        None => mesh.vertices().get(s).map(|v| (v.data.n, v.data.shape)),
+    }
+}
+
+/// Sets slot `s`'s normal and shape tensor (and its vertex's, when the vertex has one slot).
+fn set_slot(mesh: &mut Mesh, s: usize, n: Vector3<f64>, shape: Matrix3<f64>, single: &[bool]) {
+    let vertex = match mesh.sectors_mut() {
+        Some(sec) => {
+            let v = sec.slot_vertex(s);
+            sec.set_slot(s, n, shape, true);
+            v
+        }
+        None => Some(s),
+    };
+    if let Some(v) = vertex {
+        if single.get(v).copied().unwrap_or(false) {
+            if let Some(vert) = mesh.vertices_mut().get_mut(v) {
+                vert.data.n = n;
+                vert.data.shape = shape;
+                vert.curvature_known = true;
+            }
+        }
+    }
+}
+
+/// `P S P` with `P = I − n nᵀ` (`n` unit).
+fn project_shape(s: &Matrix3<f64>, n: &Vector3<f64>) -> Matrix3<f64> {
+    let p = Matrix3::identity() - n * n.transpose();
+    p * s * p
+}
+
+/// Applies both rules (module docs) to every sector of `mesh`. `normals_given`: the normals
+/// came from the file (then they are kept; flat sectors get a zero shape tensor where the
+/// given normal is the plane's to [`FLAT_ANGLE`], and conflicts are counted).
+/// `curvature_given`: the shape tensors came from the file (then they are kept).
+pub fn face_the_faces(
+    mesh: &mut Mesh,
+    normals_given: bool,
+    curvature_given: bool,
+) -> FacingSummary {
+    let mut summary = FacingSummary::default();
+    let slots = num_slots(mesh);
+    // Area vectors summed per slot, and each slot's faces (as unit normals) gathered only for
+    // the slots that need them (second pass).
+    let mut area = vec![Vector3::<f64>::zeros(); slots];
+    let mut faces_of: Vec<u32> = vec![0; slots];
+    let face_area = |mesh: &Mesh, f: usize| mesh.face_area_normal(f).ok();
+    for f in 0..mesh.num_faces() {
+        let Some(a) = face_area(mesh, f) else {
+            continue;
+        };
+        if a.norm() <= 0.0 || !a.norm().is_finite() {
+            continue;
+        }
+        for c in 0..3 {
+            let s = slot_of(mesh, f, c);
+            if let Some(slot) = area.get_mut(s) {
+                *slot += a;
+                faces_of[s] = faces_of[s].saturating_add(1);
+            }
+        }
+    }
+    let mean: Vec<Option<Vector3<f64>>> = area.iter().map(|a| a.try_normalize(0.0)).collect();
+    // Per slot: the least cosine of a face normal with the mean and with the slot's normal.
+    let mut min_mean = vec![f64::INFINITY; slots];
+    let mut min_own = vec![f64::INFINITY; slots];
+    let normals: Vec<Vector3<f64>> = (0..slots)
+        .map(|s| {
+            slot_data(mesh, s)
+                .and_then(|(n, _)| n.try_normalize(0.0))
+                .unwrap_or_else(Vector3::zeros)
+        })
+        .collect();
+    for f in 0..mesh.num_faces() {
+        let Some(nf) = mesh.face_unit_normal(f) else {
+            continue;
+        };
+        for c in 0..3 {
+            let s = slot_of(mesh, f, c);
+            if s >= slots {
+                continue;
+            }
+            if let Some(m) = mean[s] {
+                min_mean[s] = min_mean[s].min(nf.dot(&m));
+            }
+            min_own[s] = min_own[s].min(nf.dot(&normals[s]));
+        }
+    }
+    let nv = mesh.num_vertices();
+    let mut slots_per_vertex = vec![0usize; nv];
+    for s in 0..slots {
+        let v = match mesh.sectors() {
+            Some(sec) => sec.slot_vertex(s),
+            None => Some(s),
+        };
+        if let Some(c) = v.and_then(|v| slots_per_vertex.get_mut(v)) {
+            *c += 1;
+        }
+    }
+    let single: Vec<bool> = slots_per_vertex.iter().map(|&c| c == 1).collect();
+    let flat_cos = FLAT_ANGLE.cos();
+    let mut against: Vec<usize> = Vec::new();
+    for s in 0..slots {
+        if faces_of[s] == 0 {
+            continue;
+        }
+        let Some((n0, _)) = slot_data(mesh, s) else {
+            continue;
+        };
+        // One face is no evidence of a plane (a sector of one face on a curved surface).
+        if let Some(m) = mean[s].filter(|_| faces_of[s] >= 2 && min_mean[s] >= flat_cos) {
+            if !normals_given {
+                summary.flat_sectors += 1;
+                set_slot(mesh, s, m, Matrix3::zeros(), &single);
+            } else if !curvature_given && normals[s].dot(&m) >= flat_cos {
+                summary.flat_sectors += 1;
+                set_slot(mesh, s, n0, Matrix3::zeros(), &single);
+            }
+            continue;
+        }
+        if min_own[s] <= 0.0 {
+            if normals_given {
+                summary.given_normals_against_faces += 1;
+            } else {
+                against.push(s);
+            }
+        }
+    }
+    if against.is_empty() {
+        return summary;
+    }
+    // The faces of the slots whose normal faces away from one of them.
+    let mut want = vec![usize::MAX; slots];
+    for (i, &s) in against.iter().enumerate() {
+        want[s] = i;
+    }
+    let mut lists: Vec<Vec<Vector3<f64>>> = vec![Vec::new(); against.len()];
+    for f in 0..mesh.num_faces() {
+        let Some(nf) = mesh.face_unit_normal(f) else {
+            continue;
+        };
+        for c in 0..3 {
+            let s = slot_of(mesh, f, c);
+            if let Some(&i) = want.get(s) {
+                if i != usize::MAX {
+                    lists[i].push(nf);
+                }
+            }
+        }
+    }
+    let floor = FACING_MARGIN_DEGREES.to_radians().sin();
+    for (&s, faces) in against.iter().zip(&lists) {
+        // Half the widest margin any normal has (module docs), and at least the floor.
+        let Some(widest) = widest_margin(faces) else {
+            summary.no_facing_normal += 1;
+            continue;
+        };
+        let delta = (widest * FACING_SHARE).max(floor.min(widest * 0.5));
+        let Some((_, shape0)) = slot_data(mesh, s) else {
+            continue;
+        };
+        match facing_normal(&normals[s], faces, delta) {
+            Some(n) => {
+                summary.normals_turned += 1;
+                set_slot(mesh, s, n, project_shape(&shape0, &n), &single);
+            }
+            None => summary.no_facing_normal += 1,
+        }
+    }
+    summary
+}
+
+/// The share of the widest margin a turned normal keeps from every face's plane: one half. The
+/// nearest normal that merely faces every face stands almost on edge to one of them (its patch
+/// then folds near that corner: measured on `dragon_res3`, 269 regular faces folded with a
+/// margin of 1°); the normal of the widest margin (the centre of the smallest cone holding the
+/// face normals) is the farthest from every face's plane but turns the estimate furthest. Half
+/// of it was measured best of ¼, ½, ¾ on the scans of `data/meshes`.
+pub const FACING_SHARE: f64 = 0.5;
+
+/// The widest margin `max_{|n| = 1} min_f N_f · n` of `faces` (the cosine of the smallest
+/// cone about one axis holding them all), `None` when it is not positive. With
+/// `x* = argmin |x|²` subject to `N_f · x ≥ 1` (the projection of 0, by the same solver), the
+/// margin is `1/|x*|`: scaling any unit `n` of margin `μ > 0` by `1/μ` is feasible, so
+/// `|x*| ≤ 1/μ`, and `x*/|x*|` has margin `1/|x*|`.
+pub fn widest_margin(faces: &[Vector3<f64>]) -> Option<f64> {
+    let mut order: Vec<usize> = (0..faces.len()).collect();
+    order.sort_by_key(|&i| {
+        (i as u64)
+            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .rotate_left(17)
+    });
+    let cons: Vec<Vector3<f64>> = order.iter().map(|&i| faces[i]).collect();
+    let x = seidel(&Vector3::zeros(), &cons, &[], 1.0)?;
+    let len = x.norm();
+    (len > 0.0 && len.is_finite()).then(|| 1.0 / len)
+}
+
+/// Tolerance of a constraint's check inside the incremental solver: the solutions are formed
+/// from unit vectors by a few dozen operations, so rounding is below 1e-14; 1e-12 leaves room.
+const FEASIBLE: f64 = 1e-12;
+
+/// The unit normal nearest `n0` with `N_f · n ≥ δ` for every `faces` normal (module docs), or
+/// `None` when the faces' normals lie in no open hemisphere.
+pub fn facing_normal(
+    n0: &Vector3<f64>,
+    faces: &[Vector3<f64>],
+    delta: f64,
+) -> Option<Vector3<f64>> {
+    // A fixed pseudo-random order (a multiplicative hash of the index): the expected work of
+    // the incremental method is linear in this order, and the result does not depend on it.
+    let mut order: Vec<usize> = (0..faces.len()).collect();
+    order.sort_by_key(|&i| {
+        (i as u64)
+            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+            .rotate_left(17)
+    });
+    let cons: Vec<Vector3<f64>> = order.iter().map(|&i| faces[i]).collect();
+    let x = seidel(n0, &cons, &[], delta)?;
+    let n = x.try_normalize(0.0)?;
+    faces.iter().all(|f| f.dot(&n) > 0.0).then_some(n)
+}
+
+/// The point of `{x : a·x = δ, a ∈ eq}` nearest `n0`: `x = n0 + Σ λ_a a` with the Gram system
+/// `G λ = δ − A n0`. `None` when the planes do not meet in one affine subspace.
+fn project_onto(n0: &Vector3<f64>, eq: &[Vector3<f64>], delta: f64) -> Option<Vector3<f64>> {
+    match eq {
+        [] => Some(*n0),
+        [a] => {
+            let aa = a.norm_squared();
+            (aa > 0.0).then(|| n0 + a * ((delta - a.dot(n0)) / aa))
+        }
+        [a, b] => {
+            let g = Matrix2::new(a.dot(a), a.dot(b), b.dot(a), b.dot(b));
+            let r = Vector2::new(delta - a.dot(n0), delta - b.dot(n0));
+            let l = g.try_inverse().filter(|_| g.determinant().abs() > 1e-30)? * r;
+            Some(n0 + a * l.x + b * l.y)
+        }
+        [a, b, c] => {
+            let m = Matrix3::from_rows(&[a.transpose(), b.transpose(), c.transpose()]);
+            if m.determinant().abs() <= 1e-30 {
+                return None;
+            }
+            m.try_inverse()
+                .map(|inv| inv * Vector3::new(delta, delta, delta))
+        }
+        _ => None,
+    }
+}
+
+/// Seidel's incremental method (module docs): the nearest point to `n0` on the planes `eq`
+/// satisfying `a · x ≥ δ` for every `a` of `cons`.
+fn seidel(
+    n0: &Vector3<f64>,
+    cons: &[Vector3<f64>],
+    eq: &[Vector3<f64>],
+    delta: f64,
+) -> Option<Vector3<f64>> {
+    let mut x = project_onto(n0, eq, delta)?;
+    for i in 0..cons.len() {
+        if cons[i].dot(&x) >= delta - FEASIBLE {
+            continue;
+        }
+        if eq.len() == 3 {
+            return None;
+        }
+        let mut tight: Vec<Vector3<f64>> = eq.to_vec();
+        tight.push(cons[i]);
+        x = seidel(n0, &cons[..i], &tight, delta)?;
+    }
+    Some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_normal_already_facing_its_faces_is_kept() {
+        let faces = [Vector3::new(0.1, 0.0, 1.0).normalize(), Vector3::z()];
+        let n = facing_normal(&Vector3::z(), &faces, 0.0).expect("feasible");
+        assert!((n - Vector3::z()).norm() < 1e-15);
+    }
+}
