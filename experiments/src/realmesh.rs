@@ -162,7 +162,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     );
     let mut notes_md = String::new();
     let mut causes_md = String::from(
-        "\n## Corners and fallback causes\n\nThe corner test (`surface::fit::fan`): a face corner passes when its two boundary tangents lie in the vertex's tangent plane and turn counter-clockwise about its normal by an angle strictly between 0 and π. *before* — corners failing it with each edge's own end tangents; *after* — failing once every sector with a failing corner has its tangents chosen together from its star (the projection rules keep the tangents their source defines, and are only counted); *fanned*, *no fan* — sectors given a fan, and sectors that have none (fixed crease tangents with no convex fan between them: a straight crease through a single face's corner); *facing away* — sectors left to the per-edge tangents because their normal is at 90° or more from one of their faces (those faces fall back whatever the tangents); *fallback by cause* — `FaceFallbackReason::kind`.\n\n| mesh | curves | corners failing before | after | sectors fanned | no fan | facing away | fallback | fallback by cause |\n|---|---|---:|---:|---:|---:|---:|---:|---|\n",
+        "\n## Corners and fallback causes\n\nThe corner test (`surface::fit::fan`): a face corner passes when its two boundary tangents lie in the vertex's tangent plane and turn counter-clockwise about its normal by an angle strictly between 0 and π. *before* — corners failing it with each edge's own end tangents; *after* — failing once every sector with a failing corner has its tangents chosen together from its star (the projection rules keep the tangents their source defines, and are only counted); *fanned*, *no fan* — sectors given a fan, and sectors that have none (fixed crease tangents with no convex fan between them: a straight crease through a single face's corner); *facing away* — sectors left to the per-edge tangents because their normal is at 90° or more from one of their faces (those faces fall back whatever the tangents); *folds forced by the curves* — folded faces whose three edge curves, projected onto the face, leave no patch on them unfolded (`surface::fallback::forced_fold`), of all folded faces; *fallback by cause* — `FaceFallbackReason::kind`.\n\n| mesh | curves | corners failing before | after | sectors fanned | no fan | facing away | folds forced by the curves | fallback | fallback by cause |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     let mut report = Map::new();
     let mut shots: Vec<Vec<Shot>> = corpora.iter().map(|_| Vec::new()).collect();
@@ -246,18 +246,30 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 g1.max_angle(),
                 t_fit
             );
+            // Folded faces whose curves already force the fold (no patch on them avoids it:
+            // `surface::fallback::forced_fold`).
+            let forced_folds = surface::folds::measure(mesh, &f)
+                .folded
+                .iter()
+                .filter(|&&face| {
+                    f.face_curves(mesh, face)
+                        .is_ok_and(|c| surface::fallback::forced_fold(&c).is_some())
+                })
+                .count();
             let mut by_kind: std::collections::BTreeMap<&str, usize> = Default::default();
             for fb in &f.face_fallbacks {
                 *by_kind.entry(fb.reason.kind()).or_default() += 1;
             }
             let _ = writeln!(
                 causes_md,
-                "| {name} | {method} | {} | {} | {} | {} | {} | {} | {} |",
+                "| {name} | {method} | {} | {} | {} | {} | {} | {} of {} | {} | {} |",
                 f.fan.corners_failing_before,
                 f.fan.corners_failing_after,
                 f.fan.sectors_fanned,
                 f.fan.sectors_unfannable,
                 f.fan.sectors_facing_away,
+                forced_folds,
+                folded_faces,
                 f.face_fallbacks.len(),
                 if by_kind.is_empty() {
                     "–".to_string()
@@ -273,6 +285,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 method.into(),
                 json!({"fallback_faces": f.face_fallbacks.len(),
                        "fallback_by_reason": by_kind,
+                       "folds_forced_by_curves": forced_folds,
                        "fan": f.fan,
                        "folded_faces": folded_faces,
                        "worst_fold_cosine": worst_fold_cosine,
