@@ -217,6 +217,7 @@ fn main() {
     let fan = RepairOptions::default();
     let refuse = RepairOptions {
         polygons: PolygonRule::Refuse,
+        ..RepairOptions::default()
     };
     let mut inputs: Vec<(String, RawMesh)> = Vec::new();
     for (name, raw) in fixtures::zoo() {

@@ -38,6 +38,7 @@ pub mod sectors;
 pub mod testbed_format;
 pub mod vertex;
 mod vertex_pieces;
+pub mod weld;
 
 pub use datasets::{
     dataset_by_name, AnalyticSurface, Capsule, DataSet, DataSetError, Sphere, SurfacePoint, Torus,

@@ -3,6 +3,9 @@
 //!
 //! # The rules, in the order they are applied
 //!
+//! 0. **Coincident vertices** (exactly the same position, data that agree) are welded into one
+//!    ([`crate::weld`]; [`RepairOptions::weld`], on by default): pieces a file stores apart
+//!    (the teapot's patches, per-face exports) are joined at their seams.
 //! 1. **Polygons** with more than three corners are split into a fan around their first corner
 //!    (right for convex and star-shaped polygons, which is what exporters write), or refused
 //!    ([`PolygonRule::Refuse`]) with the polygon's index.
@@ -75,6 +78,8 @@ pub enum PolygonRule {
 pub struct RepairOptions {
     /// Faces of more than three corners.
     pub polygons: PolygonRule,
+    /// Vertices at the same position (rule 0).
+    pub weld: crate::weld::WeldRule,
 }
 
 /// Why a raw mesh could not be made into a mesh at all.
@@ -114,6 +119,10 @@ pub enum Reversal {
 /// indices those of the file, unless a field says otherwise.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RepairReport {
+    /// Vertices welded into another at the same position (rule 0).
+    pub welded_vertices: usize,
+    /// Groups of vertices at one position left apart because their file data disagree (rule 0).
+    pub weld_kept_apart: usize,
     /// Polygons of more than three corners split into fans (rule 1).
     pub fanned_polygons: usize,
     /// Faces skipped for repeating a vertex (rule 2).
@@ -151,7 +160,8 @@ impl RepairReport {
     /// True when the file's faces were used exactly as given (no face skipped, reversed,
     /// detached, split or dropped; polygons and unused vertices aside).
     pub fn is_clean(&self) -> bool {
-        self.repeated_vertex_faces.is_empty()
+        self.welded_vertices == 0
+            && self.repeated_vertex_faces.is_empty()
             && self.duplicate_faces.is_empty()
             && self.reoriented_faces == 0
             && self.reversed_components.is_empty()
@@ -170,6 +180,18 @@ impl RepairReport {
             }
             s.join(", ")
         };
+        if self.welded_vertices > 0 {
+            out.push(format!(
+                "welded {} vertices into others at exactly the same position (the file's pieces joined at their seams)",
+                self.welded_vertices
+            ));
+        }
+        if self.weld_kept_apart > 0 {
+            out.push(format!(
+                "kept {} groups of vertices at one position apart: their normals or shape tensors in the file differ",
+                self.weld_kept_apart
+            ));
+        }
         if self.fanned_polygons > 0 {
             out.push(format!(
                 "{} polygons split into triangle fans",
@@ -390,6 +412,34 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
 
     // Rules 1–3: triangles, without repeated vertices or duplicates.
     let (mut faces, mut source) = triangles(raw, options, &mut report)?;
+    // Rule 0, applied to the triangles: corners renumbered to the first vertex at their
+    // position; a triangle that then repeats a vertex is skipped as rule 2 says.
+    let welded = crate::weld::weld_map(raw, options.weld);
+    report.welded_vertices = welded.welded;
+    report.weld_kept_apart = welded.kept_apart;
+    if !welded.map.is_empty() {
+        let map = &welded.map;
+        let mut keep = vec![true; faces.len()];
+        for (t, k) in faces.iter_mut().zip(keep.iter_mut()) {
+            *t = t.map(|v| map[v]);
+            *k = t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+        }
+        let mut i = 0;
+        faces.retain(|_| {
+            i += 1;
+            keep[i - 1]
+        });
+        let mut i = 0;
+        source.retain(|s| {
+            i += 1;
+            if !keep[i - 1] {
+                report.repeated_vertex_faces.push(*s);
+            }
+            keep[i - 1]
+        });
+        report.repeated_vertex_faces.sort_unstable();
+        report.repeated_vertex_faces.dedup();
+    }
     let mut edge_groups = EdgeGroups::new(&faces);
     let dup = duplicate_faces(&faces, &edge_groups);
     if !dup.is_empty() {
@@ -588,7 +638,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     });
     report.components = components.unwrap_or_else(|| count_components(&mesh));
     report.boundary_edges = mesh.par_edges().filter(|e| e.is_boundary()).count();
-    let crease_edges = mesh_creases(raw, &mesh, &vertex_source, &mut report);
+    let crease_edges = mesh_creases(raw, &mesh, &vertex_source, &welded.map, &mut report);
     Ok(Repaired {
         normals_given: given_normals.is_some(),
         mesh,
@@ -607,15 +657,21 @@ fn mesh_creases(
     raw: &RawMesh,
     mesh: &Mesh,
     vertex_source: &[usize],
+    weld: &[usize],
     report: &mut RepairReport,
 ) -> Vec<[usize; 2]> {
     if raw.crease_edges.is_empty() {
         return Vec::new();
     }
+    // A welded vertex's creases are its group's first vertex's (rule 0).
+    let welded = |v: usize| weld.get(v).copied().unwrap_or(v);
     let mut file: Vec<[usize; 2]> = raw
         .crease_edges
         .iter()
-        .map(|&[a, b]| [a.min(b), a.max(b)])
+        .map(|&[a, b]| {
+            let (a, b) = (welded(a), welded(b));
+            [a.min(b), a.max(b)]
+        })
         .collect();
     file.sort_unstable();
     file.dedup();

@@ -5,7 +5,7 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
-use estimate::facing::{facing_normal, FACING_MARGIN_DEGREES};
+use estimate::facing::{facing_normal, widest_margin, FACING_SHARE};
 use estimate::{prepare, EstimateChoice};
 use meshio::RawMesh;
 use nalgebra::{Point3, Vector3};
@@ -58,7 +58,7 @@ proptest! {
         // Face normals within 75° of +z: they lie in an open hemisphere.
         let cons: Vec<Vector3<f64>> = faces.iter().map(|(t, p)| unit(*t, *p)).collect();
         let n0 = unit(start.0, start.1);
-        let delta = FACING_MARGIN_DEGREES.to_radians().sin();
+        let delta = widest_margin(&cons).expect("an open hemisphere") * FACING_SHARE;
         let n = facing_normal(&n0, &cons, delta).expect("an open hemisphere holds them");
         prop_assert!((n.norm() - 1.0).abs() < HOLDS);
         for a in &cons {

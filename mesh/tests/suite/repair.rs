@@ -138,6 +138,7 @@ fn polygons_are_fanned_or_refused() {
     assert_eq!(r.face_source, vec![0, 0, 1, 1, 1]);
     let refuse = RepairOptions {
         polygons: PolygonRule::Refuse,
+        ..RepairOptions::default()
     };
     match repair(&raw, &refuse) {
         Err(
@@ -289,4 +290,113 @@ proptest! {
             Err(e) => prop_assert!(false, "unexpected refusal: {e}"),
         }
     }
+}
+
+/// The octahedron stored as eight separate triangles (24 vertices, three at each position),
+/// as a per-face export writes it.
+fn octa_in_pieces() -> RawMesh {
+    let whole = octa();
+    let mut pos = Vec::new();
+    let mut tris = Vec::new();
+    for t in whole.polygons.iter() {
+        let base = pos.len();
+        for &v in t {
+            pos.push(whole.positions[v]);
+        }
+        tris.push([base, base + 1, base + 2]);
+    }
+    RawMesh::from_triangles(pos, &tris)
+}
+
+#[test]
+fn pieces_at_the_same_positions_are_welded_into_one_closed_mesh() {
+    let raw = octa_in_pieces();
+    let r = repair(&raw, &default()).unwrap();
+    assert_eq!(r.report.welded_vertices, 18);
+    assert_eq!(r.mesh.num_vertices(), 6);
+    assert_eq!(r.report.components, 1);
+    assert_eq!(r.report.boundary_edges, 0);
+    assert!(!r.report.is_clean());
+    assert!(r
+        .report
+        .summary_lines()
+        .iter()
+        .any(|l| l.contains("welded 18 vertices")));
+    // Every mesh vertex comes from the first file vertex at its position.
+    for (v, &s) in r.vertex_source.iter().enumerate() {
+        assert_eq!(r.mesh.vertices()[v].data.p, raw.positions[s]);
+        assert!(raw.positions[..s].iter().all(|q| *q != raw.positions[s]));
+    }
+    // Without the weld the pieces stay eight components.
+    let apart = repair(
+        &raw,
+        &RepairOptions {
+            weld: mesh::weld::WeldRule::Never,
+            ..default()
+        },
+    )
+    .unwrap();
+    assert_eq!(apart.report.components, 8);
+    assert_eq!(apart.report.welded_vertices, 0);
+}
+
+#[test]
+fn split_normals_keep_a_seam_open_and_are_counted() {
+    let mut raw = octa_in_pieces();
+    // Each piece's vertices carry its face's normal: a faceted export with sharp edges.
+    let normals = raw
+        .polygons
+        .iter()
+        .flat_map(|t| {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|v| raw.positions[v]);
+            let n = (b - a).cross(&(c - a)).normalize();
+            [n, n, n]
+        })
+        .collect();
+    raw.normals = Some(normals);
+    let r = repair(&raw, &default()).unwrap();
+    assert_eq!(r.report.welded_vertices, 0);
+    assert_eq!(r.report.weld_kept_apart, 6);
+    assert_eq!(r.report.components, 8);
+}
+
+#[test]
+fn a_sliver_whose_corners_coincide_collapses_and_its_neighbours_join() {
+    // Two triangles of a square, and a sliver (0, 4, 1) whose corner 4 is at vertex 0's place,
+    // stored with its own copy: welded, it repeats a vertex and is skipped.
+    let pos = vec![
+        p(0., 0., 0.),
+        p(1., 0., 0.),
+        p(1., 1., 0.),
+        p(0., 1., 0.),
+        p(0., 0., 0.),
+    ];
+    let raw = RawMesh::from_triangles(pos, &[[0, 1, 2], [0, 2, 3], [4, 1, 0]]);
+    let r = repair(&raw, &default()).unwrap();
+    assert_eq!(r.report.welded_vertices, 1);
+    assert_eq!(r.report.repeated_vertex_faces, vec![2]);
+    assert_eq!(r.mesh.num_faces(), 2);
+}
+
+#[test]
+fn file_creases_follow_their_welded_vertices() {
+    let mut raw = octa_in_pieces();
+    // A crease named by the second copies of the ends of the octahedron's edge 0–1.
+    let at = |q: Point3<f64>| {
+        raw.positions
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| **x == q)
+            .map(|(i, _)| i)
+            .nth(1)
+            .unwrap()
+    };
+    let (a, b) = (at(p(1., 0., 0.)), at(p(0., 1., 0.)));
+    raw.crease_edges = vec![[a, b]];
+    let r = repair(&raw, &default()).unwrap();
+    assert_eq!(r.report.file_creases_kept, 1);
+    assert_eq!(r.crease_edges.len(), 1);
+    let [u, v] = r.crease_edges[0];
+    let ends = [r.mesh.vertices()[u].data.p, r.mesh.vertices()[v].data.p];
+    assert!(ends.contains(&p(1., 0., 0.)) && ends.contains(&p(0., 1., 0.)));
 }
