@@ -161,6 +161,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
         "# Real meshes\n\nThe committed corpora — scans and a tessellated teapot (`data/meshes/`, licences there) and CAD parts made by CSG and remeshed badly on purpose (`data/cad/`, generator there) — each file read as it is, repaired by the stated rules, its creases found by the default rule (docs/conventions.md: the file's, and edges over 40° on tessellated models), its normals and shape tensors estimated per sector, and fitted with the modified Shirman–Séquin scheme and every curve construction.\n\nColumns: *fallback* — faces fitted with the C0 fallback patch; *folded* — faces where a patch normal turns to or past 90° from the data face's normal (`surface::folds`); *kinked* — smooth edges (data dihedral below 10°) where the patches meet at more than 1e-7 rad, of all smooth edges, and the worst; *creases kept* — edges over 40° where the patches meet at least at half the data's angle (`surface::sharp`); *flat* — the largest distance of the surface from a planar face of the data (bounded by creases), relative to the bounding-box diagonal; *G1* — the largest normal angle along smooth boundaries between regular faces (crease edges are C0 by construction).\n\n| mesh | faces | creases | curves | fallback | folded | kinked (of smooth) | worst kink (rad) | creases kept | flat | G1 regular (rad) | fit time (s) |\n|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     let mut notes_md = String::new();
+    let mut closeups: Vec<Closeup> = Vec::new();
     let mut causes_md = String::from(
         "\n## Corners and fallback causes\n\nThe corner test (`surface::fit::fan`): a face corner passes when its two boundary tangents lie in the vertex's tangent plane and turn counter-clockwise about its normal by an angle strictly between 0 and π. *before* — corners failing it with each edge's own end tangents; *after* — failing once every sector with a failing corner has its tangents chosen together from its star (the projection rules keep the tangents their source defines, and are only counted); *fanned*, *no fan* — sectors given a fan, and sectors that have none (fixed crease tangents with no convex fan between them: a straight crease through a single face's corner); *facing away* — sectors left to the per-edge tangents because their normal is at 90° or more from one of their faces (those faces fall back whatever the tangents); *folds forced by the curves* — folded faces whose three edge curves, projected onto the face, leave no patch on them unfolded (`surface::fallback::forced_fold`), of all folded faces; *fallback by cause* — `FaceFallbackReason::kind`.\n\n| mesh | curves | corners failing before | after | sectors fanned | no fan | facing away | folds forced by the curves | fallback | fallback by cause |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
@@ -299,6 +300,9 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                        "fit_time_seconds": t_fit}),
             );
             if method == PICTURED_METHOD {
+                if let Some(c) = closeup(&name, &subject, mesh, loaded.frame, &f)? {
+                    closeups.push(c);
+                }
                 let tess = surface::tessellate_fit(mesh, &f, SAMPLING).map_err(|source| {
                     ExperimentError::Tessellate {
                         subject: subject.clone(),
@@ -337,6 +341,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
         ));
     }
     md.push_str(&causes_md);
+    closeup_pictures(&mut closeups, &out, &mut md)?;
     let _ = writeln!(md, "\nWhat was done to each file:\n\n{notes_md}");
 
     let mut limits = Map::new();
@@ -366,6 +371,185 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     );
     staged.commit()?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// Close-ups of the worst kinks: at most this many meshes, worst first.
+const CLOSEUPS: usize = 8;
+/// The close-up's neighbourhood: the faces within this many vertex rings of the kinked edge's
+/// ends.
+const CLOSEUP_RINGS: usize = 2;
+/// The colour of the two faces on the kinked edge in a close-up (a warm grey, so the shading
+/// still reads).
+const KINKED_FACES: [f32; 3] = [0.75, 0.55, 0.35];
+/// Segments per patch edge of the close-ups (finer than the overviews: a kink is a line).
+const CLOSEUP_SAMPLING: usize = 8;
+
+/// The worst smooth-edge kink of one mesh with each edge's own tangents, and the same
+/// neighbourhood fitted with the tangent fans (the default).
+struct Closeup {
+    name: String,
+    /// The kink with each edge's own tangents, and at the same edge with the fans (radians).
+    before: f64,
+    after: f64,
+    /// The neighbourhood's surfaces, before and after, and the view direction.
+    surfaces: [RenderMesh; 2],
+    view: Vector3<f64>,
+}
+
+/// The triangles of `tess` over the faces `keep` marks (1: shown, 2: shown highlighted), as a
+/// render mesh.
+fn region_mesh(tess: &surface::Tessellation, per_face: usize, keep: &[u8]) -> RenderMesh {
+    let mut map = vec![usize::MAX; tess.positions.len()];
+    let mut out = RenderMesh {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        colors: Vec::new(),
+        faces: Vec::new(),
+    };
+    for (t, &patch) in tess.faces.iter().zip(&tess.patch_of_face) {
+        let mark = keep.get(patch / per_face.max(1)).copied().unwrap_or(0);
+        if mark == 0 {
+            continue;
+        }
+        let color = if mark == 2 {
+            KINKED_FACES
+        } else {
+            colormap::MATERIAL
+        };
+        // Vertices are shared within one colour only (a highlighted face keeps its colour).
+        let tri = t.map(|v| {
+            if map[v] == usize::MAX || out.colors[map[v]] != color {
+                map[v] = out.positions.len();
+                out.positions.push(tess.positions[v]);
+                out.normals.push(tess.normals[v]);
+                out.colors.push(color);
+            }
+            map[v]
+        });
+        out.faces.push(tri);
+    }
+    out
+}
+
+/// The close-up of `fitted`'s mesh at the worst kink of the fit with each edge's own tangents
+/// (when it has one over 1e-7 rad); `None` when there is none.
+fn closeup(
+    name: &str,
+    subject: &str,
+    mesh: &surface::Mesh,
+    frame: surface::Frame,
+    fitted: &surface::Fit,
+) -> Result<Option<Closeup>, ExperimentError> {
+    let per_edge = curves::MethodOptions {
+        tangents: curves::TangentRule::PerEdge,
+        ..curves::MethodOptions::default()
+    };
+    let before_fit = crate::input::fit_prepared(
+        &format!("{subject}, per-edge tangents"),
+        mesh,
+        frame,
+        surface::DEFAULT_SCHEME,
+        PICTURED_METHOD,
+        per_edge,
+    )?
+    .fit;
+    let measure = |f: &surface::Fit| {
+        surface::sharp::measure(mesh, f).map_err(|e| ExperimentError::Measure {
+            subject: subject.to_string(),
+            message: e.to_string(),
+        })
+    };
+    let before = measure(&before_fit)?;
+    let Some(worst) = before.smooth.worst.filter(|w| w.fitted > 1e-7) else {
+        return Ok(None);
+    };
+    // A kink that cannot be measured (no sample with both normals) is shown as NaN, not 0.
+    let after_angle = surface::sharp::edge_kink(mesh, fitted, worst.edge).unwrap_or(f64::NAN);
+    // The faces within CLOSEUP_RINGS vertex rings of the edge's ends; the edge's own faces
+    // highlighted.
+    let mut keep = vec![0u8; mesh.num_faces()];
+    let mut ring: Vec<usize> = worst.vertices.to_vec();
+    for _ in 0..CLOSEUP_RINGS {
+        let mut next = Vec::new();
+        for &v in &ring {
+            for f in mesh.faces_around_vertex(v) {
+                if keep[f] == 0 {
+                    keep[f] = 1;
+                    next.extend(mesh.faces()[f]);
+                }
+            }
+        }
+        next.sort_unstable();
+        next.dedup();
+        ring = next;
+    }
+    let edge = mesh.edge(worst.edge);
+    let mut view = Vector3::zeros();
+    for (f, _) in [Some(edge.first), edge.second].into_iter().flatten() {
+        keep[f] = 2;
+        view += mesh.face_unit_normal(f).unwrap_or_default();
+    }
+    let view = view.try_normalize(0.0).unwrap_or_else(Vector3::z);
+    let tess = |f: &surface::Fit, which: &str| {
+        surface::tessellate_fit(mesh, f, CLOSEUP_SAMPLING).map_err(|source| {
+            ExperimentError::Tessellate {
+                subject: format!("{subject} ({which} close-up)"),
+                source,
+            }
+        })
+    };
+    let per_face = fitted.layout.patches_per_face();
+    let surfaces = [
+        region_mesh(&tess(&before_fit, "per-edge")?, per_face, &keep),
+        region_mesh(&tess(fitted, "fanned")?, per_face, &keep),
+    ];
+    Ok(Some(Closeup {
+        name: name.to_string(),
+        before: worst.fitted,
+        after: after_angle,
+        surfaces,
+        view,
+    }))
+}
+
+/// `worst.png`: each close-up before and after, worst first.
+fn closeup_pictures(
+    closeups: &mut [Closeup],
+    out: &Path,
+    md: &mut String,
+) -> Result<(), ExperimentError> {
+    if closeups.is_empty() {
+        return Ok(());
+    }
+    closeups.sort_by(|a, b| b.before.total_cmp(&a.before));
+    let options = RenderOptions {
+        width: TILE.0,
+        height: TILE.1,
+        ..RenderOptions::default()
+    };
+    let mut tiles = Vec::new();
+    for c in closeups.iter().take(CLOSEUPS) {
+        let az = c.view.y.atan2(c.view.x).to_degrees();
+        let el = c.view.z.clamp(-1.0, 1.0).asin().to_degrees();
+        for (surface, label) in c.surfaces.iter().zip([
+            format!("{}: {:.2} rad", c.name, c.before),
+            format!("{}: {:.1e} rad", c.name, c.after),
+        ]) {
+            let aspect = f64::from(options.width) / f64::from(options.height);
+            let cam = Camera::framing_points(&surface.positions, az, el, aspect);
+            tiles.push(Tile {
+                image: render(surface, &cam, &options)?,
+                label,
+            });
+        }
+    }
+    let title = "worst kinks: own tangents | tangent fans";
+    write_composite(&tiles, 2, title, None, &out.join("worst.png"))?;
+    let _ = writeln!(
+        md,
+        "\n## The worst kinks\n\nEach mesh's worst smooth-edge kink with each edge's own tangents (`--tangents per-edge`, optimized curves), left, and the same neighbourhood (two vertex rings round the edge, its two faces in brown) with the tangent fans, right; the angle across that edge in each.\n\n![{title}](worst.png)"
+    );
+    Ok(())
 }
 
 /// Most objects a picture row holds: more are wrapped onto further rows (each object keeps

@@ -405,6 +405,26 @@ impl Samples {
 /// the inverse of a sub-triangle matrix with entries in sixths, as [`crate::patch`]'s).
 const INSIDE: f64 = 1e-12;
 
+/// The largest angle between the two patches' normals across interior mesh edge `e` over the
+/// measure's samples (what [`measure`] takes as a smooth edge's kink); `None` for a boundary
+/// edge, an edge that does not exist, a fit that does not match the mesh, or an edge with no
+/// sample where both normals are defined.
+pub fn edge_kink(mesh: &Mesh, fit: &Fit, e: usize) -> Option<f64> {
+    let layout = &fit.layout;
+    let per_face = layout.points_per_face();
+    if per_face == 0 || fit.points.len() != per_face * mesh.num_faces() || e >= mesh.num_edges() {
+        return None;
+    }
+    let samples = Samples::new(layout)?;
+    let edge = mesh.edge(e);
+    let (f, lf) = edge.first;
+    let (g, lg) = edge.second?;
+    let points = |f: usize| &fit.points[f * per_face..(f + 1) * per_face];
+    (0..EDGE_SAMPLES)
+        .filter_map(|k| samples.angle_across((points(f), lf), (points(g), lg), k))
+        .reduce(f64::max)
+}
+
 /// Measures the sharp features of `fit` against `mesh` (module docs). Errors when the fit does
 /// not hold one face's patches for every face of the mesh, or its layout leaves a face edge
 /// uncovered.
