@@ -99,9 +99,11 @@ pub struct FanCounts {
 /// `(leaving × arriving) · n > 0`, the angle from the leaving to the arriving tangent
 /// counter-clockwise about `n` strictly between 0 and π.
 pub fn corner_is_convex(leaving: &Vector3<f64>, arriving: &Vector3<f64>, n: &Vector3<f64>) -> bool {
+    // Squared, so no square root is taken: |t · n| ≤ s |t| |n| ⇔ (t · n)² ≤ s² |t|² |n|².
+    let nn = n.norm_squared();
     let in_plane = |t: &Vector3<f64>| {
-        let scale = t.norm() * n.norm();
-        !(scale > 0.0 && t.dot(n).abs() > OFF_PLANE_SINE * scale)
+        let tn = t.dot(n);
+        tn * tn <= OFF_PLANE_SINE * OFF_PLANE_SINE * t.norm_squared() * nn
     };
     in_plane(leaving) && in_plane(arriving) && leaving.cross(arriving).dot(n) > 0.0
 }
@@ -316,22 +318,29 @@ fn leaving(mesh: &Mesh, curves: &[CubicBez3], e: usize, v: usize) -> Vector3<f64
     }
 }
 
-/// Whether corner `c` of face `f` fails the corner test with `curves`.
-fn corner_fails(mesh: &Mesh, curves: &[CubicBez3], f: usize, c: usize) -> bool {
-    let face = mesh.faces()[f];
-    let (Ok(out_e), Ok(in_e), Some(data)) = (
-        mesh.edge_index(f, c),
-        mesh.edge_index(f, (c + 2) % 3),
-        mesh.corner_data(f, c),
-    ) else {
-        return false;
+/// The unit normal of corner `c` of face `f` (its sector's, or its vertex's).
+fn corner_normal(mesh: &Mesh, f: usize, c: usize) -> Option<Vector3<f64>> {
+    match mesh.sectors() {
+        Some(s) => s.normal(s.slot(f, c)?).copied(),
+        None => mesh
+            .vertices()
+            .get(*mesh.faces().get(f)?.get(c)?)
+            .map(|v| v.data.n),
+    }
+}
+
+/// Which corners of face `f` fail the corner test with `curves` (a face whose curves cannot
+/// be read fails none: it is not the fan's to judge).
+fn face_fails(mesh: &Mesh, curves: &[CubicBez3], f: usize) -> [bool; 3] {
+    let Ok(edges) = crate::fit::face_curves(mesh, curves, f) else {
+        return [false; 3];
     };
-    let v = face[c];
-    !corner_is_convex(
-        &leaving(mesh, curves, out_e, v),
-        &leaving(mesh, curves, in_e, v),
-        &data.n,
-    )
+    std::array::from_fn(|c| {
+        let leaving = edges[c].points[1] - edges[c].points[0];
+        let k = (c + 2) % 3;
+        let arriving = edges[k].points[2] - edges[k].points[3];
+        corner_normal(mesh, f, c).is_some_and(|n| !corner_is_convex(&leaving, &arriving, &n))
+    })
 }
 
 /// The failing corners of every face, as `3 f + c`.
@@ -339,9 +348,8 @@ fn failing_corners(mesh: &Mesh, curves: &[CubicBez3]) -> Vec<usize> {
     (0..mesh.num_faces())
         .into_par_iter()
         .flat_map_iter(|f| {
-            (0..3)
-                .filter(move |&c| corner_fails(mesh, curves, f, c))
-                .map(move |c| 3 * f + c)
+            let fails = face_fails(mesh, curves, f);
+            (0..3).filter(move |&c| fails[c]).map(move |c| 3 * f + c)
         })
         .collect()
 }
