@@ -94,10 +94,17 @@ pub struct FanCounts {
     pub tangents_turned: usize,
 }
 
-/// The corner test of the schemes ([`crate::scheme::folded_corner`]) on two tangents at a
-/// corner with normal `n`: both in the tangent plane (`|t̂ · n̂| ≤` [`OFF_PLANE_SINE`]) and
-/// `(leaving × arriving) · n > 0`, the angle from the leaving to the arriving tangent
-/// counter-clockwise about `n` strictly between 0 and π.
+/// The smallest sine of a convex corner's angle: `√ε`-size, as the construction's own
+/// degeneracy threshold (`surface::shirman_sequin::DEGENERATE`). Two crease tangents on one
+/// crease line are opposite to rounding, and their cross product's sign is rounding's: such a
+/// straight corner is not convex, whatever that sign (the scheme's decomposition fails there).
+pub const CONVEX_SINE: f64 = crate::shirman_sequin::DEGENERATE;
+
+/// The corner test: two tangents at a corner with normal `n`, both in the tangent plane
+/// (`|t̂ · n̂| ≤` [`OFF_PLANE_SINE`]) and `(t̂_leaving × t̂_arriving) · n̂ >` [`CONVEX_SINE`]: the
+/// angle from the leaving to the arriving tangent counter-clockwise about `n` strictly between
+/// 0 and π, by more than rounding. The schemes' own test ([`crate::scheme::folded_corner`]) is
+/// the same without the margin.
 pub fn corner_is_convex(leaving: &Vector3<f64>, arriving: &Vector3<f64>, n: &Vector3<f64>) -> bool {
     // Squared, so no square root is taken: |t · n| ≤ s |t| |n| ⇔ (t · n)² ≤ s² |t|² |n|².
     let nn = n.norm_squared();
@@ -105,7 +112,12 @@ pub fn corner_is_convex(leaving: &Vector3<f64>, arriving: &Vector3<f64>, n: &Vec
         let tn = t.dot(n);
         tn * tn <= OFF_PLANE_SINE * OFF_PLANE_SINE * t.norm_squared() * nn
     };
-    in_plane(leaving) && in_plane(arriving) && leaving.cross(arriving).dot(n) > 0.0
+    let turn = leaving.cross(arriving).dot(n);
+    in_plane(leaving)
+        && in_plane(arriving)
+        && turn > 0.0
+        && turn * turn
+            > CONVEX_SINE * CONVEX_SINE * leaving.norm_squared() * arriving.norm_squared() * nn
 }
 
 /// The fan's corner angles (module docs): `theta` the data's corner angles (each floored at
