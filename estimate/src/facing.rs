@@ -277,16 +277,22 @@ pub const FACING_SHARE: f64 = 0.5;
 /// margin is `1/|x*|`: scaling any unit `n` of margin `μ > 0` by `1/μ` is feasible, so
 /// `|x*| ≤ 1/μ`, and `x*/|x*|` has margin `1/|x*|`.
 pub fn widest_margin(faces: &[Vector3<f64>]) -> Option<f64> {
+    let x = seidel(&Vector3::zeros(), &shuffled(faces), &[], 1.0)?;
+    let len = x.norm();
+    (len > 0.0 && len.is_finite()).then(|| 1.0 / len)
+}
+
+/// `faces` in a fixed pseudo-random order (a multiplicative hash of the index): the expected
+/// work of the incremental method is linear in this order, and its result does not depend on
+/// the order (the optimum is unique).
+fn shuffled(faces: &[Vector3<f64>]) -> Vec<Vector3<f64>> {
     let mut order: Vec<usize> = (0..faces.len()).collect();
     order.sort_by_key(|&i| {
         (i as u64)
             .wrapping_mul(0x9E37_79B9_7F4A_7C15)
             .rotate_left(17)
     });
-    let cons: Vec<Vector3<f64>> = order.iter().map(|&i| faces[i]).collect();
-    let x = seidel(&Vector3::zeros(), &cons, &[], 1.0)?;
-    let len = x.norm();
-    (len > 0.0 && len.is_finite()).then(|| 1.0 / len)
+    order.iter().map(|&i| faces[i]).collect()
 }
 
 /// Tolerance of a constraint's check inside the incremental solver: the solutions are formed
@@ -300,16 +306,7 @@ pub fn facing_normal(
     faces: &[Vector3<f64>],
     delta: f64,
 ) -> Option<Vector3<f64>> {
-    // A fixed pseudo-random order (a multiplicative hash of the index): the expected work of
-    // the incremental method is linear in this order, and the result does not depend on it.
-    let mut order: Vec<usize> = (0..faces.len()).collect();
-    order.sort_by_key(|&i| {
-        (i as u64)
-            .wrapping_mul(0x9E37_79B9_7F4A_7C15)
-            .rotate_left(17)
-    });
-    let cons: Vec<Vector3<f64>> = order.iter().map(|&i| faces[i]).collect();
-    let x = seidel(n0, &cons, &[], delta)?;
+    let x = seidel(n0, &shuffled(faces), &[], delta)?;
     let n = x.try_normalize(0.0)?;
     faces.iter().all(|f| f.dot(&n) > 0.0).then_some(n)
 }

@@ -465,8 +465,16 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     }
     if faces.is_empty() {
         return Err(RepairError::Empty(format!(
-            "{} faces in the file, none with three distinct vertices",
-            raw.polygons.len()
+            "{} faces in the file, none with three distinct vertices{}",
+            raw.polygons.len(),
+            if report.welded_vertices > 0 {
+                format!(
+                    " once the {} vertices at the same position as another were welded into it (repair rule 0)",
+                    report.welded_vertices
+                )
+            } else {
+                String::new()
+            }
         )));
     }
     // (Its notes are the only notes, so reading the normals before rule 4 keeps their order.)

@@ -127,9 +127,12 @@ def test_an_empty_mesh_is_an_error_not_a_crash():
 
 
 def test_a_degenerate_mesh_is_fitted_with_every_fallback_counted():
-    # As on the command line: a zero-area face gets the fallback patch, its coincident
-    # vertices straight cubics, and the report says so (never a silent plausible surface).
-    fit = triwb.fit(np.zeros((3, 3)), [[0, 1, 2]])
+    # As on the command line: a zero-area face (three collinear corners) gets the fallback
+    # patch, and the report says so (never a silent plausible surface).
+    fit = triwb.fit([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]], [[0, 1, 2]])
     r = fit.report
     assert [f["reason"] for f in r["fallback_faces"]] == ["zero area"]
-    assert len(r["degenerate_edges"]) == 3
+    # Three corners at one point are one vertex once the repair welds them: nothing is left
+    # to fit, and the error says why.
+    with pytest.raises(triwb.WorkbenchError, match="welded"):
+        triwb.fit(np.zeros((3, 3)), [[0, 1, 2]])
