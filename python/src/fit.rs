@@ -58,6 +58,8 @@ pub struct JobArgs<'a> {
     pub tweak_t: f64,
     /// `--four-ninths`.
     pub four_ninths: bool,
+    /// `--tangents`: `star` or `per-edge`.
+    pub tangents: &'a str,
     /// `--heightfield` (`Some(true)`), `--no-heightfield` (`Some(false)`), or detected (`None`).
     pub heightfield: Option<bool>,
     /// `--interior`.
@@ -120,8 +122,11 @@ pub fn job_options(
     input: fitjob::InputOptions,
     args: &JobArgs<'_>,
 ) -> PyResult<fitjob::FitOptions> {
-    let method_options =
-        crate::curve::method_options(args.solver, args.dbhs_pick, args.tweak_t, args.four_ninths)?;
+    let method_options = ::curves::MethodOptions {
+        tangents: ::curves::TangentRule::from_str(args.tangents)
+            .map_err(|e| usage(format!("tangents: {e}")))?,
+        ..crate::curve::method_options(args.solver, args.dbhs_pick, args.tweak_t, args.four_ninths)?
+    };
     let interior = surface::fairing::InteriorChoice::from_str(args.interior).map_err(usage)?;
     let up = meshio::UpAxis::from_str(args.up).map_err(usage)?;
     Ok(fitjob::FitOptions {
@@ -164,7 +169,10 @@ fn is_name(obj: &Bound<'_, PyAny>) -> bool {
 ///
 /// Options, with the command line's defaults: `scheme` (`schemes()`), `curves`
 /// (`curve_methods()`), `solver` (`solvers()`, for `optimized`), `dbhs_pick`, `tweak_t` (for
-/// `tweak`), `four_ninths` (the projection family's five-ninths point), `heightfield` (`True`:
+/// `tweak`), `four_ninths` (the projection family's five-ninths point), `tangents` (`star`:
+/// a vertex's end tangents chosen together from its star where each edge's own leave a face
+/// corner that is not convex; `per-edge`: each edge's own, as the seeds build them; as
+/// `--tangents`), `heightfield` (`True`:
 /// the functional form required, as `--heightfield`; `False`: never, `--no-heightfield`;
 /// `None`: detected), `interior`
 /// (`default`, `thin-plate`, `membrane`), `estimate` (`estimators()`, or `none`),
@@ -177,8 +185,8 @@ fn is_name(obj: &Bound<'_, PyAny>) -> bool {
 #[pyfunction]
 #[pyo3(signature = (V, F=None, *, normals=None, shape=None, creases=None, resolution=None,
     scheme="shirman-sequin", curves="chord", solver="exact-penalty", dbhs_pick=None,
-    tweak_t=::curves::tweak::DEFAULT_TWEAK_T, four_ninths=false, heightfield=None,
-    interior="default", estimate="hybrid", replace_normals=false, crease_angle=None,
+    tweak_t=::curves::tweak::DEFAULT_TWEAK_T, four_ninths=false, tangents="star",
+    heightfield=None, interior="default", estimate="hybrid", replace_normals=false, crease_angle=None,
     no_creases=false, g1_samples=fitjob::options::DEFAULT_G1_SAMPLES,
     segments=fitjob::options::DEFAULT_TESS, patches_out=None, mesh_out=None, up="z",
     label=None, threads=None, **params))]
@@ -197,6 +205,7 @@ pub fn fit(
     dbhs_pick: Option<&str>,
     tweak_t: f64,
     four_ninths: bool,
+    tangents: &str,
     heightfield: Option<bool>,
     interior: &str,
     estimate: &str,
@@ -253,6 +262,7 @@ pub fn fit(
             dbhs_pick,
             tweak_t,
             four_ninths,
+            tangents,
             heightfield,
             interior,
             g1_samples,

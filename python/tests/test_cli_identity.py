@@ -17,6 +17,8 @@ CASES = [
     ("ring", ["--scheme", "phong", "--phong-alpha", "0.5"]),
     (str(REPO / "data/meshes/bunny.ply"), ["--curves", "optimized"]),
     (str(REPO / "data/cad/gear.ply"), ["--curves", "chord"]),
+    (str(REPO / "data/meshes/teapot.ply"), ["--curves", "optimized"]),
+    (str(REPO / "data/cad/pipe_joint.ply"), ["--curves", "optimized", "--tangents", "per-edge"]),
 ]
 
 
@@ -92,3 +94,19 @@ def test_report_keeps_the_g1_split_fallbacks_and_curve_statistics():
     assert all("reason" in f for f in r["fallback_faces"])
     assert "curve_counts" in r and "time" in r
     assert fit.g1()["crease_edges"] == r["g1"]["crease_edges"]
+
+
+def test_tangents_choose_the_rule_and_the_report_counts_the_corners():
+    # pipe_joint has corners the per-edge tangents leave non-convex: the fans turn them (the
+    # default), per-edge keeps them and only counts.
+    path = str(REPO / "data/cad/pipe_joint.ply")
+    star = triwb.fit(path, curves="optimized")
+    own = triwb.fit(path, curves="optimized", tangents="per-edge")
+    fans, kept = star.report["curve_counts"]["fan"], own.report["curve_counts"]["fan"]
+    assert fans["corners_failing_before"] == kept["corners_failing_before"] > 0
+    assert fans["corners_failing_after"] < fans["corners_failing_before"]
+    assert kept["corners_failing_after"] == kept["corners_failing_before"]
+    assert kept["sectors_fanned"] == 0 < fans["sectors_fanned"]
+    assert not np.array_equal(star.nets, own.nets)
+    with pytest.raises(triwb.UsageError, match="tangents"):
+        triwb.fit(path, tangents="both")

@@ -152,6 +152,7 @@ def fit(
     dbhs_pick: Optional[str] = None,
     tweak_t: float = 0.5858,
     four_ninths: bool = False,
+    tangents: Literal["star", "per-edge"] = "star",
     heightfield: Optional[bool] = None,
     interior: Literal["default", "thin-plate", "membrane"] = "default",
     estimate: str = "hybrid",
