@@ -97,3 +97,63 @@ fn without_estimation_a_file_without_normals_is_refused_by_name() {
         "{err}"
     );
 }
+
+/// What a fit says about a mesh that does not depend on how its faces are numbered or where
+/// each face's corners start: fallback faces, folded faces, corners failing the corner test
+/// before and after the tangent fans, sectors fanned.
+fn fit_counts(label: &str, raw: &RawMesh) -> [usize; 5] {
+    let mesh = prepared(label, raw);
+    let m = method_by_name("optimized", &MethodOptions::default()).unwrap();
+    let f = fit(&mesh, m.as_ref(), &|_| InteriorParameters::default()).unwrap();
+    [
+        f.face_fallbacks.len(),
+        surface::folds::measure(&mesh, &f).folded.len(),
+        f.fan.corners_failing_before,
+        f.fan.corners_failing_after,
+        f.fan.sectors_fanned,
+    ]
+}
+
+/// A user's file as exporters write them carelessly: every third face reversed, and every
+/// face's corners started at another corner. The repair turns the faces back (closed
+/// components outward), and the fit of the file comes out the same, count for count: the
+/// fans, the fallbacks and the folds do not depend on the winding the file happened to have.
+#[test]
+fn shuffled_windings_fit_as_the_original() {
+    let dir = fixtures::corpus::corpus_dir();
+    let cad = dir.join("../cad");
+    for path in [
+        dir.join("bunny.ply"),
+        cad.join("pipe_joint.ply"),
+        cad.join("box_fillet.ply"),
+    ] {
+        let label = path.file_name().unwrap().to_string_lossy().into_owned();
+        let raw = meshio::read_file(&path).unwrap();
+        let tris: Vec<[usize; 3]> = raw
+            .polygons
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let t = [t[0], t[1], t[2]];
+                let t = if i % 3 == 0 { [t[0], t[2], t[1]] } else { t };
+                let r = i % 3;
+                [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
+            })
+            .collect();
+        let mut shuffled = raw.clone();
+        shuffled.polygons = meshio::Polygons::from_triangles(&tris);
+        // The premise: the repair did turn faces back.
+        let repaired = prepare(&shuffled, EstimateChoice::With(default_estimator()), false)
+            .unwrap()
+            .report;
+        assert!(
+            repaired.reoriented_faces > 0 || !repaired.reversed_components.is_empty(),
+            "{label}: {repaired:?}"
+        );
+        assert_eq!(
+            fit_counts(&label, &raw),
+            fit_counts(&format!("{label}, shuffled"), &shuffled),
+            "{label}"
+        );
+    }
+}
