@@ -246,12 +246,10 @@ pub fn face_the_faces(
             continue;
         };
         let delta = widest * FACING_SHARE;
-        let Some((_, shape0)) = slot_data(mesh, s) else {
+        let Some((n0, shape0)) = slot_data(mesh, s) else {
             continue;
         };
-        let n0 = slot_data(mesh, s)
-            .and_then(|(n, _)| n.try_normalize(0.0))
-            .unwrap_or_else(Vector3::zeros);
+        let n0 = n0.try_normalize(0.0).unwrap_or_else(Vector3::zeros);
         match facing_normal(&n0, faces, delta) {
             Some(n) => {
                 summary.normals_turned += 1;

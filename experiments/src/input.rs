@@ -75,8 +75,9 @@ pub struct KeptFit {
     pub g1: surface::G1Report,
     /// The fit's time, seconds.
     pub seconds: f64,
-    /// Faces whose surface turns over (`surface::folds`, measured by the job).
-    pub folded_faces: usize,
+    /// The mesh faces whose surface turns over (`surface::folds`, measured by the job), in
+    /// face order.
+    pub folded: Vec<usize>,
     /// The smallest cosine between a patch normal and its face's (`None`: nothing measured).
     pub worst_fold_cosine: Option<f64>,
 }
@@ -97,11 +98,9 @@ pub fn fit_kept(options: fitjob::FitOptions) -> Result<KeptFit, ExperimentError>
             fit,
             g1,
             seconds: outcome.report.time.fit,
-            folded_faces: outcome
-                .report
-                .folds
-                .as_ref()
-                .map_or(0, |f| f.folded_faces.len()),
+            folded: outcome.report.folds.as_ref().map_or_else(Vec::new, |f| {
+                f.folded_faces.iter().map(|r| r.face).collect()
+            }),
             worst_fold_cosine: outcome.report.folds.and_then(|f| f.worst_cosine),
         }),
         // A subdivision scheme: no patches to keep.

@@ -211,7 +211,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 fit: f,
                 g1,
                 seconds: t_fit,
-                folded_faces,
+                folded,
                 worst_fold_cosine,
             } = crate::input::fit_prepared(
                 &subject,
@@ -233,7 +233,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 "| {name} | {} | {creases} | {method} | {} | {} | {} of {} | {:.1e} | {} of {} | {} | {:.1e} | {:.3} |",
                 mesh.num_faces(),
                 f.face_fallbacks.len(),
-                folded_faces,
+                folded.len(),
                 sharp.smooth.kinked,
                 sharp.smooth.edges,
                 worst_kink,
@@ -249,8 +249,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             );
             // Folded faces whose curves already force the fold (no patch on them avoids it:
             // `surface::fallback::forced_fold`).
-            let forced_folds = surface::folds::measure(mesh, &f)
-                .folded
+            let forced_folds = folded
                 .iter()
                 .filter(|&&face| {
                     f.face_curves(mesh, face)
@@ -270,7 +269,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                 f.fan.sectors_unfannable,
                 f.fan.sectors_facing_away,
                 forced_folds,
-                folded_faces,
+                folded.len(),
                 f.face_fallbacks.len(),
                 if by_kind.is_empty() {
                     "–".to_string()
@@ -288,7 +287,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
                        "fallback_by_reason": by_kind,
                        "folds_forced_by_curves": forced_folds,
                        "fan": f.fan,
-                       "folded_faces": folded_faces,
+                       "folded_faces": folded.len(),
                        "worst_fold_cosine": worst_fold_cosine,
                        "degenerate_edges": f.degenerate_edges.len(),
                        "g1_regular_radians": g1.max_angle(),

@@ -419,24 +419,13 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
     report.weld_kept_apart = welded.kept_apart;
     if !welded.map.is_empty() {
         let map = &welded.map;
-        let mut keep = vec![true; faces.len()];
-        for (t, k) in faces.iter_mut().zip(keep.iter_mut()) {
+        let mut repeats = vec![false; faces.len()];
+        for (t, r) in faces.iter_mut().zip(repeats.iter_mut()) {
             *t = t.map(|v| map[v]);
-            *k = t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+            *r = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
         }
-        let mut i = 0;
-        faces.retain(|_| {
-            i += 1;
-            keep[i - 1]
-        });
-        let mut i = 0;
-        source.retain(|s| {
-            i += 1;
-            if !keep[i - 1] {
-                report.repeated_vertex_faces.push(*s);
-            }
-            keep[i - 1]
-        });
+        let removed = remove_faces(&mut faces, &mut source, &repeats);
+        report.repeated_vertex_faces.extend(removed);
         report.repeated_vertex_faces.sort_unstable();
         report.repeated_vertex_faces.dedup();
     }
@@ -447,19 +436,7 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         for f in dup {
             is_dup[f] = true;
         }
-        let mut k = 0;
-        faces.retain(|_| {
-            k += 1;
-            !is_dup[k - 1]
-        });
-        let mut k = 0;
-        source.retain(|s| {
-            k += 1;
-            if is_dup[k - 1] {
-                report.duplicate_faces.push(*s);
-            }
-            !is_dup[k - 1]
-        });
+        report.duplicate_faces = remove_faces(&mut faces, &mut source, &is_dup);
         report.duplicate_faces.dedup();
         edge_groups = EdgeGroups::new(&faces);
     }
@@ -655,6 +632,32 @@ pub fn repair(raw: &RawMesh, options: &RepairOptions) -> Result<Repaired, Repair
         crease_edges,
         report,
     })
+}
+
+/// Removes the triangles `remove` marks from `faces` and their file faces from `source`
+/// (kept in step, order kept); returns the removed ones' file faces, in order.
+fn remove_faces(
+    faces: &mut Vec<[usize; 3]>,
+    source: &mut Vec<usize>,
+    remove: &[bool],
+) -> Vec<usize> {
+    let removed = source
+        .iter()
+        .zip(remove)
+        .filter(|(_, &r)| r)
+        .map(|(&s, _)| s)
+        .collect();
+    let mut k = 0;
+    faces.retain(|_| {
+        k += 1;
+        !remove[k - 1]
+    });
+    let mut k = 0;
+    source.retain(|_| {
+        k += 1;
+        !remove[k - 1]
+    });
+    removed
 }
 
 /// The file's crease pairs on the mesh (module docs): every mesh edge whose ends come from a

@@ -398,7 +398,7 @@ fn sector_fan_inner(
 ) -> Option<Result<Turns, Unfannable>> {
     let v = mesh.faces()[f][c];
     let slot = slot_of(mesh, f, c);
-    let n = mesh.corner_data(f, c)?.n;
+    let n = corner_normal(mesh, f, c)?;
     // The star, counter-clockwise, and each face's corner at v.
     let star: Vec<(usize, usize)> = mesh
         .faces_around_vertex(v)
@@ -549,42 +549,34 @@ pub fn apply_fans(mesh: &Mesh, curves: &mut [CubicBez3], alphas: &mut [[f64; 2]]
             .map(|&(v, _, fc)| sector_fan(mesh, shared, fc / 3, fc % 3).map(|t| (v, t)))
             .collect()
     };
-    // The new tangents by (edge, end): each edge end belongs to one sector.
+    // The new tangents, each at its (edge, vertex): each edge end belongs to one sector.
     let mut turned: Vec<(usize, usize, Vector3<f64>)> = Vec::new();
-    for fan in &fans {
+    for fan in fans {
         match fan {
             Err(Unfannable::FacingAway) => counts.sectors_facing_away += 1,
             Err(Unfannable::NoFan) => counts.sectors_unfannable += 1,
             Ok((v, tangents)) => {
                 counts.sectors_fanned += 1;
-                for &(e, d) in tangents {
-                    let end = usize::from(mesh.edge(e).vertices[0] != *v);
-                    turned.push((e, end, d));
-                }
+                turned.extend(tangents.into_iter().map(|(e, d)| (e, v, d)));
             }
         }
     }
-    for (e, end, d) in turned {
-        let curve = &curves[e];
-        let current = if end == 0 {
-            travel_tangent(curve, 0)
-        } else {
-            -travel_tangent(curve, 1)
-        };
-        if current == d {
+    for (e, v, d) in turned {
+        if leaving(mesh, curves, e, v) == d {
             continue;
         }
-        counts.tangents_turned += 1;
+        let end = usize::from(mesh.edge(e).vertices[0] != v);
         let mut lines = [None, None];
         lines[end] = Some(if end == 0 { d } else { -d });
-        let turned = apply_tangents(curve, lines);
-        // The monotone-polygon bound for the new tangents (lengths in unit-chord form).
-        let [p0, p1, p2, p3] = turned.points;
+        // The monotone-polygon bound for the new tangents (lengths in unit-chord form); a
+        // curve of no chord has no lengths to bound, and is left as it is.
+        let [p0, p1, p2, p3] = apply_tangents(&curves[e], lines).points;
         let chord = p3 - p0;
         let len = chord.norm();
         if !(len > 0.0 && len.is_finite()) {
             continue;
         }
+        counts.tangents_turned += 1;
         let x = chord / len;
         let legs = [p1 - p0, p3 - p2];
         let alpha = legs.map(|l| 3.0 * l.norm() / len);
@@ -600,8 +592,7 @@ pub fn apply_fans(mesh: &Mesh, curves: &mut [CubicBez3], alphas: &mut [[f64; 2]]
         curves[e] = CubicBez3::new([p0, p0 + legs[0] * scale(0), p3 - legs[1] * scale(1), p3]);
         alphas[e] = bounded;
     }
-    let after = failing_corners(mesh, curves);
-    counts.corners_failing_after = after.len();
+    counts.corners_failing_after = failing_corners(mesh, curves).len();
     counts
 }
 
