@@ -163,7 +163,7 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
     let mut notes_md = String::new();
     let mut closeups: Vec<Closeup> = Vec::new();
     let mut causes_md = String::from(
-        "\n## Corners and fallback causes\n\nThe corner test (`surface::fit::fan`): a face corner passes when its two boundary tangents lie in the vertex's tangent plane and turn counter-clockwise about its normal by an angle strictly between 0 and π. *before* — corners failing it with each edge's own end tangents; *after* — failing once every sector with a failing corner has its tangents chosen together from its star (the projection rules keep the tangents their source defines, and are only counted); *fanned*, *no fan* — sectors given a fan, and sectors that have none (fixed crease tangents with no convex fan between them: a straight crease through a single face's corner); *facing away* — sectors left to the per-edge tangents because their normal is at 90° or more from one of their faces (those faces fall back whatever the tangents); *folds forced by the curves* — folded faces whose three edge curves, projected onto the face, leave no patch on them unfolded (`surface::fallback::forced_fold`), of all folded faces; *fallback by cause* — `FaceFallbackReason::kind`.\n\n| mesh | curves | corners failing before | after | sectors fanned | no fan | facing away | folds forced by the curves | fallback | fallback by cause |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n",
+        "\n## Corners and fallback causes\n\nThe corner test (`surface::fit::fan`): a face corner passes when its two boundary tangents lie in the vertex's tangent plane and turn counter-clockwise about its normal by an angle strictly between 0 and π. *before* — corners failing it with each edge's own end tangents; *after* — failing once every sector with a failing corner has its tangents chosen together from its star (the projection rules keep the tangents their source defines, and are only counted); *fanned* — sectors given a fan; *straight* — straight crease corners (a single face between two crease edges whose tangents are opposite: no fan exists, the two crease curves get one direction and length there, the crease C1, and the scheme builds the face with its straight-corner form, `surface::shirman_sequin`; their corners stay in *after*); *no fan* — sectors that have neither; *facing away* — sectors left to the per-edge tangents because their normal is at 90° or more from one of their faces (those faces fall back whatever the tangents); *folds forced by the curves* — folded faces whose three edge curves, projected onto the face, leave no patch on them unfolded (`surface::fallback::forced_fold`), of all folded faces; *fallback by cause* — `FaceFallbackReason::kind`.\n\n| mesh | curves | corners failing before | after | sectors fanned | straight | no fan | facing away | folds forced by the curves | fallback | fallback by cause |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     let mut report = Map::new();
     let mut shots: Vec<Vec<Shot>> = corpora.iter().map(|_| Vec::new()).collect();
@@ -262,10 +262,11 @@ pub fn run(args: &RealMeshArgs) -> Result<ExitCode, ExperimentError> {
             }
             let _ = writeln!(
                 causes_md,
-                "| {name} | {method} | {} | {} | {} | {} | {} | {} of {} | {} | {} |",
+                "| {name} | {method} | {} | {} | {} | {} | {} | {} | {} of {} | {} | {} |",
                 f.fan.corners_failing_before,
                 f.fan.corners_failing_after,
                 f.fan.sectors_fanned,
+                f.fan.sectors_straight,
                 f.fan.sectors_unfannable,
                 f.fan.sectors_facing_away,
                 forced_folds,

@@ -390,10 +390,11 @@ impl FitReport {
             let f = &c.fan;
             if f.corners_failing_before > 0 {
                 lines.push(format!(
-                    "  corners: {} not convex with each edge's own tangents, {} after the tangent fans ({} sectors fanned, {} without a convex fan, {} left: a normal facing away from a face)",
+                    "  corners: {} not convex with each edge's own tangents, {} after the tangent fans ({} sectors fanned, {} straight crease corners, {} without a convex fan, {} left: a normal facing away from a face)",
                     f.corners_failing_before,
                     f.corners_failing_after,
                     f.sectors_fanned,
+                    f.sectors_straight,
                     f.sectors_unfannable,
                     f.sectors_facing_away
                 ));

@@ -80,8 +80,8 @@ pub use scheme::{
     DEFAULT_SCHEME,
 };
 pub use shirman_sequin::{
-    chiyokura_kimura, macro_patch, CrossEnd, CrossFailure, InteriorParameters, QuarticNet,
-    SchemeError,
+    chiyokura_kimura, macro_patch, macro_patch_creased, CrossEnd, CrossFailure, InteriorParameters,
+    QuarticNet, SchemeError,
 };
 pub use tessellate::{tessellate, TessError, Tessellation};
 pub use tessellate_fit::{

@@ -81,6 +81,37 @@
 //!
 //! Any `β_i > 0` gives a G1 surface, as the seed says.
 //!
+//! # Straight crease corners
+//!
+//! A corner `V_i` whose two edges are both crease lines there (a single face between two
+//! crease edges: its sector has no other face) carries the crease's tangents, which lie in both
+//! sectors' tangent planes and so on their common line: opposite, `a = −b` for the cubic legs
+//! `a = E_a − V_i`, `b = E_b − V_i` once the fit gives them equal lengths
+//! (`surface::fit::fan`, a crease C1 through the vertex). Then `m = 0` above,
+//! `3(a + b) = 3μ_0(J¹_i − V_i)`, leaves `J¹_i` on the crease line for every `β_i`: the two
+//! sub-patches at the corner would have a corner of zero angle, and the Chiyokura–Kimura cross
+//! vector has no component across the edges ([`SchemeError::NoCrossComponent`]). The face is
+//! still fitted G1 by taking `μ_0 = 0` there (`β_i = ∞`), which `m = 0` allows exactly when
+//! `a + b = 0`:
+//!
+//! * `J¹_i = V_i + u`, `u = ℓ ĉ` with `ĉ = n_i × â` the unit perpendicular into the face in
+//!   the tangent plane and `ℓ = ĉ · (V_{i+1} + V_{i−1} − 2V_i)/9` (the C1 construction's
+//!   `β(a + b)` for chords in thirds, `β = ⅓`, measured across the crease): sub-patch `i` has
+//!   the corner tangents `a` and `¾u`, sub-patch `i − 1` has `¾u` and `b = −a`, and both have
+//!   the normal `a × u ∥ n_i` there;
+//! * `m = 1` reads `4[(C_L − I¹_i) + (C_R − I¹_i)] = μ_1 Δ_0 = 3u`: no longer a condition on
+//!   `J²_i` but on the two cross-boundary points next to the corner. Both lie on crease edges,
+//!   across which no G1 is owed, so Chiyokura–Kimura's `C_L`, `C_R` are each moved by half of
+//!   the defect `¾u − (C_L − I¹_i) − (C_R − I¹_i)`;
+//! * `J²_i = V_i + 2u` (free now; the interior cubic leaves the corner at even steps);
+//! * `m = 2` with `μ_0 = 0`: `R_i = 2I²_i + 6(J²_i − J¹_i)/4`; `m = 3` is unchanged.
+//!
+//! Every coefficient of `D_L + D_R = μP'` still holds (`μ(t) = 3t`), and `D_L`, `D_R` lie on
+//! opposite sides of `P'` wherever they are not along it: G1 across the interior boundaries,
+//! Chiyokura–Kimura (untouched) across the face's third edge, and the crease edges C0 as every
+//! crease. [`macro_patch_creased`] builds it; [`macro_patch`] (no creases known) refuses such a
+//! corner as before.
+//!
 //! # Where the seed differs
 //!
 //! Mann's eq 1, `I_i2` and `N_i` formulas are mutually consistent and equal to the above with
@@ -300,6 +331,28 @@ pub fn macro_patch(
     edges: &[CubicBez3; 3],
     params: &InteriorParameters,
 ) -> Result<[QuarticNet; 3], SchemeError> {
+    macro_patch_creased(vertices, edges, params, [false; 3])
+}
+
+/// The largest `|a + b| / max(|a|, |b|)` of a corner's two cubic legs for the corner to be
+/// built as a straight crease corner (module docs): the same `√ε`-size threshold as the rest
+/// of the construction. The `m = 0` condition is then off by `3(a + b)`, which turns the two
+/// sub-patches' normals at the corner apart by about `|a + b| / |a|`; the fit gives the legs
+/// of a straight crease corner exactly opposite directions and equal lengths, so that is the
+/// rounding of `E − V`.
+pub const STRAIGHT_SINE: f64 = DEGENERATE;
+
+/// [`macro_patch`] on a face whose crease edges are known: `creased[i]` says that both edges at
+/// corner `i` are crease lines there. Such a corner whose legs are opposite and of one length
+/// (within [`STRAIGHT_SINE`]) is built as a straight crease corner (module docs), G1 where
+/// [`macro_patch`] refuses it; every other corner, and every face without one, gets
+/// [`macro_patch`]'s nets bit for bit.
+pub fn macro_patch_creased(
+    vertices: [&VertexData; 3],
+    edges: &[CubicBez3; 3],
+    params: &InteriorParameters,
+    creased: [bool; 3],
+) -> Result<[QuarticNet; 3], SchemeError> {
     for (name, values) in [("beta", params.beta), ("c", params.c)] {
         for (index, value) in values.into_iter().enumerate() {
             if !(value > 0.0 && value.is_finite()) {
@@ -314,8 +367,18 @@ pub fn macro_patch(
     let beta = params.beta;
     refuse_folding(&v, &n, edges)?;
 
+    // Straight crease corners: the step `u` of the interior cubic leaving them.
+    let straight: [Option<Vector3<f64>>; 3] = std::array::from_fn(|i| {
+        creased[i]
+            .then(|| straight_step(&v, &n, edges, i))
+            .flatten()
+    });
+
     // m = 0: first interior-boundary points.
     let j1: [Point3<f64>; 3] = std::array::from_fn(|i| {
+        if let Some(u) = straight[i] {
+            return v[i] + u;
+        }
         let ea = edges[i].points[1];
         let eb = edges[prev(i)].points[2];
         v[i] + ((ea - v[i]) + (eb - v[i])) * beta[i]
@@ -354,8 +417,21 @@ pub fn macro_patch(
             })?;
     }
 
+    // m = 1 at a straight corner: the two cross-boundary points next to it (on crease edges)
+    // share the defect of 4[(C_L − I¹) + (C_R − I¹)] = 3u.
+    for (i, u) in straight.iter().enumerate() {
+        if let Some(u) = u {
+            let defect = u * 0.75 - ((c1[i] - i1[i]) + (c2[prev(i)] - i1[i]));
+            c1[i] += defect / 2.0;
+            c2[prev(i)] += defect / 2.0;
+        }
+    }
+
     // m = 1: second interior-boundary points; m = 3: the split point.
     let j2: [Point3<f64>; 3] = std::array::from_fn(|i| {
+        if let Some(u) = straight[i] {
+            return v[i] + u * 2.0;
+        }
         let cl = c1[i];
         let cr = c2[prev(i)];
         let sum = (cl - i1[i]) + (cr - i1[i]);
@@ -367,6 +443,10 @@ pub fn macro_patch(
 
     // m = 2: the row-2 middle points.
     let r: [Vector3<f64>; 3] = std::array::from_fn(|i| {
+        if straight[i].is_some() {
+            // μ_0 = 0.
+            return i2[i].coords * 2.0 + (j2[i] - j1[i]) * (6.0 / 4.0);
+        }
         i2[i].coords * 2.0 + ((s - j2[i]) / beta[i] + (j2[i] - j1[i]) * 6.0) / 4.0
     });
     let nmid: [Point3<f64>; 3] =
@@ -383,6 +463,28 @@ pub fn macro_patch(
             s,
         ]
     }))
+}
+
+/// The step `u = ℓ ĉ` of the interior cubic at straight crease corner `i` (module docs), or
+/// `None` where the corner is not straight (legs not opposite and of one length within
+/// [`STRAIGHT_SINE`]) or the face does not reach across the crease line (`ℓ` not above
+/// [`DEGENERATE`] times the legs: a face folded over its corner, left to the refusals).
+fn straight_step(
+    v: &[Point3<f64>; 3],
+    n: &[Vector3<f64>; 3],
+    edges: &[CubicBez3; 3],
+    i: usize,
+) -> Option<Vector3<f64>> {
+    let (next, prev) = ((i + 1) % 3, (i + 2) % 3);
+    let a = edges[i].points[1] - v[i];
+    let b = edges[prev].points[2] - v[i];
+    let scale = a.norm().max(b.norm());
+    if !(scale > 0.0 && (a + b).norm() <= STRAIGHT_SINE * scale) {
+        return None;
+    }
+    let c_hat = n[i].cross(&a).try_normalize(0.0)?;
+    let ell = c_hat.dot(&((v[next] - v[i]) + (v[prev] - v[i]))) / 9.0;
+    (ell > DEGENERATE * scale).then(|| c_hat * ell)
 }
 
 /// Derivatives of a macro-patch's control points with respect to its six interior parameters

@@ -85,6 +85,13 @@ pub struct FanCounts {
     /// the tangent plane, an angle to fill of `m ·` [`MAX_CORNER`] or more, a star the
     /// half-edges do not walk in one piece.
     pub sectors_unfannable: usize,
+    /// Straight crease corners: sectors of a single face between two crease edges whose
+    /// (fixed) tangents are opposite, so no fan exists. Their two crease curves are given one
+    /// direction and one length there (the crease C1 through the vertex), and the scheme builds
+    /// the face with its straight-corner form (`surface::shirman_sequin`, "Straight crease
+    /// corners"); their corners still fail the corner test, and are counted in
+    /// `corners_failing_after`.
+    pub sectors_straight: usize,
     /// Sectors with a failing corner whose normal is at 90° or more from one of their faces:
     /// those faces are refused by the G1 schemes whatever the tangents, and the sector keeps
     /// the per-edge rule's (clamped) tangents, which keep the fallback patch's curves close to
@@ -381,6 +388,9 @@ enum Unfannable {
     FacingAway,
     /// No convex fan exists on its fixed ends, or its star could not be walked.
     NoFan,
+    /// A single face between two crease edges (mesh edges `[0]`, `[1]`) whose fixed tangents
+    /// are opposite: a straight crease corner ([`FanCounts::sectors_straight`]).
+    Straight([usize; 2]),
 }
 
 /// The new tangents (mesh edge, unit direction leaving `v`) of the sector of corner `(f, c)`,
@@ -487,6 +497,11 @@ fn sector_fan_inner(
             }
         })
     });
+    if let (1, Some([FanEnd::Fixed(a), FanEnd::Fixed(b)])) = (run.len(), ends) {
+        if (a + b).norm() <= crate::shirman_sequin::STRAIGHT_SINE {
+            return Some(Err(Unfannable::Straight([edges[0], edges[1]])));
+        }
+    }
     let dirs = fan_directions(&n, &chords, ends)?;
     let m = edges.len() - 1;
     let take = if closed { m } else { m + 1 };
@@ -551,10 +566,12 @@ pub fn apply_fans(mesh: &Mesh, curves: &mut [CubicBez3], alphas: &mut [[f64; 2]]
     };
     // The new tangents, each at its (edge, vertex): each edge end belongs to one sector.
     let mut turned: Vec<(usize, usize, Vector3<f64>)> = Vec::new();
-    for fan in fans {
+    let mut straight: Vec<(usize, [usize; 2])> = Vec::new();
+    for (fan, &(v, _, _)) in fans.into_iter().zip(&keys) {
         match fan {
             Err(Unfannable::FacingAway) => counts.sectors_facing_away += 1,
             Err(Unfannable::NoFan) => counts.sectors_unfannable += 1,
+            Err(Unfannable::Straight(pair)) => straight.push((v, pair)),
             Ok((v, tangents)) => {
                 counts.sectors_fanned += 1;
                 turned.extend(tangents.into_iter().map(|(e, d)| (e, v, d)));
@@ -592,8 +609,60 @@ pub fn apply_fans(mesh: &Mesh, curves: &mut [CubicBez3], alphas: &mut [[f64; 2]]
         curves[e] = CubicBez3::new([p0, p0 + legs[0] * scale(0), p3 - legs[1] * scale(1), p3]);
         alphas[e] = bounded;
     }
+    for (v, pair) in straight {
+        if even_straight_corner(mesh, curves, alphas, v, pair) {
+            counts.sectors_straight += 1;
+        } else {
+            counts.sectors_unfannable += 1;
+        }
+    }
     counts.corners_failing_after = failing_corners(mesh, curves).len();
     counts
+}
+
+/// Gives the two crease curves of a straight crease corner at `v` (mesh edges `pair`, whose
+/// tangents leave `v` in opposite directions to within
+/// [`crate::shirman_sequin::STRAIGHT_SINE`]) exactly opposite directions, their mean, and one
+/// length, the shorter leg's: the crease is then C1 through `v`, the legs `a`, `b` of the face
+/// between them satisfy `a + b = 0` to the rounding of `E − V`, and the scheme can build it
+/// ([`FanCounts::sectors_straight`]). Shortening a leg keeps it within the monotone-polygon
+/// bound it met. False (nothing changed) where a leg has no length or a curve no chord.
+fn even_straight_corner(
+    mesh: &Mesh,
+    curves: &mut [CubicBez3],
+    alphas: &mut [[f64; 2]],
+    v: usize,
+    pair: [usize; 2],
+) -> bool {
+    let end = |e: usize| usize::from(mesh.edge(e).vertices[0] != v);
+    let leg = |c: &CubicBez3, end: usize| {
+        let p = c.points;
+        if end == 0 {
+            p[1] - p[0]
+        } else {
+            p[2] - p[3]
+        }
+    };
+    let legs = pair.map(|e| leg(&curves[e], end(e)));
+    let chords = pair.map(|e| (curves[e].points[3] - curves[e].points[0]).norm());
+    let len = legs[0].norm().min(legs[1].norm());
+    if !(len > 0.0 && len.is_finite() && chords.iter().all(|c| *c > 0.0 && c.is_finite())) {
+        return false;
+    }
+    let Some(d) = (legs[0].normalize() - legs[1].normalize()).try_normalize(0.0) else {
+        return false;
+    };
+    for (k, (&e, sign)) in pair.iter().zip([1.0, -1.0]).enumerate() {
+        let end = end(e);
+        let p = &mut curves[e].points;
+        if end == 0 {
+            p[1] = p[0] + d * (sign * len);
+        } else {
+            p[2] = p[3] + d * (sign * len);
+        }
+        alphas[e][end] = 3.0 * len / chords[k];
+    }
+    true
 }
 
 #[cfg(test)]

@@ -654,13 +654,10 @@ pub fn build_face(
         face: f,
         vertices: [&data[0], &data[1], &data[2]],
         edges: &edges,
-        // Only the schemes that make their own boundaries read the crease lines; the others
-        // have them in their (shared) edge curves already.
-        creases: if scheme.uses_curves() {
-            crate::scheme::NO_CREASES
-        } else {
-            face_creases(mesh, f)
-        },
+        // The schemes that make their own boundaries project onto the crease lines; the
+        // others have them in their (shared) edge curves already, and Shirman–Séquin reads
+        // which corners lie between two creases.
+        creases: face_creases(mesh, f),
     };
     let built = if mesh.is_degenerate_face(f) {
         Err(FaceFallbackReason::ZeroArea)

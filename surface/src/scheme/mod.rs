@@ -216,9 +216,10 @@ pub struct FaceInput<'a> {
     pub edges: &'a [CubicBez3; 3],
     /// Per face edge `e`, at its start `V_e` (`[0]`) and end `V_{e+1}` (`[1]`): the direction of
     /// the crease line where the edge is a crease at that end ([`crate::fit::edge_ends`]), else
-    /// `None` ([`NO_CREASES`] for a face without creases). Filled by the fit for the schemes
-    /// that make their own boundaries ([`Scheme::uses_curves`] false); the others find the
-    /// crease in their edge curves.
+    /// `None` ([`NO_CREASES`] for a face without creases). Filled by the fit for every scheme:
+    /// those that make their own boundaries ([`Scheme::uses_curves`] false) project onto these
+    /// lines; those on curves find the crease in their edge curves, and `shirman-sequin` reads
+    /// which corners lie between two creases (straight crease corners).
     pub creases: [[Option<Vector3<f64>>; 2]; 3],
 }
 

@@ -2,7 +2,9 @@
 //! per face over the centroid split on the face's cubic edge curves (derivation in
 //! [`crate::shirman_sequin`]), with its C0 fallback ([`crate::fallback`]) for faces it cannot
 //! fit. This file adapts that module to the [`Scheme`] trait: the nets are the same, byte
-//! for byte (Appendix A and B tests), with one choice of its own: a face whose macro-patch
+//! for byte (Appendix A and B tests), a corner between two crease edges is built as a straight
+//! crease corner where its tangents are opposite ([`crate::shirman_sequin::macro_patch_creased`],
+//! from the crease lines the fit gives [`FaceInput::creases`]), and one choice of its own: a face whose macro-patch
 //! turns over it (a patch normal at 90° or more from the face normal at a sample of the fold
 //! measure, `surface::folds`) while the fallback patch on the same curves does not gets the
 //! fallback ([`SchemeError::FoldsOverFace`]): a C0 crease instead of a fold
@@ -16,7 +18,7 @@ use super::{Continuity, FaceInput, Layout, ParameterSpec, Scheme, SchemeOptions,
 use crate::fallback::{face_normal, fallback_patch, folds_over};
 use crate::fit::FaceFallbackReason;
 use crate::shirman_sequin::{
-    macro_patch, InteriorParameters, SchemeError, DEFAULT_BETA, DEFAULT_C,
+    macro_patch_creased, InteriorParameters, SchemeError, DEFAULT_BETA, DEFAULT_C,
 };
 
 /// Where the interior parameters come from.
@@ -146,8 +148,18 @@ impl Scheme for ShirmanSequin<'_> {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
-        let nets = macro_patch(input.vertices, input.edges, &self.params(input.face))
-            .map_err(FaceFallbackReason::Scheme)?;
+        // A corner between two crease edges may be a straight crease corner
+        // (`crate::shirman_sequin`, "Straight crease corners").
+        let creased = std::array::from_fn(|i| {
+            input.crease_line(i, i).is_some() && input.crease_line(i, (i + 2) % 3).is_some()
+        });
+        let nets = macro_patch_creased(
+            input.vertices,
+            input.edges,
+            &self.params(input.face),
+            creased,
+        )
+        .map_err(FaceFallbackReason::Scheme)?;
         if !nets
             .iter()
             .flatten()

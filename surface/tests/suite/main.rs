@@ -21,4 +21,5 @@ mod scheme_ss_variants;
 mod schemes;
 mod sharp;
 mod shirman_sequin;
+mod straight_corner;
 mod tangent_rules;
