@@ -39,6 +39,9 @@
 //!
 //! The shape tensor is projected onto the new tangent plane (`P S P`, `P = I − n nᵀ`) so that
 //! `S n = 0` still holds. Normals the file gives are kept: a conflict is only counted.
+//!
+//! A sector with no facing normal is cut where the data folds ([`crate::fold_split`]) and the
+//! rules run again on its pieces.
 
 use mesh::Mesh;
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
@@ -63,6 +66,11 @@ pub struct FacingSummary {
     pub no_facing_normal: usize,
     /// Normals from the file at 90° or more from a face of their sector (kept as given).
     pub given_normals_against_faces: usize,
+    /// Sectors with no facing normal cut at their sharpest edges into sectors that each have
+    /// one ([`crate::fold_split`]).
+    pub fold_sectors_cut: usize,
+    /// Edges those cuts made creases.
+    pub fold_edges_cut: usize,
 }
 
 /// The corners of the mesh grouped by sector: `(slot, face)` pairs, slot `v` for a mesh
@@ -110,7 +118,7 @@ fn set_slot(mesh: &mut Mesh, s: usize, n: Vector3<f64>, shape: Matrix3<f64>, sin
 }
 
 /// `P S P` with `P = I − n nᵀ` (`n` unit).
-fn project_shape(s: &Matrix3<f64>, n: &Vector3<f64>) -> Matrix3<f64> {
+pub(crate) fn project_shape(s: &Matrix3<f64>, n: &Vector3<f64>) -> Matrix3<f64> {
     let p = Matrix3::identity() - n * n.transpose();
     p * s * p
 }
@@ -119,12 +127,41 @@ fn project_shape(s: &Matrix3<f64>, n: &Vector3<f64>) -> Matrix3<f64> {
 /// came from the file (then they are kept; flat sectors get a zero shape tensor where the
 /// given normal is the plane's to [`FLAT_ANGLE`], and conflicts are counted).
 /// `curvature_given`: the shape tensors came from the file (then they are kept).
+///
+/// Sectors left with no facing normal (their faces in no open hemisphere) are cut where the
+/// data folds ([`crate::fold_split`]) and both rules run again on the mesh so cut; the summary
+/// counts the flat sectors and the sectors still without a facing normal of that second pass,
+/// and the normals turned by both.
 pub fn face_the_faces(
     mesh: &mut Mesh,
     normals_given: bool,
     curvature_given: bool,
 ) -> FacingSummary {
+    let (first, unfixable) = facing_pass(mesh, normals_given, curvature_given);
+    if unfixable.is_empty() {
+        return first;
+    }
+    let split = crate::fold_split::split_folds(mesh, &unfixable);
+    if split.edges_cut == 0 {
+        return first;
+    }
+    let (second, _) = facing_pass(mesh, normals_given, curvature_given);
+    FacingSummary {
+        normals_turned: first.normals_turned + second.normals_turned,
+        fold_sectors_cut: split.sectors_cut,
+        fold_edges_cut: split.edges_cut,
+        ..second
+    }
+}
+
+/// One pass of both rules; also returns the slots left with no facing normal.
+fn facing_pass(
+    mesh: &mut Mesh,
+    normals_given: bool,
+    curvature_given: bool,
+) -> (FacingSummary, Vec<usize>) {
     let mut summary = FacingSummary::default();
+    let mut unfixable: Vec<usize> = Vec::new();
     let slots = num_slots(mesh);
     // Per slot: its faces' area vectors summed (then normalized in place: the mean normal, or
     // zero), its number of faces, and the least cosine of a face normal with the mean and with
@@ -220,7 +257,7 @@ pub fn face_the_faces(
     }
     drop((mean, min_mean, min_own, faces_of));
     if against.is_empty() {
-        return summary;
+        return (summary, unfixable);
     }
     // The faces of the slots whose normal faces away from one of them (few: a map).
     let want: std::collections::HashMap<usize, usize> =
@@ -243,6 +280,7 @@ pub fn face_the_faces(
         // A share of the widest margin any normal has (module docs).
         let Some(widest) = widest_margin(faces) else {
             summary.no_facing_normal += 1;
+            unfixable.push(s);
             continue;
         };
         let delta = widest * FACING_SHARE;
@@ -255,10 +293,13 @@ pub fn face_the_faces(
                 summary.normals_turned += 1;
                 set_slot(mesh, s, n, project_shape(&shape0, &n), &single);
             }
-            None => summary.no_facing_normal += 1,
+            None => {
+                summary.no_facing_normal += 1;
+                unfixable.push(s);
+            }
         }
     }
-    summary
+    (summary, unfixable)
 }
 
 /// The share of the widest margin a turned normal keeps from every face's plane: one half. The
@@ -308,6 +349,48 @@ pub fn facing_normal(
     let n = x.try_normalize(0.0)?;
     faces.iter().all(|f| f.dot(&n) > 0.0).then_some(n)
 }
+
+/// [`facing_normal`] for a normal that must also be perpendicular to `lines` (unit or not: the
+/// chords of a sector's crease edges, so that each crease tangent — the line both sectors'
+/// tangent planes share — runs along its chord, [`crate::fold_split`]), with the margin a
+/// [`FACING_SHARE`] of the widest such a normal has. One line: the problem restricted to the
+/// plane `⊥ ℓ` (the face normals projected onto it; the solver's steps stay in the plane, and
+/// with two constraints tight the point is fixed there, so a third violated one is
+/// infeasibility). Two or more: the normal is `±ℓ₁ × ℓ₂` (the others must be perpendicular to
+/// it), the sign facing the faces. `None` when no such normal faces every face.
+pub fn facing_normal_across(
+    n0: &Vector3<f64>,
+    faces: &[Vector3<f64>],
+    lines: &[Vector3<f64>],
+) -> Option<Vector3<f64>> {
+    let faces_all = |n: &Vector3<f64>| faces.iter().all(|f| f.dot(n) > 0.0);
+    match lines {
+        [] => {
+            let delta = widest_margin(faces)? * FACING_SHARE;
+            facing_normal(n0, faces, delta)
+        }
+        [l] => {
+            let l = l.try_normalize(0.0)?;
+            let p = |v: &Vector3<f64>| v - l * v.dot(&l);
+            let projected: Vec<Vector3<f64>> = faces.iter().map(p).collect();
+            let delta = widest_margin(&projected)? * FACING_SHARE;
+            let x = seidel(&p(n0), &shuffled(&projected), &[], delta)?;
+            let n = p(&x).try_normalize(0.0)?;
+            faces_all(&n).then_some(n)
+        }
+        [a, b, rest @ ..] => {
+            let n = a.cross(b).try_normalize(0.0)?;
+            if rest.iter().any(|c| c.dot(&n).abs() > OFF_LINES * c.norm()) {
+                return None;
+            }
+            [n, -n].into_iter().find(|n| faces_all(n))
+        }
+    }
+}
+
+/// The largest `|ℓ · n| / |ℓ|` of a third line for a normal `ℓ₁ × ℓ₂` to count as
+/// perpendicular to it ([`facing_normal_across`]): `√ε`-size, rounding of the cross product.
+const OFF_LINES: f64 = 1e-8;
 
 /// The point of `{x : a·x = δ, a ∈ eq}` nearest `n0`: `x = n0 + Σ λ_a a` with the Gram system
 /// `G λ = δ − A n0`. `None` when the planes do not meet in one affine subspace.

@@ -43,6 +43,7 @@ use rayon::prelude::*;
 
 pub mod facing;
 pub mod fit;
+pub mod fold_split;
 pub mod gradients;
 pub mod hybrid;
 pub mod jet;

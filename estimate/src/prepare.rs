@@ -155,13 +155,25 @@ impl Prepared {
             ));
         }
         let f = &self.facing;
-        if f.flat_sectors + f.normals_turned + f.no_facing_normal + f.given_normals_against_faces
+        if f.flat_sectors
+            + f.normals_turned
+            + f.no_facing_normal
+            + f.given_normals_against_faces
+            + f.fold_sectors_cut
             > 0
         {
             out.push(format!(
-                "sectors: {} flat (given their plane's normal and no curvature), {} normals turned to face every face they touch, {} with no such normal (the data folds there){}",
+                "sectors: {} flat (given their plane's normal and no curvature), {} normals turned to face every face they touch, {}{} with no such normal (the data folds there){}",
                 f.flat_sectors,
                 f.normals_turned,
+                if f.fold_sectors_cut > 0 {
+                    format!(
+                        "{} with no such normal cut at {} edges where the data folds (made creases), ",
+                        f.fold_sectors_cut, f.fold_edges_cut
+                    )
+                } else {
+                    String::new()
+                },
                 f.no_facing_normal,
                 if f.given_normals_against_faces > 0 {
                     format!(", {} normals from the file at 90° or more from a face (kept)", f.given_normals_against_faces)

@@ -5,7 +5,7 @@
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
-use estimate::facing::{facing_normal, widest_margin, FACING_SHARE};
+use estimate::facing::{facing_normal, facing_normal_across, widest_margin, FACING_SHARE};
 use estimate::{prepare, EstimateChoice};
 use meshio::RawMesh;
 use nalgebra::{Point3, Vector3};
@@ -148,4 +148,52 @@ fn a_flat_star_gets_its_plane_next_to_a_bump() {
         assert!(vert.data.shape.iter().all(|s| *s == 0.0), "vertex {v}");
     }
     assert!(flat > 100, "{flat}");
+}
+
+/// A normal perpendicular to a line is within rounding of it.
+const PERPENDICULAR: f64 = 1e-12;
+
+proptest! {
+    /// With one line, the normal is the nearest to `n0` in the plane `⊥ ℓ` that faces every face
+    /// by half the widest margin there: checked against Dykstra's projections on the face
+    /// normals projected onto that plane (for `x` in the plane, `N · x = (P N) · x`).
+    #[test]
+    fn the_normal_across_one_line_is_the_nearest_in_its_plane(
+        faces in prop::collection::vec((0.0f64..1.0, 0.0f64..std::f64::consts::TAU), 1..10),
+        start in (0.0f64..3.1, 0.0f64..std::f64::consts::TAU),
+        azimuth in 0.0f64..std::f64::consts::TAU,
+    ) {
+        // Face normals within 57° of +z and a horizontal line: +z is perpendicular to it and
+        // faces them all, so the problem is feasible.
+        let cons: Vec<Vector3<f64>> = faces.iter().map(|(t, p)| unit(*t, *p)).collect();
+        let line = Vector3::new(azimuth.cos(), azimuth.sin(), 0.0) * 2.5;
+        let n0 = unit(start.0, start.1);
+        let n = facing_normal_across(&n0, &cons, &[line]).expect("feasible");
+        prop_assert!((n.norm() - 1.0).abs() < HOLDS);
+        prop_assert!(n.dot(&line).abs() < PERPENDICULAR * line.norm());
+        for a in &cons {
+            prop_assert!(a.dot(&n) > 0.0);
+        }
+        let l = line.normalize();
+        let p = |v: &Vector3<f64>| v - l * v.dot(&l);
+        let projected: Vec<Vector3<f64>> = cons.iter().map(p).collect();
+        let delta = widest_margin(&projected).expect("feasible") * FACING_SHARE;
+        let want = dykstra(&p(&n0), &projected, delta).normalize();
+        prop_assert!((n - want).norm() < AGREE, "{n:?} vs {want:?}");
+    }
+}
+
+#[test]
+fn the_normal_across_two_lines_is_their_cross_product_facing_the_faces() {
+    let faces = [Vector3::new(0.2, 0.1, 1.0).normalize(), Vector3::z()];
+    let lines = [Vector3::new(1.0, 0.0, 0.1), Vector3::new(0.0, 2.0, -0.1)];
+    let n = facing_normal_across(&-Vector3::z(), &faces, &lines).expect("feasible");
+    let want = lines[0].cross(&lines[1]).normalize();
+    assert!((n - want).norm() < HOLDS, "{n:?}");
+    assert!(faces.iter().all(|f| f.dot(&n) > 0.0));
+    // A third line off that normal, and faces no normal across the lines faces: none.
+    let three = [lines[0], lines[1], Vector3::z()];
+    assert!(facing_normal_across(&Vector3::z(), &faces, &three).is_none());
+    let away = [Vector3::z(), -Vector3::z()];
+    assert!(facing_normal_across(&Vector3::z(), &away, &[Vector3::x()]).is_none());
 }

@@ -3,6 +3,7 @@
 
 mod common;
 mod facing;
+mod fold_split;
 mod gradients;
 mod hybrid;
 mod jet;

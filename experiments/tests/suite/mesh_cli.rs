@@ -297,6 +297,43 @@ fn coordinates_from_1e_minus_100_to_1e154_fit_the_same() {
 /// and without a tessellation it prints the same report — G1 figures, fallback faces by name,
 /// curve counts — and writes the same bytes, in both patch forms, on a real mesh with fallback
 /// faces.
+/// An OBJ of a 6 × 6 grid on the paraboloid `z = (x² + y²)/4`, with vertex `(2, 1)` moved to the
+/// midpoint of `(1, 1)` and `(2, 2)`: their face `((1, 1), (2, 1), (2, 2))` has zero area.
+fn grid_with_a_zero_area_face() -> String {
+    let n = 6;
+    let z = |x: f64, y: f64| (x * x + y * y) / 4.0;
+    let mut p: Vec<[f64; 3]> = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (i as f64 / 5.0 - 0.5, j as f64 / 5.0 - 0.5);
+            p.push([x, y, z(x, y)]);
+        }
+    }
+    let idx = |i: usize, j: usize| j * n + i;
+    // Face (a, b, c) with b on the segment from a to c.
+    let (a, b, c) = (idx(1, 1), idx(2, 1), idx(2, 2));
+    p[b] = std::array::from_fn(|k| (p[a][k] + p[c][k]) / 2.0);
+    let mut out = String::new();
+    for q in &p {
+        out += &format!("v {} {} {}\n", q[0], q[1], q[2]);
+    }
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
+            out += &format!(
+                "f {} {} {}\nf {} {} {}\n",
+                a + 1,
+                b + 1,
+                c + 1,
+                a + 1,
+                c + 1,
+                d + 1
+            );
+        }
+    }
+    out
+}
+
 #[test]
 fn fit_prints_and_writes_the_same_with_and_without_a_tessellation() {
     let dir = tempfile::tempdir().unwrap();
@@ -321,12 +358,14 @@ fn fit_prints_and_writes_the_same_with_and_without_a_tessellation() {
         let streamed = dir.path().join(format!("streamed.{ext}"));
         let with_mesh = dir.path().join(format!("with-mesh.{ext}"));
         let mesh = dir.path().join("tess.obj");
-        // A decimated scan with fallback faces (normals at 90° or more from a face they
-        // touch, where the data folds), whose path both runs must take alike.
+        // A mesh with a fallback face (a zero-area face: one corner moved onto the segment
+        // between the other two), whose path both runs must take alike.
+        let obj = dir.path().join("sliver.obj");
+        std::fs::write(&obj, grid_with_a_zero_area_face()).unwrap();
         let base = [
             "fit",
             "--data",
-            "data/meshes/dragon_res4.ply",
+            obj.to_str().unwrap(),
             "--curves",
             "optimized",
         ];
@@ -345,7 +384,7 @@ fn fit_prints_and_writes_the_same_with_and_without_a_tessellation() {
         .concat());
         assert_eq!(code, 0, "{err_m}");
         assert!(err_m.contains("streamed:"), "{err_m}");
-        assert!(err_s.contains("fallback: 123 faces"), "{err_s}");
+        assert!(err_s.contains("fallback: 1 faces"), "{err_s}");
         assert_eq!(report(&err_s), report(&err_m));
         assert!(
             std::fs::read(&streamed).unwrap() == std::fs::read(&with_mesh).unwrap(),
