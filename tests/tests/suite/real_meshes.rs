@@ -68,8 +68,8 @@ fn every_corpus_file_is_read_repaired_estimated_and_fitted() {
             // Measured with `hybrid` estimates, the default tangent fans and the folds cut
             // (`estimate::fold_split`): no fallback face on any of the four with every method
             // that takes the fans. The projection rules keep their own tangents: teapot 36 (its
-            // 32 patches welded), dragon_res3 3 of 46 540; a tenth of the faces would mean the
-            // input path is broken, not the data.
+            // 32 patches welded), the dragons 0; a tenth of the faces would mean the input path
+            // is broken, not the data.
             let own = method_by_name(method, &MethodOptions::default())
                 .unwrap()
                 .keeps_own_tangents();
@@ -164,5 +164,39 @@ fn shuffled_windings_fit_as_the_original() {
             fit_counts(&format!("{label}, shuffled"), &shuffled),
             "{label}"
         );
+    }
+}
+
+/// A scan crumpled by noise: a 60 × 30 torus whose vertices move by up to 0.06 (more than half
+/// its edge length), where the faces round 270 vertices lie in no open hemisphere. The folds
+/// are cut (`estimate::fold_split`: 829 edges made creases, measured), and the fit has no
+/// fallback face and no smooth edge kinked past 0.35 rad with the fanned curve methods, G1 on
+/// the rest (before the cut: thousands of fallback faces on the 120 × 60 torus at this noise).
+#[test]
+fn a_torus_crumpled_by_noise_is_cut_where_it_folds_and_fits_without_a_fallback_face() {
+    let opts = fixtures::Irregular {
+        noise: 0.06,
+        seed: 11,
+        ..fixtures::Irregular::default()
+    };
+    let raw = fixtures::analytic::torus(60, 30, 1.0, 0.35, &opts);
+    let p = prepare(&raw, EstimateChoice::With(default_estimator()), false).unwrap();
+    assert!(p.facing.fold_sectors_cut > 100, "{:?}", p.facing);
+    assert_eq!(p.facing.no_facing_normal, 0, "{:?}", p.facing);
+    for name in ["optimized", "chord"] {
+        let m = method_by_name(name, &MethodOptions::default()).unwrap();
+        let f = fit(&p.mesh, m.as_ref(), &|_| InteriorParameters::default()).unwrap();
+        assert!(
+            f.face_fallbacks.is_empty(),
+            "{name}: {:?}",
+            f.face_fallbacks
+        );
+        let g1 = measure_g1(&p.mesh, &f, 5);
+        assert!(
+            g1.interior_max < G1_REGULAR && g1.exterior_max < G1_REGULAR,
+            "{name}: {g1:?}"
+        );
+        let sharp = surface::sharp::measure(&p.mesh, &f).unwrap();
+        assert_eq!(sharp.smooth.severe, 0, "{name}: {:?}", sharp.smooth);
     }
 }
