@@ -8,10 +8,9 @@ use curves::{method_by_name, MethodOptions, REGISTRY};
 use meshio::RawMesh;
 use nalgebra::{Point3, Rotation3, Vector3};
 use surface::repair::{repair, RepairOptions};
-use surface::scheme::shirman_sequin::ShirmanSequin;
+use surface::scheme::shirman_sequin::{ShirmanSequin, Unfold};
 use surface::{
     dataset_by_name, fit, fit_scheme, measure_g1, FaceFallbackReason, InteriorParameters, Mesh,
-    SchemeError,
 };
 
 /// G1 is exact by construction on regular faces; measured angles are rounding noise.
@@ -145,33 +144,33 @@ fn a_degenerate_edge_gets_the_straight_cubic() {
 }
 
 #[test]
-fn the_ring_on_dbhs_curves_trades_its_folds_for_fallbacks() {
+fn the_ring_on_dbhs_curves_unfolds_by_its_interior_parameters() {
     // dBHS's short end derivatives on the 16 × 8 ring fold 64 of its 256 regular patches over
-    // their faces (the seeds' "lumps"); with the choice on, the scheme gives those faces the
-    // fallback, which does not fold, and the regular faces stay G1.
+    // their faces (the seeds' "lumps") at the default β and c. The registered scheme
+    // (`Unfold::Interior`) rebuilds each with the first interior parameters that do not fold:
+    // every one unfolds, no face falls back, and G1 and C0 hold as for any β, c > 0.
     let data = dataset_by_name("ring", None).unwrap();
     let m = method_by_name("dbhs", &MethodOptions::default()).unwrap();
-    let unfolding = ShirmanSequin::uniform(InteriorParameters::default()).with_unfold(true);
-    let fitted = fit_scheme(&data.mesh, &unfolding, m.as_ref()).unwrap();
-    assert_eq!(fitted.face_fallbacks.len(), 64);
-    for fb in &fitted.face_fallbacks {
-        assert_eq!(
-            fb.reason,
-            FaceFallbackReason::Scheme(SchemeError::FoldsOverFace),
-            "face {}",
-            fb.face
-        );
-    }
-    let folds = surface::folds::measure(&data.mesh, &fitted);
-    assert!(folds.folded.is_empty(), "{:?}", folds.folded);
-    let r = measure_g1(&data.mesh, &fitted, 9);
-    assert!(r.interior_max < G1_TOL && r.exterior_max < G1_TOL, "{r:?}");
-    assert!(max_edge_gap(&data.mesh, &fitted) < C0_TOL);
-    // Without the choice (the default), exactly those faces keep their regular patches, and
-    // fold.
     let kept = fit(&data.mesh, m.as_ref(), &defaults).unwrap();
     assert!(kept.face_fallbacks.is_empty());
     let folded = surface::folds::measure(&data.mesh, &kept).folded;
-    let refused: Vec<usize> = fitted.face_fallbacks.iter().map(|fb| fb.face).collect();
-    assert_eq!(folded, refused);
+    assert_eq!(folded.len(), 64);
+    for rule in [Unfold::Interior, Unfold::Fallback] {
+        let unfolding =
+            ShirmanSequin::uniform(InteriorParameters::default()).with_unfold_rule(rule);
+        let fitted = fit_scheme(&data.mesh, &unfolding, m.as_ref()).unwrap();
+        assert!(fitted.face_fallbacks.is_empty(), "{rule:?}");
+        let folds = surface::folds::measure(&data.mesh, &fitted);
+        assert!(folds.folded.is_empty(), "{rule:?}: {:?}", folds.folded);
+        let r = measure_g1(&data.mesh, &fitted, 9);
+        assert!(r.interior_max < G1_TOL && r.exterior_max < G1_TOL, "{r:?}");
+        assert!(max_edge_gap(&data.mesh, &fitted) < C0_TOL);
+        // Exactly the folded faces were rebuilt; every other face is bit for bit as asked.
+        let per_face = 45;
+        for face in 0..data.mesh.num_faces() {
+            let range = per_face * face..per_face * (face + 1);
+            let same = fitted.points[range.clone()] == kept.points[range];
+            assert_eq!(same, !folded.contains(&face), "face {face}");
+        }
+    }
 }
