@@ -116,6 +116,22 @@ pub enum ExperimentError {
         /// The path given.
         path: PathBuf,
     },
+    /// A results directory holds files the study did not write (no manifest of a study's,
+    /// or entries it does not list): it is not the study's to replace.
+    #[error(
+        "{path}: holds files no study of this workbench wrote ({}{}); results replace their \
+         directory whole, so give an empty or new directory (or move those files away)",
+        names.join(", "),
+        if *more > 0 { format!(" and {more} more") } else { String::new() }
+    )]
+    ForeignFiles {
+        /// The results directory.
+        path: PathBuf,
+        /// The first few such entries.
+        names: Vec<String>,
+        /// How many more there are.
+        more: usize,
+    },
     /// A report could not be serialized as JSON.
     #[error("cannot serialize {what} as JSON")]
     Json {

@@ -76,15 +76,56 @@ pub fn results_dir(out: &Path) -> Result<std::path::PathBuf, ExperimentError> {
     }
 }
 
+/// The manifest every results directory carries: the names of the entries the study that
+/// wrote it put there, one a line. A directory is a study's to replace only when it is empty or
+/// its manifest lists every entry in it ([`Staged::begin`]).
+pub const MANIFEST: &str = ".triwb-results";
+
+/// How many entries a refusal names ([`ExperimentError::ForeignFiles`]).
+const NAMED: usize = 5;
+
+/// Refuses `dir` (an existing results directory) when it holds an entry its manifest does not
+/// list (every entry, without a manifest) and `own` does not claim (a sweep's shard files,
+/// which other runs write straight into it): a file of the user's, which the swap would delete.
+fn refuse_foreign(dir: &Path, own: &dyn Fn(&str) -> bool) -> Result<(), ExperimentError> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let listed: std::collections::HashSet<String> = std::fs::read_to_string(dir.join(MANIFEST))
+        .map(|t| t.lines().map(str::to_owned).collect())
+        .unwrap_or_default();
+    let mut foreign: Vec<String> = entries
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != MANIFEST && !listed.contains(n) && !own(n))
+        .collect();
+    if foreign.is_empty() {
+        return Ok(());
+    }
+    foreign.sort();
+    let more = foreign.len().saturating_sub(NAMED);
+    foreign.truncate(NAMED);
+    Err(ExperimentError::ForeignFiles {
+        path: dir.to_path_buf(),
+        names: foreign,
+        more,
+    })
+}
+
 /// A result directory written whole: every file goes into a fresh staging directory beside the
 /// final one, and [`Staged::commit`] swaps it in (the old directory renamed aside, the new one
 /// renamed into place, the old one removed), so a reader never sees files of two runs mixed.
-/// Dropped without a commit (an error), the staging directory is removed; on an interrupt the
-/// handler of `main` removes it ([`meshio::outfile::remove_in_flight`]).
+/// Only a directory that is empty, new, or holds nothing but what its manifest ([`MANIFEST`])
+/// lists is replaced: anything else is refused before any work, so no file of the user's is
+/// ever deleted. Dropped without a commit (an error), the staging directory is removed; on an
+/// interrupt the handler of `main` removes it ([`meshio::outfile::remove_in_flight`]).
 pub struct Staged {
     final_dir: std::path::PathBuf,
     staging: std::path::PathBuf,
     committed: bool,
+    /// The entries of the final directory the study claims without a manifest
+    /// ([`Staged::begin_keeping`]).
+    own: Box<dyn Fn(&str) -> bool>,
 }
 
 impl Staged {
@@ -101,8 +142,12 @@ impl Staged {
     /// A symbolic link to a directory is that directory: the swap happens at the link's target
     /// (the link is kept and still points to the results). A link to anything else, or a
     /// dangling one, is refused like a file.
-    pub fn begin_keeping(out: &Path, keep: impl Fn(&str) -> bool) -> Result<Self, ExperimentError> {
+    pub fn begin_keeping(
+        out: &Path,
+        keep: impl Fn(&str) -> bool + 'static,
+    ) -> Result<Self, ExperimentError> {
         let out = &results_dir(out)?;
+        refuse_foreign(out, &keep)?;
         let name = out
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
@@ -113,10 +158,11 @@ impl Staged {
         }
         ensure_dir(&staging)?;
         meshio::outfile::in_flight(&staging);
-        let staged = Staged {
+        let mut staged = Staged {
             final_dir: out.to_path_buf(),
             staging,
             committed: false,
+            own: Box::new(|_| false),
         };
         if let Ok(entries) = std::fs::read_dir(out) {
             for e in entries.flatten() {
@@ -131,6 +177,7 @@ impl Staged {
                 }
             }
         }
+        staged.own = Box::new(keep);
         Ok(staged)
     }
 
@@ -153,6 +200,23 @@ impl Staged {
                 .unwrap_or_default(),
             std::process::id()
         ));
+        // The manifest: every entry this run put in the staging directory.
+        let mut written: Vec<String> = std::fs::read_dir(&self.staging)
+            .map_err(|e| write_err(&self.staging, e))?
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n != MANIFEST)
+            .collect();
+        written.sort();
+        let mut manifest = written.join("\n");
+        manifest.push('\n');
+        std::fs::write(self.staging.join(MANIFEST), manifest)
+            .map_err(|e| write_err(&self.staging.join(MANIFEST), e))?;
+        // Nothing foreign may have appeared since the run began (entries the run carried over
+        // are in the staging directory, hence in the manifest).
+        refuse_foreign(&self.final_dir, &|n| {
+            (self.own)(n) || self.staging.join(n).exists()
+        })?;
         let had_old = self.final_dir.exists();
         if had_old {
             std::fs::rename(&self.final_dir, &old).map_err(|e| write_err(&self.final_dir, e))?;
@@ -194,6 +258,8 @@ mod tests {
         let target = dir.path().join("target");
         std::fs::create_dir(&target).unwrap();
         std::fs::write(target.join("old.txt"), "old run\n").unwrap();
+        // A previous run's directory: its manifest lists what it wrote.
+        std::fs::write(target.join(MANIFEST), "old.txt\n").unwrap();
         let link = dir.path().join("link");
         std::os::unix::fs::symlink(&target, &link).unwrap();
         let staged = Staged::begin(&link).unwrap();
@@ -238,5 +304,58 @@ mod tests {
             names,
             ["dangling", "file-link", "file.txt", "link", "target"]
         );
+    }
+
+    /// `-o DIR` on a directory of the user's (`thesis/thesis.tex`) is refused before any work,
+    /// the file untouched and named; a directory a run wrote is replaced whole by the next run
+    /// (its manifest lists the run's files); a file the user put into it afterwards makes it
+    /// the user's again; the files a sweep claims (`begin_keeping`) are not the user's.
+    #[test]
+    fn a_directory_with_files_no_run_wrote_is_refused_and_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let thesis = dir.path().join("thesis");
+        std::fs::create_dir(&thesis).unwrap();
+        std::fs::write(thesis.join("thesis.tex"), "x\n").unwrap();
+        let e = Staged::begin(&thesis).err().expect("refused");
+        assert!(matches!(e, ExperimentError::ForeignFiles { .. }), "{e}");
+        assert!(e.to_string().contains("thesis.tex"), "{e}");
+        assert_eq!(
+            std::fs::read_to_string(thesis.join("thesis.tex")).unwrap(),
+            "x\n"
+        );
+        // No staging directory left beside it.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        // A new directory, then the next run over it.
+        let out = dir.path().join("out");
+        for run in ["first", "second"] {
+            let staged = Staged::begin(&out).unwrap();
+            std::fs::write(staged.path().join("report.md"), run).unwrap();
+            if run == "first" {
+                std::fs::write(staged.path().join("only-first.txt"), run).unwrap();
+            }
+            staged.commit().unwrap();
+        }
+        assert_eq!(
+            std::fs::read_to_string(out.join("report.md")).unwrap(),
+            "second"
+        );
+        assert!(
+            !out.join("only-first.txt").exists(),
+            "the run's own files are replaced"
+        );
+        assert_eq!(
+            std::fs::read_to_string(out.join(MANIFEST)).unwrap(),
+            "report.md\n"
+        );
+        // A file of the user's put in afterwards: refused, kept.
+        std::fs::write(out.join("notes.txt"), "mine\n").unwrap();
+        assert!(Staged::begin(&out).is_err());
+        assert!(out.join("notes.txt").exists());
+        // Files the study claims are carried over, not refused.
+        std::fs::remove_file(out.join("notes.txt")).unwrap();
+        std::fs::write(out.join("part-1.jsonl"), "{}\n").unwrap();
+        let staged = Staged::begin_keeping(&out, |n| n.starts_with("part-")).unwrap();
+        staged.commit().unwrap();
+        assert!(out.join("part-1.jsonl").exists());
     }
 }

@@ -346,7 +346,7 @@ pub fn run(args: &SweepArgs) -> Result<ExitCode, ExperimentError> {
         // A whole run replaces the directory; the partial results of the same grid are kept
         // (another scheduler's), those of another grid are not.
         let same_grid = read_manifest(&out_dir).is_ok_and(|m| m == manifest);
-        let staged = Staged::begin_keeping(&out_dir, |n| same_grid && is_partial(n))?;
+        let staged = Staged::begin_keeping(&out_dir, move |n| same_grid && is_partial(n))?;
         write_result(
             Some(&grid::manifest_path(staged.path())),
             manifest_text.as_bytes(),

@@ -427,3 +427,42 @@ fn fit_finds_creases_on_a_cad_part_and_takes_the_crease_options() {
         assert_eq!(code, 2, "{bad:?}: {err}");
     }
 }
+
+/// `-o DIR` on a directory of the user's (issue 43's `thesis/thesis.tex`): every study that
+/// writes a results directory refuses it with exit status 1, naming the file, and leaves it as
+/// it was; a directory a run wrote is rewritten by the next run.
+#[test]
+fn a_study_refuses_a_directory_of_the_users_and_rewrites_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let thesis = dir.path().join("thesis");
+    std::fs::create_dir(&thesis).unwrap();
+    std::fs::write(thesis.join("thesis.tex"), "x\n").unwrap();
+    let t = thesis.to_str().unwrap();
+    for args in [
+        &["sweep", "--data", "octa", "--curves", "chord", "-o", t][..],
+        &[
+            "curve",
+            "--input",
+            "data/curve-problems.jsonl",
+            "--curves",
+            "chord",
+            "--plot",
+            t,
+        ][..],
+    ] {
+        let (code, err) = run(args);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert!(err.contains("thesis.tex"), "{args:?}: {err}");
+        assert_eq!(
+            std::fs::read_to_string(thesis.join("thesis.tex")).unwrap(),
+            "x\n"
+        );
+    }
+    let own = dir.path().join("own");
+    let o = own.to_str().unwrap();
+    for _ in 0..2 {
+        let (code, err) = run(&["sweep", "--data", "octa", "--curves", "chord", "-o", o]);
+        assert_eq!(code, 0, "{err}");
+    }
+    assert!(own.join(".triwb-results").exists());
+}
