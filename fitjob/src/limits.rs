@@ -16,6 +16,12 @@ use crate::error::JobError;
 /// corners only; 256 already gives 65 536 triangles per patch.
 pub const SAMPLING_RANGE: RangeInclusive<usize> = 1..=256;
 
+/// Samples per boundary of the G1 measure (`g1_samples`, Python's keyword; the command line
+/// uses the default, 9): at least the two ends (fewer measures nothing, and a jump would read
+/// as 0), at most 1000 (the measure's cost is linear in it: 1000 is about a hundred times the
+/// default's, already several fits' worth on a large mesh).
+pub const G1_SAMPLES_RANGE: RangeInclusive<usize> = 2..=1000;
+
 /// The process's peak resident memory so far, bytes (`VmHWM` of `/proc/self/status`; `None`
 /// where the system does not say).
 pub fn peak_resident_bytes() -> Option<u64> {

@@ -128,6 +128,15 @@ pub fn job_options(
         ..crate::curve::method_options(args.solver, args.dbhs_pick, args.tweak_t, args.four_ninths)?
     };
     let interior = surface::fairing::InteriorChoice::from_str(args.interior).map_err(usage)?;
+    let range = &fitjob::limits::G1_SAMPLES_RANGE;
+    if !range.contains(&args.g1_samples) {
+        return Err(usage(format!(
+            "g1_samples={}: outside its valid range [{}, {}] (samples per boundary of the G1 measure, both ends included)",
+            args.g1_samples,
+            range.start(),
+            range.end()
+        )));
+    }
     let up = meshio::UpAxis::from_str(args.up).map_err(usage)?;
     Ok(fitjob::FitOptions {
         input,

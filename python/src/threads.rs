@@ -10,6 +10,11 @@ use pyo3::prelude::*;
 
 use crate::errors::{failed, usage};
 
+/// The largest pool a call may ask for: 1024 threads. Each reserves its own stack, and no
+/// machine this runs on has nearly that many cores; a typo (`threads=100000`) would otherwise
+/// try to start them all.
+pub const MAX_THREADS: usize = 1024;
+
 /// Runs `work` without the GIL: on the process's shared pool when `threads` is None, else on a
 /// pool of `threads` threads of its own (built for this call; a few tens of microseconds).
 pub fn run<R: Send>(
@@ -22,6 +27,9 @@ pub fn run<R: Send>(
         Some(0) => Err(usage(
             "threads must be at least 1 (None: the process's shared pool)",
         )),
+        Some(n) if n > MAX_THREADS => Err(usage(format!(
+            "threads={n}: at most {MAX_THREADS} (a pool of its own a call; None: the process's shared pool)"
+        ))),
         Some(n) => {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(n)

@@ -136,3 +136,19 @@ def test_a_degenerate_mesh_is_fitted_with_every_fallback_counted():
     # to fit, and the error says why.
     with pytest.raises(triwb.WorkbenchError, match="welded"):
         triwb.fit(np.zeros((3, 3)), [[0, 1, 2]])
+
+
+@pytest.mark.parametrize("samples", [0, 1, 1001, 10**9, 2**64 - 1])
+def test_g1_samples_outside_its_range_is_a_usage_error(octa, samples):
+    # Fewer than two samples measures nothing (a jump would read as 0); past 1000 the measure
+    # costs more than many fits, and 10**9 would not fit in memory. Refused by keyword, before
+    # any work: never an abort or a PanicException.
+    V, F, N = octa
+    with pytest.raises(triwb.UsageError, match="g1_samples"):
+        triwb.fit(V, F, g1_samples=samples)
+
+
+def test_a_pool_of_more_threads_than_any_machine_has_is_a_usage_error(octa):
+    V, F, N = octa
+    with pytest.raises(triwb.UsageError, match="threads"):
+        triwb.fit(V, F, threads=100000)
