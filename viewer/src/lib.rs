@@ -191,8 +191,10 @@ impl Page {
         &self.views
     }
 
-    /// The embedded data block: JSON with the base64 arrays, `</` escaped so it cannot close
-    /// its `<script>` element.
+    /// The embedded data block: JSON with the base64 arrays, every `<` written `\u003c` (the
+    /// same string to JSON; `<` occurs only inside strings), so no name can close its
+    /// `<script>` element (`</script>`) or put the HTML parser into a script's escaped states
+    /// (`<!--` followed by `<script`, which swallowed the rest of the page).
     pub fn data_json(&self) -> String {
         let ranges = ranges(&self.views);
         let views: Vec<serde_json::Value> = self.views.iter().map(view_json).collect();
@@ -202,7 +204,7 @@ impl Page {
             "ranges": ranges,
             "views": views,
         });
-        doc.to_string().replace("</", "<\\/")
+        doc.to_string().replace('<', "\\u003c")
     }
 
     /// The whole page.
@@ -781,6 +783,16 @@ mod tests {
         let html = page.to_html();
         assert!(html.contains("<title>&lt;b&gt;a&lt;/script&gt;</title>"));
         assert!(!page.data_json().contains("</script"));
+        // A file named `<!--<script>.obj` (issue 43): no `<` at all in the data block, and
+        // the JSON still reads back the same names.
+        let mut page = Page::new("<!--<script>.obj");
+        let mut v = one_triangle();
+        v.title = "<!--<script>.obj".into();
+        assert!(page.add_view(v).is_ok());
+        let data = page.data_json();
+        assert!(!data.contains('<'));
+        let back: serde_json::Value = serde_json::from_str(&data).unwrap();
+        assert_eq!(back["title"], "<!--<script>.obj");
     }
 
     #[test]

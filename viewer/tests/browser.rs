@@ -551,3 +551,24 @@ fn patch_views_draw_their_control_nets_and_turn_about_either_up_axis() {
     let bad = shoot(&browser, &path, "up=w", SIZE, "octahedron-bad-up");
     assert!(bad.status.starts_with("error:"), "status {}", bad.status);
 }
+
+/// A mesh named `<!--<script>.obj` (issue 43): before, the page's data block kept the `<!--`
+/// and `<script`, the HTML parser took the rest of the page as script, and it came up empty.
+/// Now the page draws, with the name as its title.
+#[test]
+fn a_file_named_like_a_comment_and_a_script_does_not_blank_the_page() {
+    let Some(browser) =
+        browser_or_skip("a_file_named_like_a_comment_and_a_script_does_not_blank_the_page")
+    else {
+        return;
+    };
+    let dir = tempfile::tempdir().expect("tempdir");
+    let name = "<!--<script>.obj";
+    let mut page = Page::new(name);
+    page.add_view(sphere(name, 32, 16)).expect("a valid sphere");
+    let path = write_page(dir.path(), "hostile", &page);
+    let shot = shoot(&browser, &path, "mode=shaded&ui=0", SIZE, "hostile-name");
+    assert_eq!(shot.status, "ready:shaded");
+    let (_, n) = object_box(&shot);
+    assert!(n > 0, "nothing drawn");
+}
