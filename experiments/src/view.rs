@@ -40,8 +40,15 @@ pub struct ViewArgs {
     up: meshio::UpAxis,
 }
 
+/// Copies of a tessellation a page holds at its peak: the view's vertex and index arrays, their
+/// base64 in the page's JSON data block (4/3 of the bytes) and the HTML text around it: three
+/// times the tessellation's estimate covers them.
+const PAGE_COPIES: u128 = 3;
+
 /// Writes the page.
 pub fn run(args: &ViewArgs) -> Result<ExitCode, ExperimentError> {
+    // The tessellation's range, as `fit --segments` (4096 aborted on the memory it asked for).
+    fitjob::limits::check_usize("density", args.density, &fitjob::limits::SAMPLING_RANGE)?;
     let mut files = Vec::new();
     for arg in &args.files {
         files.extend(expand(arg)?);
@@ -88,6 +95,24 @@ fn view_of(file: &Path, name: &str, density: usize) -> Result<viewer::View, Expe
             path: file.to_path_buf(),
             source: std::io::Error::other(e),
         })?;
+        // The page's memory before it is built, as every other output's.
+        let points = patches
+            .iter()
+            .map(|p| {
+                p.degree()
+                    .saturating_add(1)
+                    .saturating_mul(p.degree().saturating_add(2))
+                    / 2
+            })
+            .max()
+            .unwrap_or(0);
+        let bytes = surface::limits::tessellation_bytes(patches.len() as u128, density)
+            .saturating_add(surface::limits::sample_weights_bytes(points, density))
+            .saturating_mul(PAGE_COPIES);
+        fitjob::limits::check_memory(
+            &format!("the page of {} at --density {density}", file.display()),
+            bytes,
+        )?;
         return viewer::view_from_patches(name, &patches, density).map_err(|source| {
             ExperimentError::Tessellate {
                 subject: file.display().to_string(),

@@ -107,6 +107,25 @@ fn html_is_refused_for_a_subdivision_scheme_and_view_reads_what_fit_wrote() {
     let (code, _, err) = common::run(&["view", "/no/such.ply", "-o", view.to_str().unwrap()], "");
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("/no/such.ply"), "{err}");
+    // A density outside `fit --segments`'s range is a usage error (issue 43: 4096 aborted on
+    // the memory it asked for), and the page is not written over.
+    let before = std::fs::read(&view).unwrap();
+    for density in ["0", "4096"] {
+        let (code, _, err) = common::run(
+            &[
+                "view",
+                patches.to_str().unwrap(),
+                "--density",
+                density,
+                "-o",
+                view.to_str().unwrap(),
+            ],
+            "",
+        );
+        assert_eq!(code, 2, "{density}: {err}");
+        assert!(err.contains("--density"), "{err}");
+        assert_eq!(std::fs::read(&view).unwrap(), before);
+    }
 }
 
 /// A directory stands for its meshes and patch files, sorted by name: a patch `.jsonl` is
