@@ -71,6 +71,20 @@ pub fn read_patch_file(path: &Path) -> Result<Vec<BezierTriangle>, PatchFileErro
     Ok(patches)
 }
 
+/// The highest patch degree the viewer reads: the testbed's record bound
+/// (`testbed::record::MAX_DEGREE`), far above any scheme's quartics. A hostile degree
+/// (`2⁶⁴ − 1` overflowed the net's size and panicked; 60 kept the tessellator busy for minutes)
+/// is refused by name.
+pub const MAX_DEGREE: usize = 32;
+
+/// `degree` as a patch degree the viewer reads, or why not.
+fn check_degree(degree: u64) -> Result<usize, String> {
+    usize::try_from(degree)
+        .ok()
+        .filter(|d| (1..=MAX_DEGREE).contains(d))
+        .ok_or_else(|| format!("degree {degree}: outside [1, {MAX_DEGREE}]"))
+}
+
 fn record(path: &Path, line: usize, message: String) -> PatchFileError {
     PatchFileError::Record {
         path: path.to_path_buf(),
@@ -85,6 +99,7 @@ fn binary(path: &Path, bytes: &[u8]) -> Result<Vec<BezierTriangle>, PatchFileErr
             path: path.to_path_buf(),
             source,
         })?;
+    let degree = check_degree(degree as u64).map_err(|m| record(path, 1, m))?;
     let per = surface::beztri::num_points(degree);
     points
         .chunks(per)
@@ -120,8 +135,8 @@ fn json_lines(path: &Path, bytes: &[u8]) -> Result<Vec<BezierTriangle>, PatchFil
         }
         let degree = r["degree"]
             .as_u64()
-            .and_then(|d| usize::try_from(d).ok())
-            .ok_or_else(|| bad("no `degree`".into()))?;
+            .ok_or_else(|| bad("no `degree`".into()))
+            .and_then(|d| check_degree(d).map_err(bad))?;
         let points = r["points"]
             .as_array()
             .ok_or_else(|| bad("no `points`".into()))?
@@ -176,6 +191,16 @@ mod tests {
             ),
             "{e}"
         );
+        // A hostile degree is refused by name, before any net is sized or tessellated.
+        for degree in ["0", "33", "60", "18446744073709551615"] {
+            let line = format!(r#"{{"type":"BezierTriangle","degree":{degree},"points":[]}}"#);
+            let p = write(dir.path(), "deg.jsonl", line.as_bytes());
+            let e = read_patch_file(&p).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("deg.jsonl:1: degree {degree}: outside [1, 32]")),
+                "{e}"
+            );
+        }
         let bad = r#"{"type":"BezierTriangle","degree":1,"points":[[0,0],[1,0,0],[0,1,0]]}"#;
         let p = write(dir.path(), "c.jsonl", bad.as_bytes());
         assert!(read_patch_file(&p)
