@@ -38,6 +38,7 @@
 
 use std::collections::HashSet;
 
+use mesh::disjoint::DisjointSets;
 use mesh::{Mesh, Sectors};
 use nalgebra::Vector3;
 
@@ -141,30 +142,21 @@ fn cut_slot(mesh: &Mesh, sectors: Option<&Sectors>, s: usize, cut: &HashSet<usiz
         .collect();
     let fits = |removed: usize| -> bool {
         // Pieces: faces joined by the links not removed (the first `removed` are).
-        let mut piece: Vec<usize> = (0..k).collect();
-        fn root(p: &mut [usize], mut x: usize) -> usize {
-            while p[x] != x {
-                p[x] = p[p[x]];
-                x = p[x];
-            }
-            x
-        }
+        let mut piece = DisjointSets::new(k);
         for &(i, j, _, _) in &links[removed..] {
-            let (a, b) = (root(&mut piece, i), root(&mut piece, j));
-            piece[a] = b;
+            piece.union(i, j);
         }
         // Per piece: its face normals and the chords of the removed edges bounding it (an
         // edge whose two faces are still one piece is a dart: no crease at v).
         type Piece = (Vec<Vector3<f64>>, Vec<Vector3<f64>>);
         let mut groups: std::collections::BTreeMap<usize, Piece> = Default::default();
         for (i, normal) in normals.iter().enumerate() {
-            let r = root(&mut piece, i);
-            let entry = groups.entry(r).or_default();
+            let entry = groups.entry(piece.find(i)).or_default();
             entry.0.extend(*normal);
             entry.1.extend(bounding[i].iter().copied());
         }
         for &(i, j, e, _) in &links[..removed] {
-            let (a, b) = (root(&mut piece, i), root(&mut piece, j));
+            let (a, b) = (piece.find(i), piece.find(j));
             if a != b {
                 for r in [a, b] {
                     if let Some(entry) = groups.get_mut(&r) {
@@ -175,12 +167,10 @@ fn cut_slot(mesh: &Mesh, sectors: Option<&Sectors>, s: usize, cut: &HashSet<usiz
         }
         groups.values().all(|(ns, lines)| piece_fits(ns, lines))
     };
-    (pre..=links.len())
+    let removed = (pre..=links.len())
         .find(|&removed| fits(removed))
-        .unwrap_or(links.len())
-        .checked_sub(pre)
-        .map(|n| links[pre..pre + n].iter().map(|l| l.2).collect())
-        .unwrap_or_default()
+        .unwrap_or(links.len());
+    links[pre..removed].iter().map(|l| l.2).collect()
 }
 
 /// At most this many rounds of cuts at the vertices the previous round split (module docs):

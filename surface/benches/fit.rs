@@ -7,54 +7,49 @@
 #![allow(clippy::expect_used)] // a benchmark on fixed valid data
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use curves::{method_by_name, MethodOptions};
+use curves::{method_by_name, CurveMethod, MethodOptions};
 use surface::fit::fit_scheme_into;
-use surface::{fit_into, scheme_by_name, Fit, InteriorParameters, SchemeOptions};
+use surface::{fit_into, scheme_by_name, Fit, InteriorParameters, Mesh, SchemeOptions};
 
-fn bench(c: &mut Criterion) {
-    let mut g = c.benchmark_group("fit_ring");
+/// One group: `fit` (mesh, method, reused buffers) on rings of `sizes` with `chord` and
+/// `optimized` curves.
+fn group(
+    c: &mut Criterion,
+    name: &str,
+    sizes: &[(usize, usize)],
+    fit: &dyn Fn(&Mesh, &dyn CurveMethod, &mut Fit),
+) {
+    let mut g = c.benchmark_group(name);
     g.sample_size(10);
     // ring(nu, nv) has 2·nu·nv triangles.
-    for (nu, nv) in [(32usize, 16usize), (100, 50), (320, 160), (1000, 500)] {
+    for &(nu, nv) in sizes {
         let data = surface::datasets::ring(nu, nv).expect("valid resolution");
         let faces = data.mesh.num_faces();
         g.throughput(Throughput::Elements(faces as u64));
-        for name in ["chord", "optimized"] {
-            let m = method_by_name(name, &MethodOptions::default()).expect("registered");
-            // Buffers are reused across iterations, as in a sweep (`fit_into`).
+        for curves in ["chord", "optimized"] {
+            let m = method_by_name(curves, &MethodOptions::default()).expect("registered");
+            // Buffers are reused across iterations, as in a sweep.
             let mut out = Fit::default();
-            g.bench_with_input(BenchmarkId::new(name, faces), &data.mesh, |b, mesh| {
-                b.iter(|| {
-                    fit_into(
-                        mesh,
-                        m.as_ref(),
-                        &|_| InteriorParameters::default(),
-                        &mut out,
-                    )
-                    .expect("fits")
-                })
+            g.bench_with_input(BenchmarkId::new(curves, faces), &data.mesh, |b, mesh| {
+                b.iter(|| fit(mesh, m.as_ref(), &mut out))
             });
         }
     }
     g.finish();
-    let mut g = c.benchmark_group("fit_ring_scheme");
-    g.sample_size(10);
+}
+
+fn bench(c: &mut Criterion) {
+    let sizes = [(32, 16), (100, 50), (320, 160), (1000, 500)];
+    group(c, "fit_ring", &sizes, &|mesh, m, out| {
+        fit_into(mesh, m, &|_| InteriorParameters::default(), out).expect("fits")
+    });
     let scheme = scheme_by_name("shirman-sequin", &SchemeOptions::default()).expect("registered");
-    for (nu, nv) in [(100usize, 50usize), (1000, 500)] {
-        let data = surface::datasets::ring(nu, nv).expect("valid resolution");
-        let faces = data.mesh.num_faces();
-        g.throughput(Throughput::Elements(faces as u64));
-        for name in ["chord", "optimized"] {
-            let m = method_by_name(name, &MethodOptions::default()).expect("registered");
-            let mut out = Fit::default();
-            g.bench_with_input(BenchmarkId::new(name, faces), &data.mesh, |b, mesh| {
-                b.iter(|| {
-                    fit_scheme_into(mesh, scheme.as_ref(), m.as_ref(), &mut out).expect("fits")
-                })
-            });
-        }
-    }
-    g.finish();
+    group(
+        c,
+        "fit_ring_scheme",
+        &[sizes[1], sizes[3]],
+        &|mesh, m, out| fit_scheme_into(mesh, scheme.as_ref(), m, out).expect("fits"),
+    );
 }
 
 criterion_group!(benches, bench);
