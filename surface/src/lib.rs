@@ -52,7 +52,7 @@ pub mod patch;
 pub mod scheme;
 pub mod tessellate;
 
-pub use construct::{fallback, shirman_sequin, ss_variants};
+pub use construct::{curvature_cross, fallback, shirman_sequin, ss_variants};
 pub use fit::{fairing, stream};
 pub use io::patch_io;
 pub use measure::{curve_stats, ends, folds, g1, interior, metrics, patch_g1, sharp};

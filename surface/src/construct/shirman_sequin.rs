@@ -221,7 +221,7 @@ fn mid(a: &Point3<f64>, b: &Point3<f64>, t: f64) -> Point3<f64> {
 /// geometry, not chosen to make `k` positive: the neighbouring face, travelling the edge the
 /// other way, gets `−Ĉ`, as G1 needs. `k ≤ 0` means the corner cross vector folds over the edge
 /// and no G1 surface of this form exists: `None`.
-fn decompose(
+pub(crate) fn decompose(
     n: &Vector3<f64>,
     t: &Vector3<f64>,
     a: &Vector3<f64>,
@@ -353,6 +353,28 @@ pub fn macro_patch_creased(
     params: &InteriorParameters,
     creased: [bool; 3],
 ) -> Result<[QuarticNet; 3], SchemeError> {
+    macro_patch_with(vertices, edges, params, creased, &|e, ends| {
+        chiyokura_kimura(&edges[e], ends, params.c[e])
+    })
+}
+
+/// The cross-boundary rule of an exterior edge: the two interior row-1 points `[C¹, C²]` of
+/// face edge `e` from the end normals and corner cross vectors. Chiyokura–Kimura with Jensen's
+/// `c` in [`macro_patch_creased`]; the curvature-matched field of
+/// [`crate::curvature_cross`] in its variant. The rest of the construction (module docs,
+/// "G1 inside the triangle") holds for any rule whose cross-boundary derivative lies in a
+/// span both faces on the edge share.
+pub(crate) type CrossRule<'a> =
+    dyn Fn(usize, &[CrossEnd; 2]) -> Result<[Point3<f64>; 2], CrossFailure> + 'a;
+
+/// [`macro_patch_creased`] with the exterior edges' cross-boundary points from `cross`.
+pub(crate) fn macro_patch_with(
+    vertices: [&VertexData; 3],
+    edges: &[CubicBez3; 3],
+    params: &InteriorParameters,
+    creased: [bool; 3],
+    cross: &CrossRule<'_>,
+) -> Result<[QuarticNet; 3], SchemeError> {
     for (name, values) in [("beta", params.beta), ("c", params.c)] {
         for (index, value) in values.into_iter().enumerate() {
             if !(value > 0.0 && value.is_finite()) {
@@ -400,21 +422,20 @@ pub fn macro_patch_creased(
                 cross: i1[b] - v[b],
             },
         ];
-        [c1[e], c2[e]] =
-            chiyokura_kimura(&edges[e], &ends, params.c[e]).map_err(|end| match end {
-                CrossFailure::ZeroDerivative(0) => {
-                    SchemeError::ZeroEndDerivative { edge: e, corner: a }
-                }
-                CrossFailure::ZeroDerivative(_) => {
-                    SchemeError::ZeroEndDerivative { edge: e, corner: b }
-                }
-                CrossFailure::NoCrossComponent(0) => {
-                    SchemeError::NoCrossComponent { edge: e, corner: a }
-                }
-                CrossFailure::NoCrossComponent(_) => {
-                    SchemeError::NoCrossComponent { edge: e, corner: b }
-                }
-            })?;
+        [c1[e], c2[e]] = cross(e, &ends).map_err(|end| match end {
+            CrossFailure::ZeroDerivative(0) => {
+                SchemeError::ZeroEndDerivative { edge: e, corner: a }
+            }
+            CrossFailure::ZeroDerivative(_) => {
+                SchemeError::ZeroEndDerivative { edge: e, corner: b }
+            }
+            CrossFailure::NoCrossComponent(0) => {
+                SchemeError::NoCrossComponent { edge: e, corner: a }
+            }
+            CrossFailure::NoCrossComponent(_) => {
+                SchemeError::NoCrossComponent { edge: e, corner: b }
+            }
+        })?;
     }
 
     // m = 1 at a straight corner: the two cross-boundary points next to it (on crease edges)

@@ -30,6 +30,7 @@ pub mod pn_triangles;
 pub mod powell_sabin;
 pub mod shirman_sequin;
 pub mod shirman_sequin_1987;
+pub mod shirman_sequin_curvature;
 pub mod shirman_sequin_testbed;
 
 use curves::{CubicBez3, VertexData};
@@ -496,6 +497,12 @@ pub const REGISTRY: &[SchemeEntry] = &[
         summary: "the testbed's modified Shirman–Séquin (UW 1990): split cubic macro patch, Chiyokura–Kimura twists, C1 inside by averaging (G1)",
         parameters: &[],
         build: |_| Box::new(shirman_sequin_testbed::ShirmanSequinTestbed),
+    },
+    SchemeEntry {
+        name: "shirman-sequin-curvature",
+        summary: "the modified Shirman–Séquin macro-patch with a quadratic cross-boundary field whose end derivatives carry the vertices' shape tensors (geodesic torsion matched at the vertices; G1)",
+        parameters: shirman_sequin_curvature::PARAMETERS,
+        build: |o| Box::new(shirman_sequin_curvature::ShirmanSequinCurvature::from_options(o)),
     },
     SchemeEntry {
         name: "gregory-charrot",

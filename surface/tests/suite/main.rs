@@ -17,6 +17,7 @@ mod scheme_phong;
 mod scheme_pn_triangles;
 mod scheme_powell_sabin;
 mod scheme_side_vertex;
+mod scheme_ss_curvature;
 mod scheme_ss_variants;
 mod schemes;
 mod sharp;
