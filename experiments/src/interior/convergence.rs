@@ -1,0 +1,263 @@
+//! The seed's open question answered with numbers: curvature data in the cross-boundary field
+//! (`shirman-sequin-curvature`, `surface::curvature_cross`) against the Shirman–Séquin
+//! defaults, Nielson and Loop, at doubling resolutions of the ring (the torus), the sphere and
+//! the capsule: errors against the true surface and their convergence orders; and Section 4's
+//! corner objectives, which β and c cannot move (the first part of the study), with the
+//! curvature data in the construction.
+
+use std::fmt::Write as _;
+
+use curves::CurveMethod;
+use experiments::error::ExperimentError;
+use experiments::study::StudyError;
+use experiments::sweep_tasks::grid::{axes_from_json, Grid};
+use render::{LineChart, Series};
+use serde_json::{json, Value};
+use surface::interior::corner_measures;
+use surface::InteriorParameters;
+
+/// The errors of a fit against the true surface that the tables give.
+#[derive(Clone, Copy, Debug)]
+pub struct Errors {
+    /// Root-mean-square distance to the true surface.
+    pub position_rms: f64,
+    /// Root-mean-square normal angle (degrees).
+    pub normal_rms_degrees: f64,
+    /// Root-mean-square Gaussian-curvature error.
+    pub gaussian_rms: f64,
+    /// Root-mean-square mean-curvature error.
+    pub mean_rms: f64,
+}
+
+/// The data sets and their resolutions, each step halving the edge length: the ring's steps
+/// around the axis (tube `nu/2`), the sphere's subdivision levels, the capsule's meridians.
+pub const SERIES: [(&str, [usize; 4]); 3] = [
+    ("ring", [16, 32, 64, 128]),
+    ("sphere", [1, 2, 3, 4]),
+    ("capsule", [16, 32, 64, 128]),
+];
+
+/// The schemes and curve constructions compared (`None`: a subdivision scheme, at the limit of
+/// the sweep's three levels).
+pub const CONTENDERS: [(&str, Option<&str>); 7] = [
+    ("shirman-sequin", Some("optimized")),
+    ("shirman-sequin", Some("dbhs")),
+    ("shirman-sequin-curvature", Some("optimized")),
+    ("shirman-sequin-curvature", Some("dbhs")),
+    ("nielson", Some("optimized")),
+    ("nielson", Some("dbhs")),
+    ("loop", None),
+];
+
+/// The contenders drawn in the K RMS charts: five, so that no two share a colour (the tables
+/// have all of them).
+const CHARTED: [(&str, Option<&str>); 5] = [
+    ("shirman-sequin", Some("optimized")),
+    ("shirman-sequin-curvature", Some("optimized")),
+    ("shirman-sequin-curvature", Some("dbhs")),
+    ("nielson", Some("optimized")),
+    ("loop", None),
+];
+
+/// One measured fit.
+pub struct Row {
+    /// Data set.
+    pub data: &'static str,
+    /// Its resolution.
+    pub resolution: usize,
+    /// Faces of the data mesh.
+    pub faces: usize,
+    /// Scheme name.
+    pub scheme: &'static str,
+    /// Curve construction (`None` for subdivision).
+    pub curves: Option<&'static str>,
+    /// Errors against the true surface.
+    pub errors: Errors,
+    /// G1 defect (radians; `None` for subdivision).
+    pub g1: Option<f64>,
+}
+
+impl Row {
+    fn label(&self) -> String {
+        match self.curves {
+            Some(c) => format!("{}/{c}", self.scheme),
+            None => self.scheme.to_string(),
+        }
+    }
+}
+
+/// Every data set × resolution × contender, through the sweep's task runner (the numbers a
+/// `sweep` over the same grid writes).
+pub fn measure() -> Result<Vec<Row>, ExperimentError> {
+    let mut rows = Vec::new();
+    for (data, resolutions) in SERIES {
+        for (scheme, curves) in CONTENDERS {
+            let mut axes = json!({
+                "data": [data],
+                "resolution": resolutions,
+                "scheme": [scheme],
+            });
+            if let Some(c) = curves {
+                axes["curves"] = json!([c]);
+                if c == "optimized" {
+                    axes["solver"] = json!(["exact-penalty"]);
+                }
+            }
+            let axes = axes_from_json(&axes).map_err(|message| StudyError::JsonGrid { message })?;
+            let grid = Grid::new(axes)?;
+            let tasks = grid.tasks()?;
+            for (task, &resolution) in tasks.iter().zip(&resolutions) {
+                let v = experiments::sweep_tasks::run_grid_task(task, &grid)?;
+                let number = |key: &str| {
+                    v["errors"][key]
+                        .as_f64()
+                        .ok_or_else(|| ExperimentError::Measure {
+                            subject: task.id.clone(),
+                            message: format!("no {key} against the true surface"),
+                        })
+                };
+                let errors = Errors {
+                    position_rms: number("position_rms")?,
+                    normal_rms_degrees: number("normal_rms_degrees")?,
+                    gaussian_rms: number("gaussian_rms")?,
+                    mean_rms: number("mean_rms")?,
+                };
+                rows.push(Row {
+                    data,
+                    resolution,
+                    faces: v["faces"].as_u64().unwrap_or(0) as usize,
+                    scheme,
+                    curves,
+                    errors,
+                    g1: v["g1_defect_radians"].as_f64(),
+                });
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// `log₂(previous / this)`: the convergence order of an error when the edge length halves;
+/// `None` for the first resolution or an error that is not positive.
+fn order(previous: Option<f64>, this: f64) -> Option<f64> {
+    let p = previous?;
+    (p > 0.0 && this > 0.0).then(|| (p / this).log2())
+}
+
+fn cell(x: f64, o: Option<f64>) -> String {
+    match o {
+        Some(o) => format!("{x:.3e} ({o:.2})"),
+        None => format!("{x:.3e}"),
+    }
+}
+
+/// The convergence tables (markdown), the JSON records and a K RMS chart per data set.
+pub fn report(rows: &[Row]) -> (String, Vec<Value>, Vec<LineChart>) {
+    let mut md = String::new();
+    let mut records = Vec::new();
+    let mut charts = Vec::new();
+    for (data, _) in SERIES {
+        let _ = writeln!(md, "\n### {data}\n");
+        let _ = writeln!(md, "| scheme / curves | resolution | faces | position RMS | normal RMS (°) | K RMS | H RMS | G1 (rad) |");
+        let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|---:|");
+        let mut series = Vec::new();
+        for (scheme, curves) in CONTENDERS {
+            let mut prev: Option<&Row> = None;
+            let mut points = Vec::new();
+            for r in rows
+                .iter()
+                .filter(|r| r.data == data && r.scheme == scheme && r.curves == curves)
+            {
+                let e = &r.errors;
+                let o = |f: &dyn Fn(&Errors) -> f64| order(prev.map(|p| f(&p.errors)), f(e));
+                let (op, on, ok, oh) = (
+                    o(&|e| e.position_rms),
+                    o(&|e| e.normal_rms_degrees),
+                    o(&|e| e.gaussian_rms),
+                    o(&|e| e.mean_rms),
+                );
+                let g1 = r.g1.map_or("—".to_string(), |g| format!("{g:.1e}"));
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {} | {} | {} | {} | {g1} |",
+                    r.label(),
+                    r.resolution,
+                    r.faces,
+                    cell(e.position_rms, op),
+                    cell(e.normal_rms_degrees, on),
+                    cell(e.gaussian_rms, ok),
+                    cell(e.mean_rms, oh),
+                );
+                records.push(json!({
+                    "dataset": data, "resolution": r.resolution, "faces": r.faces,
+                    "scheme": scheme, "curves": curves,
+                    "errors": {"position_rms": e.position_rms, "normal_rms_degrees": e.normal_rms_degrees, "gaussian_rms": e.gaussian_rms, "mean_rms": e.mean_rms},
+                    "g1_defect_radians": r.g1,
+                    "orders": {"position_rms": op, "normal_rms": on, "gaussian_rms": ok, "mean_rms": oh},
+                }));
+                points.push(((r.faces as f64).log2() / 2.0, e.gaussian_rms));
+                prev = Some(r);
+            }
+            if !CHARTED.contains(&(scheme, curves)) {
+                continue;
+            }
+            series.push(Series {
+                label: match curves {
+                    Some(c) => format!("{scheme}/{c}"),
+                    None => scheme.to_string(),
+                },
+                points,
+            });
+        }
+        charts.push(LineChart {
+            title: format!("{data}: K RMS against the true surface"),
+            x_label: "log₂ √faces (one step: edges halved)".into(),
+            y_label: "K RMS".into(),
+            series,
+            log_y: true,
+        });
+    }
+    (md, records, charts)
+}
+
+/// Section 4's objectives (Σ of squared corner-measure errors over every corner, as the first
+/// part of the study sums them) of the defaults' nets and of the curvature variant's, on the
+/// claim's data sets at their default resolutions with `method`'s curves: `(curvature,
+/// twist)` for each.
+pub fn corner_objectives(
+    mesh: &surface::Mesh,
+    method: &dyn CurveMethod,
+    subject: &str,
+) -> Result<[(f64, f64); 2], ExperimentError> {
+    let f = surface::fit(mesh, method, &|_| InteriorParameters::default()).map_err(|source| {
+        ExperimentError::Fit {
+            subject: subject.to_string(),
+            source,
+        }
+    })?;
+    let mut out = [(0.0, 0.0); 2];
+    for (fi, face) in mesh.faces().iter().enumerate() {
+        let v = face.map(|i| &mesh.vertices()[i].data);
+        let curves = f
+            .face_curves(mesh, fi)
+            .map_err(|e| ExperimentError::Measure {
+                subject: subject.to_string(),
+                message: format!("face {fi}: {e}"),
+            })?;
+        let p = InteriorParameters::default();
+        let built = [
+            surface::macro_patch(v, &curves, &p),
+            surface::curvature_cross::macro_patch_curvature(v, &curves, &p, [false; 3]),
+        ];
+        for (slot, nets) in out.iter_mut().zip(built) {
+            // A face the construction refuses is a fallback face of the fit: not measured.
+            let Ok(nets) = nets else { continue };
+            for m in corner_measures(&nets, v) {
+                slot.0 += (m.boundary_curvature - m.boundary_target).powi(2);
+                slot.1 += (m.twist_start - m.twist_targets[0]).powi(2)
+                    + (m.twist_end - m.twist_targets[1]).powi(2);
+            }
+        }
+    }
+    Ok(out)
+}
