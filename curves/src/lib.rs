@@ -9,6 +9,8 @@
 //! * [`chord`] — the Shirman–Séquin default, `α = (1, 1)`: one third of the chord;
 //! * [`dbhs`] — de Boor–Höllig–Sabin, matching end curvatures, with every positive solution
 //!   enumerated and one chosen by a named [`DbhsPick`] policy;
+//! * [`dbhs_guarded`] — dBHS where its solution keeps within half to twice the chord choice,
+//!   [`optimized`] elsewhere;
 //! * [`optimized`] — Mann's trade-off between tangent length and end curvature, minimized by any
 //!   adapter of the `solver` crate (objective in the `cost` crate);
 //! * [`projection`] — the original testbed's projection rules (`projection`,
@@ -29,6 +31,7 @@ pub mod chord;
 pub mod crease;
 pub mod cubicbez;
 pub mod dbhs;
+pub mod dbhs_guarded;
 pub mod jsonl;
 pub mod method;
 pub mod optimized;
@@ -42,6 +45,7 @@ pub use chord::Chord;
 pub use crease::{apply_tangents, crease_end, CreaseEnd};
 pub use cubicbez::{cross2, CubicBez, CubicBez2, CubicBez3, CurvatureSample, QuarticBez};
 pub use dbhs::{Dbhs, DbhsPick, DbhsSolution, DbhsSolutions};
+pub use dbhs_guarded::DbhsGuarded;
 pub use method::{
     method_by_name, planar_space_curve, Candidates, CurveChoice, CurveMethod, MethodEntry,
     MethodOptions, SpaceCurve, TangentRule, UnknownMethod, REGISTRY,

@@ -14,8 +14,8 @@ use crate::cubicbez::CubicBez3;
 use crate::projection::{Projection, Reach, Scaling};
 use crate::tweak::{Quadric, Tweak, DEFAULT_TWEAK_T};
 use crate::{
-    chord::Chord, dbhs::Dbhs, dbhs::DbhsPick, optimized::Optimized, problem::BoundaryProblem,
-    problem::UnitProblem,
+    chord::Chord, dbhs::Dbhs, dbhs::DbhsPick, dbhs_guarded::DbhsGuarded, optimized::Optimized,
+    problem::BoundaryProblem, problem::UnitProblem,
 };
 use cost::Weights;
 use solver::{SolveOptions, SolveReport, SolverKind};
@@ -328,6 +328,21 @@ pub const REGISTRY: &[MethodEntry] = &[
         },
     },
     MethodEntry {
+        name: "dbhs-guarded",
+        summary: "de Boor–Höllig–Sabin where its lengths keep within half to twice the chord choice, optimized elsewhere (G2 ends without the lumps)",
+        build: |o| {
+            Box::new(DbhsGuarded {
+                pick: o.dbhs_pick,
+                optimized: Optimized {
+                    solver: o.solver,
+                    weights: o.weights,
+                    alpha_min: o.alpha_min,
+                    solve_options: o.solve_options,
+                },
+            })
+        },
+    },
+    MethodEntry {
         name: "projection",
         summary: "original testbed: the chord's third (or five ninths) projected into the tangent plane",
         build: |o| {
@@ -409,7 +424,7 @@ mod tests {
             .err()
             .expect("unknown");
         assert!(err.to_string().contains(
-            "chord, dbhs, optimized, projection, projection-scaled, piper, tweak, quadric"
+            "chord, dbhs, optimized, dbhs-guarded, projection, projection-scaled, piper, tweak, quadric"
         ));
     }
 }

@@ -3,6 +3,7 @@
 
 mod boundary_problem;
 mod dbhs;
+mod dbhs_guarded;
 mod extreme_problems;
 mod optimized;
 mod projection_rules;

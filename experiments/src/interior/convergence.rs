@@ -39,11 +39,12 @@ pub const SERIES: [(&str, [usize; 4]); 3] = [
 
 /// The schemes and curve constructions compared (`None`: a subdivision scheme, at the limit of
 /// the sweep's three levels).
-pub const CONTENDERS: [(&str, Option<&str>); 7] = [
+pub const CONTENDERS: [(&str, Option<&str>); 8] = [
     ("shirman-sequin", Some("optimized")),
     ("shirman-sequin", Some("dbhs")),
     ("shirman-sequin-curvature", Some("optimized")),
     ("shirman-sequin-curvature", Some("dbhs")),
+    ("shirman-sequin-curvature", Some("dbhs-guarded")),
     ("nielson", Some("optimized")),
     ("nielson", Some("dbhs")),
     ("loop", None),
@@ -53,8 +54,8 @@ pub const CONTENDERS: [(&str, Option<&str>); 7] = [
 /// have all of them).
 const CHARTED: [(&str, Option<&str>); 5] = [
     ("shirman-sequin", Some("optimized")),
-    ("shirman-sequin-curvature", Some("optimized")),
     ("shirman-sequin-curvature", Some("dbhs")),
+    ("shirman-sequin-curvature", Some("dbhs-guarded")),
     ("nielson", Some("optimized")),
     ("loop", None),
 ];
@@ -86,42 +87,59 @@ impl Row {
     }
 }
 
-/// Every data set × resolution × contender, through the sweep's task runner (the numbers a
-/// `sweep` over the same grid writes).
+/// The errors of every task of the sweep grid `axes` (a JSON object of a grid file's keys), in
+/// task order, each with its task's identity (`data`, `resolution`, `scheme`, `curves`) and its
+/// G1 defect: the numbers a `sweep` over the same grid writes.
+fn run_grid(axes: &Value) -> Result<Vec<(Value, Errors, Option<f64>)>, ExperimentError> {
+    let parsed = axes_from_json(axes).map_err(|message| StudyError::JsonGrid { message })?;
+    let grid = Grid::new(parsed)?;
+    let tasks = grid.tasks()?;
+    let mut out = Vec::with_capacity(tasks.len());
+    for task in &tasks {
+        let v = experiments::sweep_tasks::run_grid_task(task, &grid)?;
+        let number = |key: &str| {
+            v["errors"][key]
+                .as_f64()
+                .ok_or_else(|| ExperimentError::Measure {
+                    subject: task.id.clone(),
+                    message: format!("no {key} against the true surface"),
+                })
+        };
+        let errors = Errors {
+            position_rms: number("position_rms")?,
+            normal_rms_degrees: number("normal_rms_degrees")?,
+            gaussian_rms: number("gaussian_rms")?,
+            mean_rms: number("mean_rms")?,
+        };
+        let g1 = v["g1_defect_radians"].as_f64();
+        out.push((v, errors, g1));
+    }
+    Ok(out)
+}
+
+/// The grid axes of one contender on `data` at `resolutions` (none: the default), the solver
+/// given where the construction takes one.
+fn contender_axes(data: &str, resolutions: &[usize], scheme: &str, curves: Option<&str>) -> Value {
+    let mut axes = json!({"data": [data], "scheme": [scheme]});
+    if !resolutions.is_empty() {
+        axes["resolution"] = json!(resolutions);
+    }
+    if let Some(c) = curves {
+        axes["curves"] = json!([c]);
+        if c == "optimized" {
+            axes["solver"] = json!(["exact-penalty"]);
+        }
+    }
+    axes
+}
+
+/// Every data set × resolution × contender, through the sweep's task runner.
 pub fn measure() -> Result<Vec<Row>, ExperimentError> {
     let mut rows = Vec::new();
     for (data, resolutions) in SERIES {
         for (scheme, curves) in CONTENDERS {
-            let mut axes = json!({
-                "data": [data],
-                "resolution": resolutions,
-                "scheme": [scheme],
-            });
-            if let Some(c) = curves {
-                axes["curves"] = json!([c]);
-                if c == "optimized" {
-                    axes["solver"] = json!(["exact-penalty"]);
-                }
-            }
-            let axes = axes_from_json(&axes).map_err(|message| StudyError::JsonGrid { message })?;
-            let grid = Grid::new(axes)?;
-            let tasks = grid.tasks()?;
-            for (task, &resolution) in tasks.iter().zip(&resolutions) {
-                let v = experiments::sweep_tasks::run_grid_task(task, &grid)?;
-                let number = |key: &str| {
-                    v["errors"][key]
-                        .as_f64()
-                        .ok_or_else(|| ExperimentError::Measure {
-                            subject: task.id.clone(),
-                            message: format!("no {key} against the true surface"),
-                        })
-                };
-                let errors = Errors {
-                    position_rms: number("position_rms")?,
-                    normal_rms_degrees: number("normal_rms_degrees")?,
-                    gaussian_rms: number("gaussian_rms")?,
-                    mean_rms: number("mean_rms")?,
-                };
+            let axes = contender_axes(data, &resolutions, scheme, curves);
+            for ((v, errors, g1), &resolution) in run_grid(&axes)?.into_iter().zip(&resolutions) {
                 rows.push(Row {
                     data,
                     resolution,
@@ -129,12 +147,95 @@ pub fn measure() -> Result<Vec<Row>, ExperimentError> {
                     scheme,
                     curves,
                     errors,
-                    g1: v["g1_defect_radians"].as_f64(),
+                    g1,
                 });
             }
         }
     }
     Ok(rows)
+}
+
+/// The one setting the verdict measures: the curvature variant on `dbhs-guarded` curves.
+pub const SETTING: (&str, &str) = ("shirman-sequin-curvature", "dbhs-guarded");
+
+/// The Shirman–Séquin defaults it is held against: the fit's default curves and the seeds'
+/// best.
+pub const DEFAULTS: [(&str, &str); 2] =
+    [("shirman-sequin", "chord"), ("shirman-sequin", "optimized")];
+
+/// The verdict at each data set's default resolution: [`SETTING`] against [`DEFAULTS`] on
+/// position, normal, K and H RMS at once, and its K RMS against every registered scheme's on
+/// optimized curves (the `schemes` study's setting). Markdown and JSON records.
+pub fn verdict() -> Result<(String, Vec<Value>), ExperimentError> {
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "| data set | setting | position RMS | normal RMS (°) | K RMS | H RMS |"
+    );
+    let _ = writeln!(md, "|---|---|---:|---:|---:|---:|");
+    let mut notes = String::new();
+    let mut records = Vec::new();
+    for data in ["ring", "sphere", "capsule", "octa"] {
+        let one = |scheme: &str, curves: &str| -> Result<Errors, ExperimentError> {
+            let rows = run_grid(&contender_axes(data, &[], scheme, Some(curves)))?;
+            rows.into_iter()
+                .next()
+                .map(|r| r.1)
+                .ok_or_else(|| ExperimentError::Measure {
+                    subject: format!("{data}/{scheme}/{curves}"),
+                    message: "no task".into(),
+                })
+        };
+        let ours = one(SETTING.0, SETTING.1)?;
+        let mut beats_all = true;
+        let mut lines = vec![(format!("{}/{}", SETTING.0, SETTING.1), ours)];
+        for (scheme, curves) in DEFAULTS {
+            let e = one(scheme, curves)?;
+            beats_all &= ours.position_rms < e.position_rms
+                && ours.normal_rms_degrees < e.normal_rms_degrees
+                && ours.gaussian_rms < e.gaussian_rms
+                && ours.mean_rms < e.mean_rms;
+            lines.push((format!("{scheme}/{curves}"), e));
+        }
+        for (label, e) in &lines {
+            let _ = writeln!(
+                md,
+                "| {data} | {label} | {:.3e} | {:.3e} | {:.3e} | {:.3e} |",
+                e.position_rms, e.normal_rms_degrees, e.gaussian_rms, e.mean_rms
+            );
+        }
+        // Every registered scheme on optimized curves (those that make their own boundaries
+        // ignore the curves).
+        let all = run_grid(&json!({"data": [data], "scheme": surface::scheme_names(),
+            "curves": ["optimized"], "solver": ["exact-penalty"]}))?;
+        let best = all
+            .iter()
+            .min_by(|a, b| a.1.gaussian_rms.total_cmp(&b.1.gaussian_rms))
+            .map(|(v, e, _)| {
+                (
+                    v["scheme"].as_str().unwrap_or("?").to_string(),
+                    e.gaussian_rms,
+                )
+            });
+        let best_k = best.as_ref().map_or(f64::NAN, |b| b.1);
+        let is_best = ours.gaussian_rms <= best_k;
+        let _ = writeln!(
+            notes,
+            "- {data}: beats both defaults on all four measures: **{}**; K RMS {:.3e} against the best registered scheme on optimized curves, {} ({best_k:.3e}): **{}**",
+            if beats_all { "yes" } else { "no" },
+            ours.gaussian_rms,
+            best.as_ref().map_or("—", |b| b.0.as_str()),
+            if is_best { "best" } else { "not best" }
+        );
+        records.push(json!({"dataset": data, "beats_defaults_on_every_measure": beats_all,
+            "k_rms": ours.gaussian_rms, "best_registered_on_optimized": best.as_ref().map(|b| b.0.clone()),
+            "best_registered_k_rms": best_k, "best_k_rms": is_best,
+            "rows": lines.iter().map(|(l, e)| json!({"setting": l, "position_rms": e.position_rms,
+                "normal_rms_degrees": e.normal_rms_degrees, "gaussian_rms": e.gaussian_rms, "mean_rms": e.mean_rms})).collect::<Vec<_>>()}));
+    }
+    md.push('\n');
+    md.push_str(&notes);
+    Ok((md, records))
 }
 
 /// `log₂(previous / this)`: the convergence order of an error when the edge length halves;

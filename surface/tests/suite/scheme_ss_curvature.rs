@@ -1,9 +1,10 @@
 //! `shirman-sequin-curvature` (`surface::curvature_cross`): the quadratic cross-boundary field
 //! whose middle vector carries the vertices' shape tensors. Measured on the exact torus data of
 //! the ring: the surface normal's turn across each edge at its two ends (the geodesic torsion)
-//! has the data's difference where Chiyokura–Kimura's has not, the field is shared by the two
+//! is the data's to second order where Chiyokura–Kimura's is first order, the field is shared by the two
 //! faces on an edge (odd under reversal), and the curvature converges at second order where the
-//! default converges at first.
+//! default converges at first; on the capsule, whose seam vertices carry one side's tensor,
+//! the variant is no worse than the default.
 
 #![allow(clippy::expect_used, clippy::unwrap_used)] // test fixtures fail loudly by design
 
@@ -21,11 +22,8 @@ use surface::{
 /// edge parameter: truncation `~STEP²·|N‴|` (`|N‴|` up to about 10 on the ring's coarse dBHS
 /// curves: 1e-7 measured at a step of 1e-4) and rounding `~1e-16/STEP`: both near 1e-9.
 const STEP: f64 = 1e-5;
-/// What the difference of the end rates may miss the data's by: the finite differences above.
+/// What the two fields' rate sums may differ by: the finite differences above.
 const RATE_TOL: f64 = 1e-7;
-/// What the rates' difference misses by under Chiyokura–Kimura on the ring at 16 × 8 must
-/// exceed: far above [`RATE_TOL`], so the rate test tells the two fields apart (measured 1.4).
-const CK_MISSES_BY: f64 = 1e-3;
 /// A vector built from unit vectors and curvatures of order one, computed in the other
 /// direction: rounding.
 const ROUNDING: f64 = 1e-14;
@@ -63,11 +61,11 @@ fn data_rates(curve: &CubicBez3, a: &VertexData, b: &VertexData) -> (f64, f64) {
     (-c0.dot(&(a.shape * t0)), -c1.dot(&(b.shape * t1)))
 }
 
-/// Over every face and exterior edge of the ring at 16 × 8 with dBHS curves: the largest miss of
-/// the rates' difference against the data's, for the variant and for Chiyokura–Kimura, and the
+/// Over every face and exterior edge of the ring at `nu × nu/2` with dBHS curves: the largest
+/// miss of the end rates against the data's, for the variant and for Chiyokura–Kimura, and the
 /// largest difference between the two fields' rate sums.
-fn rate_misses() -> (f64, f64, f64) {
-    let data = ring(16, 8).unwrap();
+fn rate_misses(nu: usize) -> (f64, f64, f64) {
+    let data = ring(nu, nu / 2).unwrap();
     let mesh: &Mesh = &data.mesh;
     let dbhs = method_by_name("dbhs", &MethodOptions::default()).unwrap();
     let f = fit(mesh, dbhs.as_ref(), &|_| InteriorParameters::default()).unwrap();
@@ -84,30 +82,42 @@ fn rate_misses() -> (f64, f64, f64) {
             let (r0, r1) = data_rates(&curves[e], a, b);
             let (o0, o1) = end_rates(&ours[e], &curves[e], n);
             let (k0, k1) = end_rates(&theirs[e], &curves[e], n);
-            variant = variant.max(((o0 - o1) - (r0 - r1)).abs());
-            ck = ck.max(((k0 - k1) - (r0 - r1)).abs());
+            variant = variant.max((o0 - r0).abs()).max((o1 - r1).abs());
+            ck = ck.max((k0 - r0).abs()).max((k1 - r1).abs());
             sums = sums.max(((o0 + o1) - (k0 + k1)).abs());
         }
     }
     (variant, ck, sums)
 }
 
+/// The end rates are in units of the edge parameter (`|T| ~ h`): an error of the torsion of
+/// order `hᵖ` is a rate error of order `hᵖ⁺¹`. Chiyokura–Kimura's torsion is off by `O(h)`
+/// (rates `O(h²)`: a factor 4 when the edges halve), the variant's by `O(h²)` (rates `O(h³)`:
+/// 8). Between the two: the variant's factor must exceed this.
+const VARIANT_RATE_FACTOR: f64 = 6.0;
+/// … and Chiyokura–Kimura's stay below it.
+const CK_RATE_FACTOR: f64 = 5.0;
+
 #[test]
-fn the_normal_turns_across_each_edge_with_the_datas_torsion_difference_at_its_ends() {
-    let (variant, ck, sums) = rate_misses();
+fn the_normal_turns_across_each_edge_with_the_datas_torsion_to_second_order() {
+    let (v32, k32, s32) = rate_misses(32);
+    let (v64, k64, s64) = rate_misses(64);
     eprintln!(
-        "rate difference miss: variant {variant:.2e}, Chiyokura–Kimura {ck:.2e}; sums {sums:.2e}"
+        "rate miss: variant {v32:.2e} → {v64:.2e} ({:.1}×), Chiyokura–Kimura {k32:.2e} → {k64:.2e} ({:.1}×); sums {s32:.1e} {s64:.1e}",
+        v32 / v64,
+        k32 / k64
+    );
+    assert!(v32 / v64 > VARIANT_RATE_FACTOR, "variant {v32:e} → {v64:e}");
+    assert!(
+        k32 / k64 < CK_RATE_FACTOR,
+        "Chiyokura–Kimura {k32:e} → {k64:e}"
     );
     assert!(
-        variant < RATE_TOL,
-        "variant misses the data's rates by {variant:e}"
-    );
-    assert!(
-        ck > CK_MISSES_BY,
-        "Chiyokura–Kimura should miss them: {ck:e}"
+        v64 < k64,
+        "variant {v64:e} against Chiyokura–Kimura {k64:e}"
     );
     // The rates' sum (the normals' own turn about the edge) is Chiyokura–Kimura's.
-    assert!(sums < RATE_TOL, "sums differ by {sums:e}");
+    assert!(s32.max(s64) < RATE_TOL, "sums differ by {s32:e}, {s64:e}");
 }
 
 /// A symmetric 3 × 3 tensor from six numbers.
@@ -167,4 +177,31 @@ fn the_curvature_converges_at_second_order_on_the_torus_where_the_default_is_fir
         p32 <= q32 && p64 <= q64,
         "position {p32} {p64} vs {q32} {q64}"
     );
+}
+
+/// K RMS of the capsule at `n` meridians against its true surface, `dbhs-guarded` curves.
+fn capsule_k_rms(scheme: &str, n: usize) -> f64 {
+    let data = surface::datasets::capsule(n).unwrap();
+    let curves = method_by_name("dbhs-guarded", &MethodOptions::default()).unwrap();
+    let s = scheme_by_name(scheme, &SchemeOptions::default()).unwrap();
+    let f = fit_scheme(&data.mesh, s.as_ref(), curves.as_ref()).unwrap();
+    let tess = tessellate_fit(&data.mesh, &f, SEGMENTS).unwrap();
+    compare_with_truth(&tess, data.surface.as_ref()).gaussian_rms
+}
+
+/// The capsule's K RMS of the variant may exceed the default's by this factor: its error sits
+/// at the seams either way (measured 0.3918 against 0.3915 at 16 meridians; an equal split of
+/// the rates' shift gave 0.83, 2.1×).
+const SEAM_FACTOR: f64 = 1.01;
+
+#[test]
+fn a_seam_where_the_curvature_jumps_costs_the_variant_nothing() {
+    for n in [16, 32] {
+        let (ours, theirs) = (
+            capsule_k_rms("shirman-sequin-curvature", n),
+            capsule_k_rms("shirman-sequin", n),
+        );
+        eprintln!("capsule {n}: K RMS variant {ours:.4}, default {theirs:.4}");
+        assert!(ours < theirs * SEAM_FACTOR, "{n}: {ours} against {theirs}");
+    }
 }
