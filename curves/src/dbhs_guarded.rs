@@ -37,6 +37,11 @@ impl CurveMethod for DbhsGuarded {
         "dbhs-guarded"
     }
 
+    /// Its optimized branch takes one.
+    fn takes_solver(&self) -> bool {
+        true
+    }
+
     /// The picked dBHS solution inside [`GUARD`] with every solution as candidates, else the
     /// optimized construction's choice (its solver report, no candidates).
     fn construct(&self, problem: &UnitProblem) -> CurveChoice {

@@ -47,8 +47,8 @@ pub use cubicbez::{cross2, CubicBez, CubicBez2, CubicBez3, CurvatureSample, Quar
 pub use dbhs::{Dbhs, DbhsPick, DbhsSolution, DbhsSolutions};
 pub use dbhs_guarded::DbhsGuarded;
 pub use method::{
-    method_by_name, planar_space_curve, Candidates, CurveChoice, CurveMethod, MethodEntry,
-    MethodOptions, SpaceCurve, TangentRule, UnknownMethod, REGISTRY,
+    method_by_name, planar_space_curve, takes_solver, Candidates, CurveChoice, CurveMethod,
+    MethodEntry, MethodOptions, SpaceCurve, TangentRule, UnknownMethod, REGISTRY,
 };
 pub use optimized::Optimized;
 pub use problem::{

@@ -152,6 +152,12 @@ pub trait CurveMethod: Send + Sync {
         false
     }
 
+    /// True if it solves an optimization problem with [`MethodOptions::solver`] (its choice then
+    /// depends on the solver: sweeps run it once per solver); false for a closed-form rule.
+    fn takes_solver(&self) -> bool {
+        false
+    }
+
     /// The world cubic of an edge: what a surface fit calls for every edge curve. `lines` are
     /// the tangents the curve must take at its ends where the mesh fixes them (a crease end's
     /// line, unit, along the direction of travel: leaving `a`, arriving at `b`).
@@ -232,6 +238,9 @@ impl CurveMethod for PerEdgeTangents {
     }
     fn enumerates_solutions(&self) -> bool {
         self.0.enumerates_solutions()
+    }
+    fn takes_solver(&self) -> bool {
+        self.0.takes_solver()
     }
     fn space_curve(
         &self,
@@ -383,6 +392,12 @@ pub const REGISTRY: &[MethodEntry] = &[
         build: |_| Box::new(Quadric),
     },
 ];
+
+/// True if the registered construction `name` takes a solver ([`CurveMethod::takes_solver`]);
+/// false for an unknown name.
+pub fn takes_solver(name: &str) -> bool {
+    method_by_name(name, &MethodOptions::default()).is_ok_and(|m| m.takes_solver())
+}
 
 /// Looks a construction up by name.
 pub fn method_by_name(

@@ -41,6 +41,10 @@ impl CurveMethod for Optimized {
         "optimized"
     }
 
+    fn takes_solver(&self) -> bool {
+        true
+    }
+
     /// Minimizes from `α = (1, 1)`. Invalid settings (negative weights, `α_min ≤ 0`) cannot
     /// produce a curve: the chord choice is returned with `fallback` set and no report.
     fn construct(&self, problem: &UnitProblem) -> CurveChoice {

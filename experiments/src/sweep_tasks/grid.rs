@@ -31,9 +31,11 @@ use surface::scheme::ParameterSpec;
 
 use crate::study::StudyError;
 
-/// The construction that takes a solver: the grid runs it once per `--solver`, every other
-/// construction once.
-pub const SOLVED_METHOD: &str = "optimized";
+/// Whether the grid runs construction `c` once per `--solver` (it takes a solver:
+/// [`curves::CurveMethod::takes_solver`]) or once.
+fn solved(c: &str) -> bool {
+    curves::takes_solver(c)
+}
 
 /// Default tessellation density of the sweep's measurements (segments per patch edge).
 pub const DEFAULT_SEGMENTS: usize = 4;
@@ -60,7 +62,7 @@ pub struct Axes {
     pub scheme: Option<Vec<String>>,
     /// Curve constructions.
     pub curves: Option<Vec<String>>,
-    /// Solvers of [`SOLVED_METHOD`].
+    /// Solvers of the constructions that take one ([`solved`]).
     pub solver: Option<Vec<String>>,
     /// Segments per patch edge.
     pub segments: Option<Vec<usize>>,
@@ -138,7 +140,7 @@ pub struct Task {
     pub parameters: Vec<(&'static ParameterSpec, f64)>,
     /// The curve construction (`None`: the scheme takes no edge curves).
     pub curves: Option<String>,
-    /// The solver (only for [`SOLVED_METHOD`]).
+    /// The solver (only for a construction that takes one, [`solved`]).
     pub solver: Option<SolverKind>,
     /// Segments per patch edge (`None` for subdivision, measured at its limit).
     pub segments: Option<usize>,
@@ -339,11 +341,23 @@ impl Grid {
                     .collect::<Result<_, _>>()?
             }
         };
-        if solver_names.is_some() && !(with_curves && curves.iter().any(|c| c == SOLVED_METHOD)) {
+        if solver_names.is_some() && !(with_curves && curves.iter().any(|c| solved(c))) {
+            let takers: Vec<&str> = curves::REGISTRY
+                .iter()
+                .map(|e| e.name)
+                .filter(|n| solved(n))
+                .collect();
             return Err(bad(
                 "--solver",
-                solvers.iter().map(|s| s.name()).collect::<Vec<_>>().join(","),
-                format!("no task of the grid runs the `{SOLVED_METHOD}` construction, the one that takes a solver"),
+                solvers
+                    .iter()
+                    .map(|s| s.name())
+                    .collect::<Vec<_>>()
+                    .join(","),
+                format!(
+                    "no task of the grid runs a construction that takes a solver ({})",
+                    takers.join(", ")
+                ),
             ));
         }
         // Parameters: every one a scheme of the grid reads, at its default unless given; one
@@ -483,7 +497,7 @@ impl Grid {
                     .curves
                     .iter()
                     .map(|c| {
-                        if c == SOLVED_METHOD {
+                        if solved(c) {
                             self.solvers.len() as u128
                         } else {
                             1
@@ -557,7 +571,7 @@ impl Grid {
                             push(None, None, None);
                         } else if uses_curves(scheme) {
                             for c in &self.curves {
-                                let solvers: Vec<Option<SolverKind>> = if c == SOLVED_METHOD {
+                                let solvers: Vec<Option<SolverKind>> = if solved(c) {
                                     self.solvers.iter().copied().map(Some).collect()
                                 } else {
                                     vec![None]
@@ -870,9 +884,12 @@ mod tests {
     fn the_default_grid_is_every_construction_on_every_data_set() {
         let grid = Grid::new(Axes::default()).unwrap();
         let tasks = grid.tasks().unwrap();
-        // Four data sets × every registered construction, `optimized` once per solver (3):
-        // the twenty tasks of old (chord, dbhs, optimized) and the original testbed's rules.
-        let per_set = curves::REGISTRY.len() + 2;
+        // Four data sets × every registered construction, those that take a solver once per
+        // solver (3): the twenty tasks of old (chord, dbhs, optimized) and the rest.
+        let per_set = curves::REGISTRY
+            .iter()
+            .map(|e| if curves::takes_solver(e.name) { 3 } else { 1 })
+            .sum::<usize>();
         assert_eq!(tasks.len(), 4 * per_set);
         assert_eq!(grid.count(), 4 * per_set as u128);
         let ids: Vec<&str> = tasks.iter().map(|t| t.id.as_str()).collect();
@@ -985,10 +1002,15 @@ mod tests {
         .unwrap();
         let (file, json) = (Grid::new(file).unwrap(), Grid::new(json).unwrap());
         assert_eq!(file, json);
-        // 2 data × 2 β × every construction (optimized with 3 solvers: two more) × 2 segments.
+        // 2 data × 2 β × every construction (those that take a solver with 3) × 2 segments.
         assert_eq!(
             json.count(),
-            2 * 2 * (curves::REGISTRY.len() as u128 + 2) * 2
+            2 * 2
+                * (curves::REGISTRY
+                    .iter()
+                    .map(|e| if curves::takes_solver(e.name) { 3 } else { 1 })
+                    .sum::<usize>() as u128)
+                * 2
         );
         // Every refusal of a grid file, with its message after the line.
         for (toml, v) in [

@@ -62,8 +62,9 @@
 //! ```
 //!
 //! The shift goes to the end whose tensor agrees least with the normals across the edge:
-//! `ω_a = e_a/(e_a + e_b)` (½ each where both are 0), with `e_a = |Ĉ_0·(n_b − n_a) + Ĉ_0ᵀ S_a d|`
-//! and `e_b = |Ĉ_1·(n_a − n_b) − Ĉ_1ᵀ S_b d|`, `d = V_b − V_a`: each tensor's first-order
+//! `ω_a = (e_a + ε)/(e_a + e_b + 2ε)` (ε a rounding floor, [`PREDICTION_FLOOR`]), with
+//! `e_a = |Ĉ_0·(n_b − n_a) + Ĉ_0ᵀ S_a d|` and `e_b = |Ĉ_1·(n_a − n_b) − Ĉ_1ᵀ S_b d|`,
+//! `d = V_b − V_a`: each tensor's first-order
 //! prediction (`dN = −S dp`) of the other end's normal, across the edge. On smooth data both are
 //! `O(h²)` and any split keeps the rates within `O(h³)` of the data's (the order this
 //! construction aims at); at a seam the one-sided tensor mispredicts by `O(h)` and takes the
@@ -109,6 +110,14 @@ use curves::VertexData;
 /// `W` towards the curve.
 pub const MAX_CORRECTION: f64 = 1.0;
 
+/// The floor added to both mispredictions `e_a`, `e_b` (module docs), relative to the sizes
+/// they are differences of (`|n_b − n_a| + |S_a d| + |S_b d|`): `√ε`-size. Below it a
+/// misprediction is rounding (a sphere's tensor predicts its normals exactly, and a latitude
+/// edge of a cylinder has none across it), and the split must not follow the noise: a
+/// rotated copy of the data would otherwise get another surface (measured 8e-6 on the capsule
+/// before the floor).
+pub const PREDICTION_FLOOR: f64 = 1e-8;
+
 /// The correction `x = x_s e_s` of the middle vector of the quadratic field `W` of edge
 /// `curve` with end normals `normals` (unit) and shape tensors `shapes` (module docs: the end
 /// rates moved to the normals' turn, the shift weighted by each tensor's misprediction, then
@@ -137,8 +146,13 @@ pub fn middle_correction(
     let d = vb - va;
     let ea = (c0.dot(&(normals[1] - normals[0])) + c0.dot(&(shapes[0] * d))).abs();
     let eb = (c1.dot(&(normals[0] - normals[1])) - c1.dot(&(shapes[1] * d))).abs();
-    let (wa, wb) = if ea + eb > 0.0 {
-        (ea / (ea + eb), eb / (ea + eb))
+    // Mispredictions at rounding level (a sphere's tensor predicts its normals exactly) split
+    // evenly, whatever their noise.
+    let floor = PREDICTION_FLOOR
+        * ((normals[1] - normals[0]).norm() + (shapes[0] * d).norm() + (shapes[1] * d).norm());
+    let (wa, wb) = if ea + eb + 2.0 * floor > 0.0 {
+        let total = ea + eb + 2.0 * floor;
+        ((ea + floor) / total, (eb + floor) / total)
     } else {
         (0.5, 0.5)
     };

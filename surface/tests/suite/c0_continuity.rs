@@ -101,6 +101,26 @@ const EXPECTED_JUMP: &[(&str, &str, &str, f64)] = &[
     ("octa", "discrete-side-vertex", "chord", 6.796738e-1),
     ("octa", "discrete-side-vertex", "dbhs", 6.796738e-1),
     ("octa", "discrete-side-vertex", "optimized", 6.796738e-1),
+    // `dbhs-guarded`: dBHS's figure where every edge keeps within its guard (sphere), near
+    // the optimized one where the lumps are replaced (ring, capsule).
+    ("sphere", "clough-tocher", "dbhs-guarded", 2.753923e-2),
+    (
+        "sphere",
+        "discrete-side-vertex",
+        "dbhs-guarded",
+        2.753923e-2,
+    ),
+    ("ring", "clough-tocher", "dbhs-guarded", 6.351270e-2),
+    ("ring", "discrete-side-vertex", "dbhs-guarded", 6.351270e-2),
+    ("capsule", "clough-tocher", "dbhs-guarded", 2.099286e-2),
+    (
+        "capsule",
+        "discrete-side-vertex",
+        "dbhs-guarded",
+        2.099286e-2,
+    ),
+    ("octa", "clough-tocher", "dbhs-guarded", 6.796738e-1),
+    ("octa", "discrete-side-vertex", "dbhs-guarded", 6.796738e-1),
     // The original testbed's tangent rules (`curves::projection`, `curves::tweak`).
     ("sphere", "clough-tocher", "projection", 2.506706e-2),
     ("sphere", "clough-tocher", "projection-scaled", 2.672779e-2),

@@ -171,7 +171,12 @@ fn every_scheme_is_similarity_invariant() {
         if a.layout.is_bezier() {
             for (p, q) in a.points.iter().zip(&b.points) {
                 let want = rot * p.coords * scale + shift;
-                assert!((want - q.coords).norm() < SIMILARITY, "{}", e.name);
+                assert!(
+                    (want - q.coords).norm() < SIMILARITY,
+                    "{}: {:e}",
+                    e.name,
+                    (want - q.coords).norm()
+                );
             }
         }
         // Any form: the evaluated surfaces are similar.
