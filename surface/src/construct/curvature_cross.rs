@@ -96,7 +96,7 @@
 //! points, for any rule (G1 inside for every `β > 0`).
 
 use curves::CubicBez3;
-use nalgebra::{Matrix3, Point3};
+use nalgebra::{Matrix3, Point3, Vector3};
 
 use crate::shirman_sequin::{
     chiyokura_kimura, decompose, macro_patch_with, CrossEnd, CrossFailure, InteriorParameters,
@@ -168,14 +168,41 @@ pub fn curvature_cross(
     ends: &[CrossEnd; 2],
     shapes: [&Matrix3<f64>; 2],
 ) -> Result<[Point3<f64>; 2], CrossFailure> {
+    let x = middle_correction(curve, [&ends[0].normal, &ends[1].normal], shapes)
+        .ok_or(CrossFailure::ZeroDerivative(0))?;
+    moved_cross(curve, ends, &x)
+}
+
+/// The macro-patch of [`crate::shirman_sequin::macro_patch_creased`] with the quadratic
+/// cross-boundary field of middle vector `w_CK + middles[e]` on each face edge `e` (module
+/// docs): the field's free vector, given. It is shared by the two faces on an edge when the
+/// neighbour, travelling the edge the other way, gives its negative (G1 for any vectors); the
+/// curvature variant sets it from the data ([`macro_patch_curvature`]), an optimizer of the
+/// curve network could set it from anything. β as given, `params.c` unused.
+pub fn macro_patch_with_middles(
+    vertices: [&VertexData; 3],
+    edges: &[CubicBez3; 3],
+    params: &InteriorParameters,
+    creased: [bool; 3],
+    middles: [Vector3<f64>; 3],
+) -> Result<[QuarticNet; 3], SchemeError> {
+    macro_patch_with(vertices, edges, params, creased, &|e, ends| {
+        moved_cross(&edges[e], ends, &middles[e])
+    })
+}
+
+/// Chiyokura–Kimura's row-1 points at `c = 1` moved by `⅔ k_0 x` and `⅔ k_1 x` (module docs).
+fn moved_cross(
+    curve: &CubicBez3,
+    ends: &[CrossEnd; 2],
+    x: &Vector3<f64>,
+) -> Result<[Point3<f64>; 2], CrossFailure> {
     let [c1, c2] = chiyokura_kimura(curve, ends, 1.0)?;
     let [va, e1, e2, vb] = curve.points;
     let (_, k0, _) = decompose(&ends[0].normal, &(e1 - va), &ends[0].cross)
         .ok_or(CrossFailure::NoCrossComponent(0))?;
     let (_, k1, _) = decompose(&ends[1].normal, &(vb - e2), &ends[1].cross)
         .ok_or(CrossFailure::NoCrossComponent(1))?;
-    let x = middle_correction(curve, [&ends[0].normal, &ends[1].normal], shapes)
-        .ok_or(CrossFailure::ZeroDerivative(0))?;
     Ok([c1 + x * (2.0 / 3.0 * k0), c2 + x * (2.0 / 3.0 * k1)])
 }
 

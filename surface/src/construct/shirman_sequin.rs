@@ -81,6 +81,46 @@
 //!
 //! Any `β_i > 0` gives a G1 surface, as the seed says.
 //!
+//! # Every free parameter
+//!
+//! What the construction leaves free once G1 is imposed, derived from the conditions above
+//! (tests: `surface/tests/suite/free_parameters.rs`: each keeps G1 over its range, and the
+//! Jacobian of a face's 45 control points in all of them has full rank on generic data):
+//!
+//! | parameter | where | count | range | set by |
+//! |---|---|---|---|---|
+//! | end-derivative lengths `α_0, α_1` | each mesh edge, shared | 2 per edge | `> 0` | the curve construction (`--curves`) |
+//! | end-tangent directions | each edge end, shared by the edges of a vertex's sector | 1 angle per edge end | in the tangent plane, every face corner convex | the tangent rule (`--tangents`, `surface::fit::fan`) |
+//! | `β_i = 1/μ_0` | each corner of each face | 3 per face | `BETA`: 0.01–10 | `--beta`, `--interior` (fairing) |
+//! | Jensen's `c` — or the middle vector `x` of a quadratic field `W` | `c`: each (face, edge); `x`: each edge, shared | 3 per face, or 3 per edge | `C`: 0.01–100; `x` any | `--c`, `--interior`; `x` by the data in `shirman-sequin-curvature` ([`crate::curvature_cross`]) |
+//!
+//! Everything else is forced:
+//!
+//! * **The cross-boundary weight functions.** The quartic's cross-boundary derivative `D` is
+//!   cubic and `B'` quadratic, so `h` is linear, fixed at both ends by the corner cross vectors
+//!   (`h_0, h_1`); `K` and the field `W` share the cubic's degree: `deg K + deg W ≤ 3`, with
+//!   `W` shared by both faces and `K` per face. `K` quadratic with `W` linear is Jensen's form
+//!   (its middle coefficient, `c`, is the free number); `K` linear with `W` quadratic is the
+//!   quadratic-field form (`W`'s middle vector, three numbers, is free and shared). `K`
+//!   constant with `W` cubic would need `k_0/k_1` equal on both faces, which the corners do not
+//!   give; `W` constant needs equal perpendiculars at both ends. The two free forms cannot be
+//!   combined (degree 4).
+//! * **The interior-boundary function** `μ(t)` is linear (`D_L + D_R` cubic, `P'` quadratic):
+//!   `μ_0 = 1/β_i` is free, and `μ_1 = 3` is forced. With `I³_j = (3J²_j + S)/4`, the `m = 3`
+//!   condition on boundary `i` reads `J²_{i+1} + J²_{i−1} − 2J²_i = μ_{1,i}(S − J²_i)`: `S` lies
+//!   on the line from `J²_i` through the centroid `G` of the three `J²` for every `i`, and the
+//!   three medians of a triangle meet only at `G`. So `S = G` and `μ_1 = 3` (C1 at the split
+//!   point), unless the three `J²` are collinear.
+//! * **The interior points**: `J¹_i` by `m = 0`, `J²_i` by `m = 1`, the row-2 middles `N_e` by
+//!   the three `m = 2` equations (a regular 3 × 3 system, `N_e = (R_e + R_{e+1} − R_{e+2})/2`).
+//! * **The domain split point** is the centroid of the data triangle's domain: fixed by the
+//!   layout every tessellation, file and measure reads (`crate::scheme::CENTROID_SPLIT`); another
+//!   split point changes the relation `D_L + D_R = 3(S − V_i)` of the domain directions and is
+//!   a different layout, not a parameter.
+//! * **The interior boundaries are cubics** (degree-raised): a quartic interior boundary would
+//!   free `I¹, I², I³` and change every condition above (the testbed's variant,
+//!   [`crate::ss_variants`], makes that choice).
+//!
 //! # Straight crease corners
 //!
 //! A corner `V_i` whose two edges are both crease lines there (a single face between two

@@ -5,6 +5,7 @@ mod c0_continuity;
 mod creases;
 mod fallback;
 mod fan;
+mod free_parameters;
 mod functional;
 mod interior;
 mod mesh_invariants;
