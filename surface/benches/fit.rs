@@ -2,7 +2,9 @@
 //! `chord` and `optimized` (exact-penalty) curves, all cores (rayon), buffers reused as in a
 //! sweep. Throughput is reported in triangles per second. `fit_ring` builds every face at the
 //! given parameters (`ShirmanSequin::per_face`, as sweeps and optimizers do); `fit_ring_scheme`
-//! is the registered scheme `fit` and the pipeline use (its crease lines read per face).
+//! is the registered scheme `fit` and the pipeline use (its crease lines read per face);
+//! `fit_ring_curvature` the `shirman-sequin-curvature` variant (the shape tensors in the
+//! cross-boundary field).
 
 #![allow(clippy::expect_used)] // a benchmark on fixed valid data
 
@@ -49,6 +51,14 @@ fn bench(c: &mut Criterion) {
         "fit_ring_scheme",
         &[sizes[1], sizes[3]],
         &|mesh, m, out| fit_scheme_into(mesh, scheme.as_ref(), m, out).expect("fits"),
+    );
+    let curvature =
+        scheme_by_name("shirman-sequin-curvature", &SchemeOptions::default()).expect("registered");
+    group(
+        c,
+        "fit_ring_curvature",
+        &[sizes[1], sizes[3]],
+        &|mesh, m, out| fit_scheme_into(mesh, curvature.as_ref(), m, out).expect("fits"),
     );
 }
 
