@@ -362,3 +362,124 @@ pub fn corner_objectives(
     }
     Ok(out)
 }
+
+/// Size of one picture of the K figure.
+const TILE: (u32, u32) = (300, 230);
+
+/// The view of the K figure (azimuth°, elevation°): the `schemes` study's.
+const VIEW: (f64, f64) = (35.0, 35.0);
+
+/// The ring resolutions of the K figure: the seeds' 16 × 8 and one step finer.
+const PICTURED: [usize; 2] = [16, 32];
+
+/// The K figure: on the ring at [`PICTURED`], the true surface's K at the samples, the default
+/// (optimized curves), [`SETTING`] and Loop, one colour scale (the true surface's largest
+/// |K|), written as `file` in `out`. Returns the figure's title.
+pub fn kcolor_figure(out: &std::path::Path, file: &str) -> Result<String, ExperimentError> {
+    use render::colors as colormap;
+    use render::{
+        render, write_composite, Camera, Legend, LegendKind, RenderMesh, RenderOptions, Tile,
+    };
+    let settings: [(&str, Option<&str>); 3] = [
+        ("shirman-sequin", Some("optimized")),
+        (SETTING.0, Some(SETTING.1)),
+        ("loop", None),
+    ];
+    let mut tiles = Vec::new();
+    let mut k_limit = 0.0f64;
+    let mut rows = Vec::new();
+    for nu in PICTURED {
+        let mut row = Vec::new();
+        for (scheme, curves) in settings {
+            let axes = contender_axes("ring", &[nu], scheme, curves);
+            let parsed =
+                axes_from_json(&axes).map_err(|message| StudyError::JsonGrid { message })?;
+            let grid = Grid::new(parsed)?;
+            let tasks = grid.tasks()?;
+            let Some(task) = tasks.first() else {
+                return Err(ExperimentError::Measure {
+                    subject: format!("ring@{nu}/{scheme}"),
+                    message: "no task".into(),
+                });
+            };
+            let (_, surface) = experiments::sweep_tasks::run_grid_task_keeping(task, &grid)?;
+            let label = match curves {
+                Some(c) => format!("{scheme}/{c}"),
+                None => scheme.to_string(),
+            };
+            row.push((label, surface));
+        }
+        rows.push((nu, row));
+    }
+    // One scale: the true surface's largest |K| at every sample.
+    for (_, row) in &rows {
+        for (_, s) in row {
+            if let Some(truth) = &s.truth {
+                for p in &s.tessellation.positions {
+                    k_limit = k_limit.max(truth.closest(p).gaussian().abs());
+                }
+            }
+        }
+    }
+    let k_limit = k_limit.max(1e-12);
+    let options = RenderOptions {
+        width: TILE.0,
+        height: TILE.1,
+        ..RenderOptions::default()
+    };
+    for (nu, row) in &rows {
+        let all: Vec<nalgebra::Point3<f64>> = row
+            .iter()
+            .flat_map(|(_, s)| s.tessellation.positions.iter().copied())
+            .collect();
+        let cam = Camera::framing_points(&all, VIEW.0, VIEW.1, TILE.0 as f64 / TILE.1 as f64);
+        let mesh = |t: &surface::Tessellation, colour: &dyn Fn(usize) -> [f32; 3]| RenderMesh {
+            positions: t.positions.clone(),
+            normals: t.normals.clone(),
+            colors: (0..t.positions.len()).map(colour).collect(),
+            faces: t.faces.clone(),
+        };
+        // The truth at the first surface's samples.
+        if let Some((_, first)) = row.first() {
+            if let Some(truth) = &first.truth {
+                let t = &first.tessellation;
+                let k: Vec<f64> = t
+                    .positions
+                    .iter()
+                    .map(|p| truth.closest(p).gaussian())
+                    .collect();
+                tiles.push(Tile {
+                    image: render(
+                        &mesh(t, &|i| colormap::diverging(k[i], k_limit)),
+                        &cam,
+                        &options,
+                    )?,
+                    label: format!("ring {nu} × {}: true K", nu / 2),
+                });
+            }
+        }
+        for (label, s) in row {
+            let t = &s.tessellation;
+            tiles.push(Tile {
+                image: render(
+                    &mesh(t, &|i| colormap::diverging(t.gaussian[i], k_limit)),
+                    &cam,
+                    &options,
+                )?,
+                label: format!("{label}: K"),
+            });
+        }
+    }
+    let title = "The ring's Gaussian curvature: the true torus, the default (optimized curves), the curvature variant on dbhs-guarded curves, and Loop (three levels, at the limit)".to_string();
+    write_composite(
+        &tiles,
+        1 + settings.len(),
+        "Gaussian curvature on the ring: truth, default, curvature variant, Loop",
+        Some(&Legend {
+            title: "Gaussian curvature K".into(),
+            kind: LegendKind::Diverging { limit: k_limit },
+        }),
+        &out.join(file),
+    )?;
+    Ok(title)
+}

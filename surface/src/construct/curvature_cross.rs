@@ -99,7 +99,7 @@ use curves::CubicBez3;
 use nalgebra::{Matrix3, Point3, Vector3};
 
 use crate::shirman_sequin::{
-    chiyokura_kimura, decompose, macro_patch_with, CrossEnd, CrossFailure, InteriorParameters,
+    chiyokura_kimura_with_k, macro_patch_with, CrossEnd, CrossFailure, InteriorParameters,
     QuarticNet, SchemeError,
 };
 use curves::VertexData;
@@ -197,12 +197,7 @@ fn moved_cross(
     ends: &[CrossEnd; 2],
     x: &Vector3<f64>,
 ) -> Result<[Point3<f64>; 2], CrossFailure> {
-    let [c1, c2] = chiyokura_kimura(curve, ends, 1.0)?;
-    let [va, e1, e2, vb] = curve.points;
-    let (_, k0, _) = decompose(&ends[0].normal, &(e1 - va), &ends[0].cross)
-        .ok_or(CrossFailure::NoCrossComponent(0))?;
-    let (_, k1, _) = decompose(&ends[1].normal, &(vb - e2), &ends[1].cross)
-        .ok_or(CrossFailure::NoCrossComponent(1))?;
+    let ([c1, c2], [k0, k1]) = chiyokura_kimura_with_k(curve, ends, 1.0)?;
     Ok([c1 + x * (2.0 / 3.0 * k0), c2 + x * (2.0 / 3.0 * k1)])
 }
 

@@ -261,7 +261,7 @@ fn mid(a: &Point3<f64>, b: &Point3<f64>, t: f64) -> Point3<f64> {
 /// geometry, not chosen to make `k` positive: the neighbouring face, travelling the edge the
 /// other way, gets `−Ĉ`, as G1 needs. `k ≤ 0` means the corner cross vector folds over the edge
 /// and no G1 surface of this form exists: `None`.
-pub(crate) fn decompose(
+fn decompose(
     n: &Vector3<f64>,
     t: &Vector3<f64>,
     a: &Vector3<f64>,
@@ -307,6 +307,16 @@ pub fn chiyokura_kimura(
     ends: &[CrossEnd; 2],
     c: f64,
 ) -> Result<[Point3<f64>; 2], CrossFailure> {
+    chiyokura_kimura_with_k(curve, ends, c).map(|(points, _)| points)
+}
+
+/// [`chiyokura_kimura`] with the decomposition's `[k_0, k_1]` (the corner cross vectors'
+/// components across the edge), which the quadratic-field form scales its middle vector by.
+pub(crate) fn chiyokura_kimura_with_k(
+    curve: &CubicBez3,
+    ends: &[CrossEnd; 2],
+    c: f64,
+) -> Result<([Point3<f64>; 2], [f64; 2]), CrossFailure> {
     let [va, e1, e2, vb] = curve.points;
     let t0 = e1 - va;
     let t1 = vb - e2;
@@ -320,10 +330,13 @@ pub fn chiyokura_kimura(
         decompose(&ends[0].normal, &t0, &ends[0].cross).ok_or(CrossFailure::NoCrossComponent(0))?;
     let (ch1, k1, h1) =
         decompose(&ends[1].normal, &t1, &ends[1].cross).ok_or(CrossFailure::NoCrossComponent(1))?;
-    Ok([
-        e1 + (ch0 * (c * (k0 + k1)) + ch1 * k0 + (e2 - e1) * (2.0 * h0) + (e1 - va) * h1) / 3.0,
-        e2 + (ch0 * k1 + ch1 * (c * (k0 + k1)) + (vb - e2) * h0 + (e2 - e1) * (2.0 * h1)) / 3.0,
-    ])
+    Ok((
+        [
+            e1 + (ch0 * (c * (k0 + k1)) + ch1 * k0 + (e2 - e1) * (2.0 * h0) + (e1 - va) * h1) / 3.0,
+            e2 + (ch0 * k1 + ch1 * (c * (k0 + k1)) + (vb - e2) * h0 + (e2 - e1) * (2.0 * h1)) / 3.0,
+        ],
+        [k0, k1],
+    ))
 }
 
 /// The faces the construction would fold or could not make G1 whatever its parameters, found
