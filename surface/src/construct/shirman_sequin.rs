@@ -299,6 +299,23 @@ pub enum CrossFailure {
     NoCrossComponent(usize),
 }
 
+impl CrossFailure {
+    /// The macro-patch's error for this failure on face edge `edge` from corner `corners[0]`
+    /// (end 0) to corner `corners[1]` (end 1).
+    pub fn on_edge(self, edge: usize, corners: [usize; 2]) -> SchemeError {
+        match self {
+            CrossFailure::ZeroDerivative(end) => SchemeError::ZeroEndDerivative {
+                edge,
+                corner: corners[usize::from(end != 0)],
+            },
+            CrossFailure::NoCrossComponent(end) => SchemeError::NoCrossComponent {
+                edge,
+                corner: corners[usize::from(end != 0)],
+            },
+        }
+    }
+}
+
 /// Chiyokura–Kimura's cross-boundary construction with Jensen's parameter `c` (module docs):
 /// the two interior row-1 points `[C¹, C²]` of the quartic patch whose boundary is the cubic
 /// `curve` (degree-raised), given the end normals and corner cross vectors.
@@ -475,20 +492,7 @@ pub(crate) fn macro_patch_with(
                 cross: i1[b] - v[b],
             },
         ];
-        [c1[e], c2[e]] = cross(e, &ends).map_err(|end| match end {
-            CrossFailure::ZeroDerivative(0) => {
-                SchemeError::ZeroEndDerivative { edge: e, corner: a }
-            }
-            CrossFailure::ZeroDerivative(_) => {
-                SchemeError::ZeroEndDerivative { edge: e, corner: b }
-            }
-            CrossFailure::NoCrossComponent(0) => {
-                SchemeError::NoCrossComponent { edge: e, corner: a }
-            }
-            CrossFailure::NoCrossComponent(_) => {
-                SchemeError::NoCrossComponent { edge: e, corner: b }
-            }
-        })?;
+        [c1[e], c2[e]] = cross(e, &ends).map_err(|end| end.on_edge(e, [a, b]))?;
     }
 
     // m = 1 at a straight corner: the two cross-boundary points next to it (on crease edges)

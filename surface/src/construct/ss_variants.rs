@@ -129,7 +129,7 @@ use nalgebra::{Point3, Vector3};
 
 use crate::beztri::BezierTriangle;
 use crate::scheme::CENTROID_SPLIT;
-use crate::shirman_sequin::{chiyokura_kimura, CrossEnd, CrossFailure, QuarticNet, SchemeError};
+use crate::shirman_sequin::{chiyokura_kimura, CrossEnd, QuarticNet, SchemeError};
 
 /// The default of the 1987 construction's free parameter: the C1 one (module docs).
 pub const DEFAULT_ALPHA2: f64 = 9.0 / 4.0;
@@ -201,20 +201,7 @@ fn twists(
                 cross: t[b] - v[b],
             },
         ];
-        out[e] = chiyokura_kimura(&edges[e], &ends, 1.0).map_err(|f| match f {
-            CrossFailure::ZeroDerivative(0) => {
-                SchemeError::ZeroEndDerivative { edge: e, corner: a }
-            }
-            CrossFailure::ZeroDerivative(_) => {
-                SchemeError::ZeroEndDerivative { edge: e, corner: b }
-            }
-            CrossFailure::NoCrossComponent(0) => {
-                SchemeError::NoCrossComponent { edge: e, corner: a }
-            }
-            CrossFailure::NoCrossComponent(_) => {
-                SchemeError::NoCrossComponent { edge: e, corner: b }
-            }
-        })?;
+        out[e] = chiyokura_kimura(&edges[e], &ends, 1.0).map_err(|f| f.on_edge(e, [a, b]))?;
     }
     Ok(out)
 }

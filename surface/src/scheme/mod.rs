@@ -235,6 +235,15 @@ impl FaceInput<'_> {
         self.creases.get(edge).and_then(|c| c[end])
     }
 
+    /// Which corners lie between two crease edges (both of a corner's edges are crease lines
+    /// there): the corners a construction may build as straight crease corners
+    /// ([`crate::shirman_sequin::macro_patch_creased`]).
+    pub fn creased_corners(&self) -> [bool; 3] {
+        std::array::from_fn(|i| {
+            self.crease_line(i, i).is_some() && self.crease_line(i, (i + 2) % 3).is_some()
+        })
+    }
+
     /// The direction `d` from corner `corner` along face edge `edge` (one of the two edges at the
     /// corner: `edge == corner` leaves it, `edge == corner + 2 (mod 3)` arrives at it), mapped
     /// into the surface's tangent space there: projected onto the corner's tangent plane

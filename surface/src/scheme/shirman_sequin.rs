@@ -257,9 +257,7 @@ impl Scheme for ShirmanSequin<'_> {
     ) -> Result<(), FaceFallbackReason> {
         // A corner between two crease edges may be a straight crease corner
         // (`crate::shirman_sequin`, "Straight crease corners").
-        let creased = std::array::from_fn(|i| {
-            input.crease_line(i, i).is_some() && input.crease_line(i, (i + 2) % 3).is_some()
-        });
+        let creased = input.creased_corners();
         let build = |params: &InteriorParameters| {
             macro_patch_creased(input.vertices, input.edges, params, creased)
         };

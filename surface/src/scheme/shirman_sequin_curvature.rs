@@ -8,6 +8,7 @@
 use nalgebra::Point3;
 
 use super::shirman_sequin::BETA;
+use super::shirman_sequin_1987::write_nets;
 use super::{Continuity, FaceInput, Layout, ParameterSpec, Scheme, SchemeOptions, CENTROID_SPLIT};
 use crate::curvature_cross::macro_patch_curvature;
 use crate::fallback::fallback_patch;
@@ -55,26 +56,18 @@ impl Scheme for ShirmanSequinCurvature {
         input: &FaceInput<'_>,
         out: &mut [Point3<f64>],
     ) -> Result<(), FaceFallbackReason> {
-        let creased = std::array::from_fn(|i| {
-            input.crease_line(i, i).is_some() && input.crease_line(i, (i + 2) % 3).is_some()
-        });
         let params = InteriorParameters {
             beta: [self.beta; 3],
             c: [DEFAULT_C; 3],
         };
-        let nets = macro_patch_curvature(input.vertices, input.edges, &params, creased)
-            .map_err(FaceFallbackReason::Scheme)?;
-        if !nets
-            .iter()
-            .flatten()
-            .all(|p| p.iter().all(|c| c.is_finite()))
-        {
-            return Err(FaceFallbackReason::NonFinite);
-        }
-        for (chunk, net) in out.chunks_exact_mut(15).zip(&nets) {
-            chunk.copy_from_slice(net);
-        }
-        Ok(())
+        let nets = macro_patch_curvature(
+            input.vertices,
+            input.edges,
+            &params,
+            input.creased_corners(),
+        )
+        .map_err(FaceFallbackReason::Scheme)?;
+        write_nets(&nets, out)
     }
 
     /// [`crate::fallback::fallback_patch`]: C0 on the shared edge curves.
