@@ -271,6 +271,13 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
         &out.join("convergence.svg"),
     )?;
     let kcolor_title = convergence::kcolor_figure(&out, "kcolor.png")?;
+    render::write_line_charts(
+        &convergence::boundary_charts()?,
+        2,
+        "Curvature along one interior boundary, before and after",
+        &out.join("boundary.png"),
+        &out.join("boundary.svg"),
+    )?;
     let report = json!({"experiment": "interior", "curves": "optimized", "datasets": records, "interior_settings": cmp,
         "curvature_in_the_cross_boundary_field": {"corner_objectives": corner_records, "convergence": conv_records, "verdict": verdict_records}});
     let text = crate::output::pretty_json(&report, "the interior report")?;
@@ -314,6 +321,7 @@ pub fn run(args: &InteriorArgs) -> Result<ExitCode, ExperimentError> {
     md.push_str(&corner_rows);
     let _ = writeln!(md, "\n**Convergence** against the true surface as the edges halve (tessellated at s = 4; every fit through the sweep's task runner, so `sweep --data ring --resolution 16,32,64,128 --scheme shirman-sequin-curvature …` gives the same numbers). In brackets the order from the previous resolution, `log₂(previous / this)`: 1 is first order, 2 second. Loop is measured at the limit of three levels, approximating the data (its position error is the distance of the limit surface from the true surface).\n\n![convergence](convergence.png)\n");
     let _ = writeln!(md, "{kcolor_title}; one colour scale, the true surface's largest |K|. The default's star pattern on each triangle (the seeds' wrinkles) is much fainter in the variant's at 16 × 8 and nearly gone at 32 × 16.\n\n![K on the ring](kcolor.png)\n");
+    let _ = writeln!(md, "K and H along one interior boundary of face {} of the 16 × 8 ring (from its data vertex to the split point), on the two sub-patches that share it, default against the curvature variant, with the true surface's K at the same points. The boundary is G1 by construction, not C2: where the two sub-patches' curvatures differ, they jump across it. At the data vertex (t = 0) the two should agree with the truth; with `dbhs-guarded` curves on this coarse ring some of the face's edges take the optimized branch, whose end curvatures are not the data's.\n\n![K along an interior boundary](boundary.png)\n", convergence::CHARTED_FACE);
     md.push_str(&conv_md);
     let _ = writeln!(md, "\n### One setting against the defaults\n\n`{}` on `{}` curves (dBHS where its lengths keep within half to twice the chord choice, optimized elsewhere: `curves/src/dbhs_guarded.rs`), the same on every data set, against the Shirman–Séquin defaults on the fit's default curves (`chord`) and on the seeds' best (`optimized`), at each data set's default resolution; then its K RMS against every registered scheme on optimized curves (the `schemes` study's setting).\n", convergence::SETTING.0, convergence::SETTING.1);
     md.push_str(&verdict_md);

@@ -483,3 +483,87 @@ pub fn kcolor_figure(out: &std::path::Path, file: &str) -> Result<String, Experi
     )?;
     Ok(title)
 }
+
+/// The face of the 16 × 8 ring whose interior boundary the boundary chart follows: one on the
+/// tube's inner side, where K is most negative and the default's star pattern strongest.
+pub const CHARTED_FACE: usize = 37;
+
+/// Samples along the charted interior boundary.
+const BOUNDARY_SAMPLES: usize = 41;
+
+/// K and H along the interior boundary from corner 0 of [`CHARTED_FACE`] to its split point,
+/// on both sub-patches that share it (the boundary is G1, not C2: the curvature may jump across
+/// it), for the default on optimized curves and for [`SETTING`], with the true torus's at the
+/// same points: two charts.
+pub fn boundary_charts() -> Result<[LineChart; 2], ExperimentError> {
+    let data = surface::dataset_by_name("ring", Some(16))?;
+    let mut series: [Vec<Series>; 2] = [Vec::new(), Vec::new()];
+    let mut truth: [Vec<(f64, f64)>; 2] = [Vec::new(), Vec::new()];
+    for (scheme, curves) in [("shirman-sequin", "optimized"), SETTING] {
+        let s = surface::scheme_by_name(scheme, &surface::SchemeOptions::default())?;
+        let m = curves::method_by_name(curves, &curves::MethodOptions::default())?;
+        let f = surface::fit_scheme(&data.mesh, s.as_ref(), m.as_ref()).map_err(|source| {
+            ExperimentError::Fit {
+                subject: format!("ring/{scheme}/{curves}"),
+                source,
+            }
+        })?;
+        let net = |e: usize| {
+            f.quartic_net(3 * CHARTED_FACE + e)
+                .and_then(|n| surface::BezierTriangle::new(4, n.to_vec()).ok())
+                .ok_or_else(|| ExperimentError::Measure {
+                    subject: format!("ring/{scheme}/{curves}"),
+                    message: format!("face {CHARTED_FACE} has no quartic net"),
+                })
+        };
+        // Sub-patch 0 starts at corner 0 (b400), sub-patch 2 ends there (b040).
+        let (left, right) = (net(0)?, net(2)?);
+        let mut sides: [[Vec<(f64, f64)>; 2]; 2] = Default::default();
+        for k in 0..BOUNDARY_SAMPLES {
+            let t = k as f64 / (BOUNDARY_SAMPLES - 1) as f64;
+            for (side, c) in [left.curvature(1.0 - t, 0.0), right.curvature(0.0, 1.0 - t)]
+                .into_iter()
+                .enumerate()
+            {
+                if let Some(c) = c {
+                    sides[0][side].push((t, c.gaussian));
+                    sides[1][side].push((t, c.mean));
+                }
+            }
+            if scheme == "shirman-sequin" {
+                let q = data.surface.closest(&left.eval(1.0 - t, 0.0, t));
+                truth[0].push((t, q.gaussian()));
+                truth[1].push((t, q.mean()));
+            }
+        }
+        for (measure, [l, r]) in sides.into_iter().enumerate() {
+            series[measure].push(Series {
+                label: format!("{scheme}/{curves} (sub-patch 0)"),
+                points: l,
+            });
+            series[measure].push(Series {
+                label: format!("{scheme}/{curves} (sub-patch 2)"),
+                points: r,
+            });
+        }
+    }
+    let [ks, hs] = series;
+    let [kt, ht] = truth;
+    let chart = |name: &str, truth: Vec<(f64, f64)>, mut s: Vec<Series>| {
+        s.insert(
+            0,
+            Series {
+                label: "true surface".into(),
+                points: truth,
+            },
+        );
+        LineChart {
+            title: format!("{name} along face {CHARTED_FACE}'s interior boundary, ring 16 × 8"),
+            x_label: "t (0: the data vertex, 1: the split point)".into(),
+            y_label: name.into(),
+            series: s,
+            log_y: false,
+        }
+    };
+    Ok([chart("K", kt, ks), chart("H", ht, hs)])
+}
