@@ -4,7 +4,7 @@
 //! (tessellation vertex) counts once.
 
 use nalgebra::Vector3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::datasets::AnalyticSurface;
 use crate::tessellate::Tessellation;
@@ -25,8 +25,8 @@ pub fn median(mut v: Vec<f64>) -> f64 {
     }
 }
 
-/// Errors of a tessellation against an analytic surface.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+/// Errors of a tessellation against an analytic surface (read back from a sweep's records too).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct SurfaceErrors {
     /// Number of samples.
     pub samples: usize,

@@ -23,6 +23,7 @@
 
 use nalgebra::Point3;
 
+use super::shirman_sequin_1987::write_nets;
 use super::{Continuity, FaceInput, Layout, ParameterSpec, Scheme, SchemeOptions, CENTROID_SPLIT};
 use crate::fallback::{face_normal, fallback_patch, folds_over};
 use crate::fit::FaceFallbackReason;
@@ -187,7 +188,7 @@ fn may_fold(input: &FaceInput<'_>, n: &nalgebra::Vector3<f64>) -> bool {
 }
 
 /// Every coordinate of every net finite.
-fn finite(nets: &[QuarticNet; 3]) -> bool {
+pub(super) fn finite(nets: &[QuarticNet; 3]) -> bool {
     nets.iter()
         .flatten()
         .all(|p| p.iter().all(|c| c.is_finite()))
@@ -261,7 +262,8 @@ impl Scheme for ShirmanSequin<'_> {
         let build = |params: &InteriorParameters| {
             macro_patch_creased(input.vertices, input.edges, params, creased)
         };
-        let mut nets = build(&self.params(input.face)).map_err(FaceFallbackReason::Scheme)?;
+        let asked = self.params(input.face);
+        let mut nets = build(&asked).map_err(FaceFallbackReason::Scheme)?;
         if !finite(&nets) {
             return Err(FaceFallbackReason::NonFinite);
         }
@@ -281,6 +283,8 @@ impl Scheme for ShirmanSequin<'_> {
                         beta: [beta; 3],
                         c: [c; 3],
                     };
+                    // The asked parameters fold already: not built again.
+                    (params != asked).then_some(())?;
                     build(&params)
                         .ok()
                         .filter(|other| finite(other) && !folds_over(other, &n))
@@ -296,10 +300,7 @@ impl Scheme for ShirmanSequin<'_> {
                 }
             }
         }
-        for (chunk, net) in out.chunks_exact_mut(15).zip(&nets) {
-            chunk.copy_from_slice(net);
-        }
-        Ok(())
+        write_nets(&nets, out)
     }
 
     /// [`crate::fallback::fallback_patch`]: C0 on the shared edge curves.

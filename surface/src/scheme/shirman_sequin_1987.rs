@@ -77,11 +77,7 @@ pub(crate) fn write_nets(
     nets: &[crate::shirman_sequin::QuarticNet; 3],
     out: &mut [Point3<f64>],
 ) -> Result<(), FaceFallbackReason> {
-    if !nets
-        .iter()
-        .flatten()
-        .all(|p| p.iter().all(|c| c.is_finite()))
-    {
+    if !super::shirman_sequin::finite(nets) {
         return Err(FaceFallbackReason::NonFinite);
     }
     for (chunk, net) in out.chunks_exact_mut(15).zip(nets) {
