@@ -14,20 +14,7 @@ use experiments::sweep_tasks::grid::{axes_from_json, Grid};
 use render::{LineChart, Series};
 use serde_json::{json, Value};
 use surface::interior::corner_measures;
-use surface::InteriorParameters;
-
-/// The errors of a fit against the true surface that the tables give.
-#[derive(Clone, Copy, Debug)]
-pub struct Errors {
-    /// Root-mean-square distance to the true surface.
-    pub position_rms: f64,
-    /// Root-mean-square normal angle (degrees).
-    pub normal_rms_degrees: f64,
-    /// Root-mean-square Gaussian-curvature error.
-    pub gaussian_rms: f64,
-    /// Root-mean-square mean-curvature error.
-    pub mean_rms: f64,
-}
+use surface::{InteriorParameters, SurfaceErrors as Errors};
 
 /// The data sets and their resolutions, each step halving the edge length: the ring's steps
 /// around the axis (tube `nu/2`), the sphere's subdivision levels, the capsule's meridians.
@@ -87,38 +74,29 @@ impl Row {
     }
 }
 
-/// The errors of every task of the sweep grid `axes` (a JSON object of a grid file's keys), in
-/// task order, each with its task's identity (`data`, `resolution`, `scheme`, `curves`) and its
-/// G1 defect: the numbers a `sweep` over the same grid writes.
-fn run_grid(axes: &Value) -> Result<Vec<(Value, Errors, Option<f64>)>, ExperimentError> {
+/// Every task of the sweep grid `axes` (a JSON object of a grid file's keys), in task order:
+/// its record (identity, `faces`, `g1_defect_radians`: the line a `sweep` over the same grid
+/// writes) and its errors against the true surface, read back from the record.
+fn run_grid(axes: &Value) -> Result<Vec<(Value, Errors)>, ExperimentError> {
     let parsed = axes_from_json(axes).map_err(|message| StudyError::JsonGrid { message })?;
     let grid = Grid::new(parsed)?;
     let tasks = grid.tasks()?;
     let mut out = Vec::with_capacity(tasks.len());
     for task in &tasks {
         let v = experiments::sweep_tasks::run_grid_task(task, &grid)?;
-        let number = |key: &str| {
-            v["errors"][key]
-                .as_f64()
-                .ok_or_else(|| ExperimentError::Measure {
-                    subject: task.id.clone(),
-                    message: format!("no {key} against the true surface"),
-                })
-        };
-        let errors = Errors {
-            position_rms: number("position_rms")?,
-            normal_rms_degrees: number("normal_rms_degrees")?,
-            gaussian_rms: number("gaussian_rms")?,
-            mean_rms: number("mean_rms")?,
-        };
-        let g1 = v["g1_defect_radians"].as_f64();
-        out.push((v, errors, g1));
+        let errors = serde_json::from_value::<Errors>(v["errors"].clone()).map_err(|e| {
+            ExperimentError::Measure {
+                subject: task.id.clone(),
+                message: format!("no errors against the true surface: {e}"),
+            }
+        })?;
+        out.push((v, errors));
     }
     Ok(out)
 }
 
-/// The grid axes of one contender on `data` at `resolutions` (none: the default), the solver
-/// given where the construction takes one.
+/// The grid axes of one contender on `data` at `resolutions` (none: the default), one solver
+/// (exact penalty) where the construction takes one, so that a task is one resolution.
 fn contender_axes(data: &str, resolutions: &[usize], scheme: &str, curves: Option<&str>) -> Value {
     let mut axes = json!({"data": [data], "scheme": [scheme]});
     if !resolutions.is_empty() {
@@ -126,7 +104,7 @@ fn contender_axes(data: &str, resolutions: &[usize], scheme: &str, curves: Optio
     }
     if let Some(c) = curves {
         axes["curves"] = json!([c]);
-        if c == "optimized" {
+        if curves::takes_solver(c) {
             axes["solver"] = json!(["exact-penalty"]);
         }
     }
@@ -139,15 +117,15 @@ pub fn measure() -> Result<Vec<Row>, ExperimentError> {
     for (data, resolutions) in SERIES {
         for (scheme, curves) in CONTENDERS {
             let axes = contender_axes(data, &resolutions, scheme, curves);
-            for ((v, errors, g1), &resolution) in run_grid(&axes)?.into_iter().zip(&resolutions) {
+            for (v, errors) in run_grid(&axes)? {
                 rows.push(Row {
                     data,
-                    resolution,
+                    resolution: v["resolution"].as_u64().unwrap_or(0) as usize,
                     faces: v["faces"].as_u64().unwrap_or(0) as usize,
                     scheme,
                     curves,
                     errors,
-                    g1,
+                    g1: v["g1_defect_radians"].as_f64(),
                 });
             }
         }
@@ -211,7 +189,7 @@ pub fn verdict() -> Result<(String, Vec<Value>), ExperimentError> {
         let best = all
             .iter()
             .min_by(|a, b| a.1.gaussian_rms.total_cmp(&b.1.gaussian_rms))
-            .map(|(v, e, _)| {
+            .map(|(v, e)| {
                 (
                     v["scheme"].as_str().unwrap_or("?").to_string(),
                     e.gaussian_rms,
